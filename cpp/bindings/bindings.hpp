@@ -1,0 +1,10 @@
+// One binding function per concept; module.cpp calls them all.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace robokin::bind {
+void bind_chain(pybind11::module_& m);
+void bind_reach(pybind11::module_& m);
+void bind_rpr(pybind11::module_& m);
+}  // namespace robokin::bind

@@ -1,0 +1,217 @@
+// robokin.Chain: serial chains from DH tables or plain segments; FK, Jacobians, frames.
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/chain.hpp"
+#include "robokin/task.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+namespace robokin::bind {
+namespace {
+
+double finite_number(py::handle obj, const std::string& name) {
+  double v;
+  try {
+    v = py::cast<double>(obj);
+  } catch (const py::cast_error&) {
+    fail(name + ": expected a number");
+  }
+  if (!std::isfinite(v)) fail(name + ": must be finite");
+  return v;
+}
+
+std::string joint_letter(py::handle obj, const std::string& name, const char* allowed) {
+  if (!py::isinstance<py::str>(obj)) fail(name + ": joint type must be a string, one of " + allowed);
+  std::string s = py::cast<std::string>(obj);
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (s.size() != 1 || std::string(allowed).find(s) == std::string::npos)
+    fail(name + ": joint type must be one of " + allowed + ", got '" + py::cast<std::string>(obj) + "'");
+  return s;
+}
+
+py::sequence as_rows(py::handle obj, const char* name) {
+  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj))
+    fail(std::string(name) + ": expected a sequence");
+  py::sequence seq = py::reinterpret_borrow<py::sequence>(obj);
+  if (seq.size() == 0) fail(std::string(name) + ": a chain needs at least one joint");
+  return seq;
+}
+
+py::sequence as_tuple_of(py::handle obj, const std::string& name, size_t size, const char* what) {
+  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) ||
+      py::len(obj) != size)
+    fail(name + ": expected " + what);
+  return py::reinterpret_borrow<py::sequence>(obj);
+}
+
+Matrix4 optional_tool(py::handle tool) {
+  return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
+}
+
+void optional_limits(py::handle limits, Vector& lower, Vector& upper) {
+  if (limits.is_none()) return;
+  py::sequence pair = as_tuple_of(limits, "limits", 2, "a pair (lower, upper) of arrays");
+  lower = as_vector(pair[0], "limits", -1, false);
+  upper = as_vector(pair[1], "limits", -1, false);
+}
+
+Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::handle limits) {
+  py::sequence rows = as_rows(rows_obj, "rows");
+  std::vector<DHRow> parsed;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string name = "rows[" + std::to_string(i) + "]";
+    py::sequence r = as_tuple_of(rows[i], name, 5, "(a, alpha, d, theta, 'R' or 'P')");
+    DHRow row;
+    row.a = finite_number(r[0], name + " a");
+    row.alpha = finite_number(r[1], name + " alpha");
+    row.d = finite_number(r[2], name + " d");
+    row.theta = finite_number(r[3], name + " theta");
+    row.prismatic = joint_letter(r[4], name, "RP") == "P";
+    parsed.push_back(row);
+  }
+  Vector lower, upper;
+  optional_limits(limits, lower, upper);
+  return Chain::from_dh(parsed, modified, optional_tool(tool), lower, upper);
+}
+
+Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle limits) {
+  py::sequence segments = as_rows(segments_obj, "segments");
+  std::vector<SegmentSpec> parsed;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const std::string name = "segments[" + std::to_string(i) + "]";
+    py::sequence s = as_tuple_of(segments[i], name, 3, "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))");
+    SegmentSpec spec;
+    const std::string type = joint_letter(s[0], name, "RPF");
+    spec.type = type == "R" ? JointType::Revolute : type == "P" ? JointType::Prismatic : JointType::Fixed;
+    spec.axis = as_vector(s[1], (name + " axis").c_str(), 3);
+    if (spec.axis.norm() < 1e-12) fail(name + " axis: must not be zero");
+    spec.axis.normalize();
+    spec.tip = as_transform(s[2], (name + " tip").c_str());
+    parsed.push_back(spec);
+  }
+  Vector lower, upper;
+  optional_limits(limits, lower, upper);
+  return Chain::from_segments(parsed, optional_tool(tool), lower, upper);
+}
+
+// q of shape (dof,) or (N, dof), finite. Returns N, or -1 for a single configuration.
+long check_q(const Chain& c, const Array& q, const char* name = "q") {
+  const long n = c.dof();
+  if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))
+    fail(std::string(name) + ": expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) +
+         "), got " + shape_of(q));
+  require_finite(q.data(), q.size(), name);
+  return q.ndim() == 1 ? -1 : static_cast<long>(q.shape(0));
+}
+
+Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
+  return as_vector(obj, name, c.dof());
+}
+
+void write_rigid(const Rigid& T, double* m) {
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) m[4 * r + k] = T.R(r, k);
+    m[4 * r + 3] = T.p(r);
+  }
+  m[12] = m[13] = m[14] = 0.0;
+  m[15] = 1.0;
+}
+
+py::array_t<double> fk(const Chain& c, py::handle q_obj) {
+  Array q = as_array(q_obj, "q");
+  const long count = check_q(c, q);
+  if (count < 0) {
+    Rigid T;
+    c.fk(q.data(), T);
+    py::array_t<double> out({4, 4});
+    write_rigid(T, out.mutable_data());
+    return out;
+  }
+  py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}, py::ssize_t{4}});
+  double* dst = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    c.fk_batch(q.data(), count, dst);
+  }
+  return out;
+}
+
+py::array_t<double> jacobian(const Chain& c, py::handle q_obj, const std::string& task_str) {
+  const Task task = parse_task(task_str);
+  Array q = as_array(q_obj, "q");
+  const long count = check_q(c, q);
+  const int rows = task_rows(task), n = c.dof();
+  Matrix6X J6(6, n);
+  Eigen::MatrixXd J;
+  Rigid T;
+  const long batch = count < 0 ? 1 : count;
+  py::array_t<double> out = count < 0 ? new_array({rows, n}) : new_array({batch, rows, n});
+  double* dst = out.mutable_data();
+  for (long k = 0; k < batch; ++k) {
+    c.fk_jacobian(q.data() + k * n, T, J6.data());
+    task_jacobian(task, J6, J);
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(dst + k * rows * n, rows, n) = J;
+  }
+  return out;
+}
+
+py::array_t<double> frames(const Chain& c, py::handle q_obj) {
+  const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
+  py::array_t<double> out({static_cast<py::ssize_t>(f.size()), py::ssize_t{4}, py::ssize_t{4}});
+  for (size_t i = 0; i < f.size(); ++i)
+    Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * i) = f[i];
+  return out;
+}
+
+py::array_t<double> point_in_frame(const Chain& c, py::handle q_obj, py::handle point_obj, long frame,
+                                   long in_frame) {
+  const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
+  const Vector p = as_vector(point_obj, "point", 3);
+  const long last = static_cast<long>(f.size()) - 1;
+  if (frame < 0 || frame > last) fail("frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(frame));
+  if (in_frame < 0 || in_frame > last)
+    fail("in_frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(in_frame));
+  const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
+  return to_numpy(Eigen::VectorXd(rel.topLeftCorner<3, 3>() * p + rel.topRightCorner<3, 1>()));
+}
+
+std::string joint_types(const Chain& c) {
+  std::string s;
+  for (int i = 0; i < c.dof(); ++i) s += c.prismatic(i) ? 'P' : 'R';
+  return s;
+}
+
+}  // namespace
+
+void bind_chain(py::module_& m) {
+  py::class_<Chain>(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).")
+      .def_static("from_dh", &chain_from_dh, py::arg("rows"), py::arg("modified") = false,
+                  py::arg("tool") = py::none(), py::arg("limits") = py::none(),
+                  "Builds a chain from Denavit-Hartenberg rows (a, alpha, d, theta, 'R'|'P').")
+      .def_static("from_segments", &chain_from_segments, py::arg("segments"), py::arg("tool") = py::none(),
+                  py::arg("limits") = py::none(),
+                  "Builds a chain from KDL-style segments (joint type 'R'|'P'|'F', axis, tip frame).")
+      .def_property_readonly("dof", &Chain::dof, "Number of joints.")
+      .def_property_readonly("joint_types", &joint_types, "One letter per joint: 'R' revolute, 'P' prismatic.")
+      .def_property_readonly(
+          "limits", [](const Chain& c) { return py::make_tuple(to_numpy(c.lower()), to_numpy(c.upper())); },
+          "(lower, upper) joint limits; +-inf where a joint is unlimited.")
+      .def("fk", &fk, py::arg("q"), "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof).")
+      .def("jacobian", &jacobian, py::arg("q"), py::arg("task") = "pose",
+           "Geometric Jacobian at the tool point in the base frame, rows of the task.")
+      .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
+      .def("point_in_frame", &point_in_frame, py::arg("q"), py::arg("point"), py::arg("frame"),
+           py::arg("in_frame") = 0, "Expresses a point given in frame `frame` in frame `in_frame`.")
+      .def("_fk_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
+           py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
+      .def("_jacobian_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
+           py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).")
+      .def("__repr__", [](const Chain& c) {
+        return "Chain(dof=" + std::to_string(c.dof()) + ", joints='" + joint_types(c) + "')";
+      });
+}
+
+}  // namespace robokin::bind

@@ -1,0 +1,8 @@
+#include "bindings.hpp"
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "robokin's C++ core (Eigen + Orocos KDL). Use it through the robokin package.";
+  robokin::bind::bind_chain(m);
+  robokin::bind::bind_reach(m);
+  robokin::bind::bind_rpr(m);
+}

@@ -1,0 +1,149 @@
+// The Reach loop and path tracking (seed 000, Algorithm 1).
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/reach.hpp"
+
+#include <cstdio>
+
+namespace robokin::bind {
+namespace {
+
+struct TrackResult {
+  py::array_t<double> q, error;
+  py::array_t<bool> converged;
+  py::array_t<int> iterations;
+};
+
+Target make_target(Task task, const double* data) {
+  Target t;
+  t.task = task;
+  if (task == Task::Pose) {
+    t.pose = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(data));
+  } else {
+    t.value.setZero();
+    for (int i = 0; i < task_rows(task); ++i) t.value(i) = data[i];
+  }
+  return t;
+}
+
+Target single_target(Task task, py::handle obj) {
+  if (task == Task::Pose) {
+    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = as_transform(obj, "target");
+    return make_target(task, m.data());
+  }
+  const Eigen::VectorXd v = as_vector(obj, "target", task_rows(task));
+  return make_target(task, v.data());
+}
+
+std::vector<Target> path_targets(Task task, py::handle obj) {
+  Array a = as_array(obj, "points");
+  const int rows = task_rows(task);
+  const bool ok = task == Task::Pose ? (a.ndim() == 3 && a.shape(1) == 4 && a.shape(2) == 4)
+                                     : (a.ndim() == 2 && a.shape(1) == rows);
+  if (!ok)
+    fail(std::string("points: expected shape ") + (task == Task::Pose ? "(K, 4, 4)" : "(K, " + std::to_string(rows) + ")") +
+         " for task '" + task_name(task) + "', got " + shape_of(a));
+  require_finite(a.data(), a.size(), "points");
+  const long count = a.shape(0), stride = task == Task::Pose ? 16 : rows;
+  std::vector<Target> targets;
+  targets.reserve(count);
+  for (long k = 0; k < count; ++k) {
+    if (task == Task::Pose) as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "points");
+    targets.push_back(make_target(task, a.data() + k * stride));
+  }
+  return targets;
+}
+
+ReachOptions make_options(const Chain& chain, int max_iter, double tol, double gain, double dt, bool saturate,
+                          py::handle nullspace, double damping) {
+  ReachOptions o;
+  o.max_iter = max_iter;
+  o.tol = tol;
+  o.gain = gain;
+  o.dt = dt;
+  o.saturate = saturate;
+  o.damping = damping;
+  if (py::isinstance<py::str>(nullspace)) {
+    if (py::cast<std::string>(nullspace) != "joint_limits")
+      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" +
+           py::cast<std::string>(nullspace) + "'");
+    o.nullspace_weights = joint_limit_weights(chain);
+  } else if (!nullspace.is_none()) {
+    o.nullspace_weights = as_vector(nullspace, "nullspace", chain.dof());
+  }
+  check_reach_options(chain, o);
+  return o;
+}
+
+ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const std::string& task_str,
+                  int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
+                  double damping) {
+  const Task task = parse_task(task_str);
+  const Target t = single_target(task, target);
+  const Vector q = as_vector(q_obj, "q", chain.dof());
+  Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
+  return reacher.reach(t, q);
+}
+
+TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
+                  int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
+                  double damping) {
+  const Task task = parse_task(task_str);
+  const std::vector<Target> targets = path_targets(task, points);
+  const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
+  Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
+  const auto count = static_cast<py::ssize_t>(targets.size());
+  TrackResult r{py::array_t<double>({count, static_cast<py::ssize_t>(chain.dof())}),
+                py::array_t<double>(count), py::array_t<bool>(count), py::array_t<int>(count)};
+  double *q = r.q.mutable_data(), *err = r.error.mutable_data();
+  bool* conv = r.converged.mutable_data();
+  int* iters = r.iterations.mutable_data();
+  {
+    py::gil_scoped_release release;
+    reacher.track(targets.data(), count, q0, q, err, conv, iters);
+  }
+  return r;
+}
+
+std::string repr(const ReachResult& r) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "ReachResult(converged=%s, iterations=%d, error=%.3g, q=",
+                r.converged ? "True" : "False", r.iterations, r.error);
+  return buf + py::repr(to_numpy(r.q)).cast<std::string>() + ")";
+}
+
+}  // namespace
+
+void bind_reach(py::module_& m) {
+  py::class_<ReachResult>(m, "ReachResult", "What one Reach call did.")
+      .def_property_readonly("q", [](const ReachResult& r) { return to_numpy(r.q); }, "Joints at the end.")
+      .def_readonly("converged", &ReachResult::converged, "True when the task error is below tol.")
+      .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
+      .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
+      .def("__repr__", &repr);
+  py::class_<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.")
+      .def_readonly("q", &TrackResult::q, "(K, dof) joints after each point.")
+      .def_readonly("error", &TrackResult::error, "(K,) task error after each point.")
+      .def_readonly("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
+      .def_readonly("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
+      .def("__repr__", [](const TrackResult& r) {
+        const long n = r.error.size();
+        long ok = 0;
+        double worst = 0;
+        for (long k = 0; k < n; ++k) ok += r.converged.data()[k], worst = std::max(worst, r.error.data()[k]);
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "TrackResult(points=%ld, converged=%ld/%ld, max_error=%.3g)", n, ok, n, worst);
+        return std::string(buf);
+      });
+  m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy",
+        py::arg("max_iter") = 25, py::arg("tol") = 1e-5, py::arg("gain") = 0.75, py::arg("dt") = 0.025,
+        py::arg("saturate") = true, py::arg("nullspace") = py::none(), py::arg("damping") = 0.0,
+        "One Reach call (seed 000, Algorithm 1). Use robokin.reach, which also warns.");
+  m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = "xy",
+        py::arg("max_iter") = 25, py::arg("tol") = 1e-5, py::arg("gain") = 0.75, py::arg("dt") = 0.025,
+        py::arg("saturate") = true, py::arg("nullspace") = py::none(), py::arg("damping") = 0.0,
+        "Reach every point of a path in turn. Use robokin.track, which also warns.");
+}
+
+}  // namespace robokin::bind

@@ -1,0 +1,83 @@
+// A serial kinematic chain: a KDL::Chain (the model and the reference) plus joint limits and a
+// specialised evaluation path for the hot calls (forward kinematics and the Jacobian).
+#pragma once
+
+#include <Eigen/Dense>
+#include <kdl/chain.hpp>
+
+#include <string>
+#include <vector>
+
+namespace robokin {
+
+using Matrix4 = Eigen::Matrix4d;
+using Vector = Eigen::VectorXd;
+using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+
+// A rigid transform kept as rotation + translation: cheaper to chain than a 4x4 product.
+struct Rigid {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+
+  Rigid operator*(const Rigid& o) const { return {R * o.R, R * o.p + p}; }
+  Rigid inverse() const { return {R.transpose(), -(R.transpose() * p)}; }
+  Matrix4 matrix() const;
+  static Rigid from_matrix(const Matrix4& m);
+};
+
+// One row of a Denavit-Hartenberg table; `prismatic` says which of theta / d the joint moves.
+struct DHRow {
+  double a = 0, alpha = 0, d = 0, theta = 0;
+  bool prismatic = false;
+};
+
+// One KDL segment given directly: a joint at the segment's start, then a fixed frame to its tip.
+enum class JointType { Revolute, Prismatic, Fixed };
+struct SegmentSpec {
+  JointType type = JointType::Fixed;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // in the segment's start frame, through its origin
+  Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
+};
+
+class Chain {
+ public:
+  // Standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha); modified (Craig): A = Rx(alpha) Tx(a) Rz(theta) Tz(d).
+  static Chain from_dh(const std::vector<DHRow>& rows, bool modified, const Matrix4& tool,
+                       const Vector& lower, const Vector& upper);
+  static Chain from_segments(const std::vector<SegmentSpec>& segments, const Matrix4& tool,
+                             const Vector& lower, const Vector& upper);
+  // Wraps an existing KDL chain (e.g. parsed from URDF); limits of size dof or empty for none.
+  Chain(KDL::Chain chain, const Vector& lower, const Vector& upper);
+
+  int dof() const { return dof_; }
+  const Vector& lower() const { return lower_; }
+  const Vector& upper() const { return upper_; }
+  bool prismatic(int joint) const { return links_[joint].prismatic; }
+  const KDL::Chain& kdl() const { return kdl_; }
+
+  // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
+  void fk(const double* q, Rigid& out) const;
+  void fk_jacobian(const double* q, Rigid& out, double* jac_colmajor_6xn) const;
+  void fk_batch(const double* q, long count, double* out_4x4_rowmajor) const;
+
+  // KDL's recursive solvers: the reference, and the frames of every joint segment.
+  Matrix4 fk_kdl(const Vector& q) const;
+  Matrix6X jacobian_kdl(const Vector& q) const;
+  std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
+
+ private:
+  struct Link {  // joint motion about / along the local z axis, then a fixed frame
+    bool prismatic;
+    double scale;
+    Rigid after;
+  };
+  void build_fast_path();
+
+  KDL::Chain kdl_;
+  int dof_ = 0;
+  Vector lower_, upper_;
+  Rigid base_;  // fixed frame before the first joint's motion
+  std::vector<Link> links_;
+};
+
+}  // namespace robokin

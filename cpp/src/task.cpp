@@ -1,0 +1,62 @@
+#include "robokin/task.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace robokin {
+
+Task parse_task(const std::string& name) {
+  if (name == "pose") return Task::Pose;
+  if (name == "position") return Task::Position;
+  if (name == "xy") return Task::XY;
+  if (name == "xyphi") return Task::XYPhi;
+  throw std::invalid_argument("task: expected one of 'pose', 'position', 'xy', 'xyphi', got '" + name + "'");
+}
+
+const char* task_name(Task task) {
+  switch (task) {
+    case Task::Pose: return "pose";
+    case Task::Position: return "position";
+    case Task::XY: return "xy";
+    case Task::XYPhi: return "xyphi";
+  }
+  return "?";
+}
+
+int task_rows(Task task) {
+  switch (task) {
+    case Task::Pose: return 6;
+    case Task::Position: return 3;
+    case Task::XY: return 2;
+    case Task::XYPhi: return 3;
+  }
+  return 0;
+}
+
+void task_error(const Target& t, const Rigid& T, double* e) {
+  switch (t.task) {
+    case Task::Pose: {
+      const Eigen::Vector3d dp = t.pose.p - T.p;
+      const Eigen::AngleAxisd rot(t.pose.R * T.R.transpose());
+      const Eigen::Vector3d w = rot.angle() * rot.axis();
+      for (int i = 0; i < 3; ++i) e[i] = dp(i), e[3 + i] = w(i);
+      return;
+    }
+    case Task::Position:
+      for (int i = 0; i < 3; ++i) e[i] = t.value(i) - T.p(i);
+      return;
+    case Task::XY:
+      e[0] = t.value(0) - T.p(0);
+      e[1] = t.value(1) - T.p(1);
+      return;
+    case Task::XYPhi:
+      e[0] = t.value(0) - T.p(0);
+      e[1] = t.value(1) - T.p(1);
+      e[2] = std::remainder(t.value(2) - planar_angle(T), 2.0 * M_PI);
+      return;
+  }
+}
+
+}  // namespace robokin

@@ -1,0 +1,24 @@
+"""robokin: robot kinematics with a C++ core (Eigen + Orocos KDL).
+
+Serial chains from Denavit-Hartenberg tables, forward kinematics and Jacobians, the Reach loop
+with joint-limit avoidance and path tracking. See the README for a tour.
+"""
+
+from . import paths, robots
+from ._core import Chain, ReachResult, TrackResult
+from .errors import PrecisionWarning, UnreachableError
+from .reach import reach, track
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Chain",
+    "PrecisionWarning",
+    "ReachResult",
+    "TrackResult",
+    "UnreachableError",
+    "paths",
+    "reach",
+    "robots",
+    "track",
+]

@@ -1,0 +1,9 @@
+"""Exceptions and warnings raised by robokin (all in one place)."""
+
+
+class UnreachableError(ValueError):
+    """A pose the robot cannot reach (a leg or the arm is too short, or a joint limit is in the way)."""
+
+
+class PrecisionWarning(UserWarning):
+    """A numerical loop stopped before reaching its tolerance ("precision not reached", seed 000)."""

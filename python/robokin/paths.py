@@ -1,0 +1,71 @@
+"""Sampled Cartesian paths: a straight line, and the seed program's circle and four-leaf clover."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _point(value, name: str) -> np.ndarray:
+    p = np.asarray(value, dtype=float)
+    if p.ndim != 1 or p.shape[0] not in (2, 3):
+        raise ValueError(f"{name}: expected a 2-D or 3-D point, got shape {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"{name}: contains NaN or inf")
+    return p
+
+
+def _count(n, name: str = "n") -> int:
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError(f"{name}: expected a positive integer, got {n!r}")
+    return int(n)
+
+
+def _positive(value, name: str) -> float:
+    v = float(value)
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
+    return v
+
+
+def line(p1, p2, step: float) -> np.ndarray:
+    """Points from ``p1`` to ``p2`` (both included), evenly spaced at most ``step`` apart.
+
+    Returns:
+        (K, 2) or (K, 3) array, K = ceil(|p2 - p1| / step) + 1.
+    """
+    a, b = _point(p1, "p1"), _point(p2, "p2")
+    if a.shape != b.shape:
+        raise ValueError(f"p2: expected the dimension of p1 ({a.shape[0]}), got {b.shape[0]}")
+    step = _positive(step, "step")
+    k = int(math.ceil(np.linalg.norm(b - a) / step)) + 1
+    return a + np.linspace(0.0, 1.0, max(k, 2))[:, None] * (b - a)
+
+
+def _center(center) -> np.ndarray:
+    c = _point(center, "center")
+    if c.shape[0] != 2:
+        raise ValueError(f"center: expected (x, y), got shape {c.shape}")
+    return c
+
+
+def circle(n: int, radius: float = 0.1, center=(0.0, 0.0)) -> np.ndarray:
+    """``n`` points of a circle, counter-clockwise from angle 0, ``t_k = 2 pi k / n`` (no repeat).
+
+    The seed program's circle has radius 0.1 m about the origin.
+    """
+    n, radius, c = _count(n), _positive(radius, "radius"), _center(center)
+    t = 2.0 * np.pi * np.arange(n) / n
+    return c + radius * np.column_stack((np.cos(t), np.sin(t)))
+
+
+def clover(n: int, k: float = 0.02, center=(0.0, 0.0)) -> np.ndarray:
+    """``n`` points of the seed program's four-leaf clover ``r(t) = k (1 + cos 4t + 2 sin^2 4t)``.
+
+    Polar about ``center``, ``t_k = 2 pi k / n`` (no repeat).
+    """
+    n, k, c = _count(n), _positive(k, "k"), _center(center)
+    t = 2.0 * np.pi * np.arange(n) / n
+    r = k * (1.0 + np.cos(4 * t) + 2.0 * np.sin(4 * t) ** 2)
+    return c + r[:, None] * np.column_stack((np.cos(t), np.sin(t)))
