@@ -1,0 +1,103 @@
+"""Type stubs for robokin._core, the C++ extension (Eigen + Orocos KDL).
+
+Arrays are float64; bad input raises ValueError naming the argument.
+"""
+
+from typing import Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+NDArray = npt.NDArray[np.float64]
+
+# --- chains (cpp/bindings/chain.cpp) ---------------------------------------------------------
+
+class Chain:
+    """A serial kinematic chain (an Orocos KDL chain with joint limits)."""
+
+    @staticmethod
+    def from_dh(
+        rows: Sequence[Tuple[float, float, float, float, str]],
+        modified: bool = False,
+        tool: Optional[ArrayLike] = None,
+        limits: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    ) -> "Chain":
+        """Builds a chain from Denavit-Hartenberg rows ``(a, alpha, d, theta, "R"|"P")``.
+
+        Standard DH: ``A = Rz(theta) Tz(d) Tx(a) Rx(alpha)``; ``modified=True`` (Craig):
+        ``A = Rx(alpha) Tx(a) Rz(theta) Tz(d)``. A revolute joint adds q to theta, a prismatic one
+        to d. ``tool`` is a constant (4, 4) frame after the last row; ``limits`` is
+        ``(lower, upper)`` (``+-inf`` for an unlimited joint).
+        """
+    @staticmethod
+    def from_segments(
+        segments: Sequence[Tuple[str, ArrayLike, ArrayLike]],
+        tool: Optional[ArrayLike] = None,
+        limits: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    ) -> "Chain":
+        """Builds a chain from KDL-style segments ``(joint, axis, tip)``: a joint ``"R"``,
+        ``"P"`` or ``"F"`` (fixed) about / along ``axis`` (3,) through the segment's start, then the
+        constant (4, 4) frame ``tip`` to the segment's end."""
+    @property
+    def dof(self) -> int: ...
+    @property
+    def joint_types(self) -> str:
+        """One letter per joint, ``"R"`` or ``"P"``."""
+    @property
+    def limits(self) -> Tuple[NDArray, NDArray]:
+        """``(lower, upper)``; ``+-inf`` where a joint is unlimited."""
+    def fk(self, q: ArrayLike) -> NDArray:
+        """Tool pose (4, 4) for q of shape (dof,); (N, 4, 4) for a batch (N, dof)."""
+    def jacobian(self, q: ArrayLike, task: str = "pose") -> NDArray:
+        """Geometric Jacobian at the tool point in the base frame, rows ``[v; w]`` selected by
+        ``task`` ("pose" 6, "position" 3, "xy" rows 0-1, "xyphi" rows 0, 1, 5): (rows, dof), or
+        (N, rows, dof) for a batch."""
+    def frames(self, q: ArrayLike) -> NDArray:
+        """(dof + 1, 4, 4): the base, then the frame after each joint (the last includes the tool)."""
+    def point_in_frame(self, q: ArrayLike, point: ArrayLike, frame: int, in_frame: int = 0) -> NDArray:
+        """The point (3,) given in frame ``frame`` expressed in frame ``in_frame`` (0 is the base)."""
+    def _fk_kdl(self, q: ArrayLike) -> NDArray:
+        """Reference: KDL's ChainFkSolverPos_recursive."""
+    def _jacobian_kdl(self, q: ArrayLike) -> NDArray:
+        """Reference: KDL's ChainJntToJacSolver, (6, dof)."""
+
+# --- Reach and tracking (cpp/bindings/reach.cpp) ---------------------------------------------
+
+class ReachResult:
+    @property
+    def q(self) -> NDArray: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def error(self) -> float: ...
+
+class TrackResult:
+    @property
+    def q(self) -> NDArray: ...
+    @property
+    def error(self) -> NDArray: ...
+    @property
+    def converged(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def iterations(self) -> npt.NDArray[np.int32]: ...
+
+def reach(
+    chain: Chain, target: ArrayLike, q: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
+    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+) -> ReachResult: ...
+def track(
+    chain: Chain, points: ArrayLike, q0: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
+    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+) -> TrackResult: ...
+
+# --- the seed-000 RPR arm (cpp/bindings/rpr.cpp) ---------------------------------------------
+
+def rpr_self_motion(
+    point: ArrayLike, t1: ArrayLike, l1: float, l3: float, lower: ArrayLike, upper: ArrayLike
+) -> NDArray:
+    """(2, K, 3) joints putting the RPR tip at ``point`` for each t1 sample and branch; NaN where none."""
