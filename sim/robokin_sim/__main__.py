@@ -1,0 +1,36 @@
+"""Entry point: ``robokin-sim`` and ``python -m robokin_sim``."""
+
+from __future__ import annotations
+
+import sys
+from typing import Optional, Sequence
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Parses the command line, runs the simulator, names the files it wrote.
+
+    Returns:
+        The process exit status (0 on success).
+    """
+    from .config import parse_args
+    from .loop import run
+
+    config = parse_args(argv)
+    try:
+        result = run(config)
+    except KeyboardInterrupt:
+        return 130
+    rate = result.frames / result.seconds if result.seconds > 0 else float("inf")
+    print(f"robokin-sim: {config.robot}, {result.frames} frames, {result.steps} steps in {result.seconds:.2f} s "
+          f"({rate:.0f} frames/s)")
+    if result.record:
+        print(f"recording: {result.record}")
+    if result.screenshot:
+        print(f"screenshot: {result.screenshot}")
+    if result.log:
+        print(f"log: {result.log}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

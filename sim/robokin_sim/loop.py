@@ -1,0 +1,200 @@
+"""The fixed-timestep game loop: input, one simulation step, drawing, recording, logging.
+
+Each frame advances the scene by exactly one step of ``DT`` seconds. With a window the loop is
+paced at ``fps`` frames per second; headless it runs as fast as it can and never sleeps. Nothing
+is printed inside the loop; :func:`run` returns what it wrote and :func:`robokin_sim.__main__.main`
+reports it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import time
+from typing import Iterator, Optional
+
+from .config import Config
+from .keys import HELD_KEYS, NO_INPUT, Input
+
+#: Frames a headless run lasts when neither --frames nor --keys says: about one clover turn
+#: (628 steps) with its approach.
+DEFAULT_HEADLESS_FRAMES = 700
+
+
+@dataclasses.dataclass
+class RunResult:
+    """What a run did."""
+
+    frames: int
+    steps: int
+    record: Optional[str]
+    log: Optional[str]
+    screenshot: Optional[str]
+    seconds: float
+    scene: object
+
+
+def make_scene(config: Config):
+    """The scene for ``config.robot`` in ``config.mode``."""
+    if config.robot == "rpr":
+        from .scene_rpr import RprScene
+
+        return RprScene(mode=config.mode, avoid=config.avoid)
+    from .scene_rrr3 import Rrr3Scene
+
+    return Rrr3Scene(mode=config.mode, avoid=config.avoid)
+
+
+def make_renderer(robot: str, size):
+    """The renderer drawing ``robot``'s scene states on a surface of ``size`` pixels."""
+    if robot == "rpr":
+        from .render_rpr import RprRenderer
+
+        return RprRenderer(size)
+    from .render_rrr3 import Rrr3Renderer
+
+    return Rrr3Renderer(size)
+
+
+def _frame_budget(config: Config) -> Optional[int]:
+    if config.frames is not None:
+        return config.frames
+    if config.headless:
+        return config.keys.frames if config.keys else DEFAULT_HEADLESS_FRAMES
+    return None
+
+
+class _Keyboard:
+    """Turns pygame's events into :class:`Input`; also reports quit and resize requests."""
+
+    def __init__(self, pygame) -> None:
+        self.pg = pygame
+        k = pygame
+        self.names = {
+            k.K_m: "m", k.K_o: "o", k.K_p: "p", k.K_LEFT: "left", k.K_RIGHT: "right", k.K_UP: "up",
+            k.K_DOWN: "down", k.K_k: "k", k.K_l: "l", k.K_s: "s", k.K_SPACE: "space", k.K_r: "r",
+            k.K_h: "h", k.K_ESCAPE: "esc",
+        }
+        self.codes = {name: code for code, name in self.names.items()}
+        self.quit = False
+
+    def poll(self) -> Input:
+        pressed = set()
+        for event in self.pg.event.get():
+            if event.type == self.pg.QUIT:
+                self.quit = True
+            elif event.type == self.pg.KEYDOWN and event.key in self.names:
+                pressed.add(self.names[event.key])
+        down = self.pg.key.get_pressed()
+        held = {name for name in HELD_KEYS if down[self.codes[name]]} | pressed
+        return Input(pressed=frozenset(pressed), held=frozenset(held))
+
+
+def _save_png(pygame, surface, path: str) -> str:
+    from .recording import _temporary_path
+
+    tmp = _temporary_path(path)
+    try:
+        pygame.image.save(surface, tmp, "png")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return path
+
+
+def run(config: Config, render: bool = True) -> RunResult:
+    """Runs the simulator.
+
+    Args:
+        config: The parsed command line.
+        render: Draw every frame (always true with a window or a recording; headless runs may
+            turn it off to measure or log the kinematics alone).
+
+    Returns:
+        RunResult with the frames and steps run and the files written.
+    """
+    if config.headless:
+        # Must be set before pygame initialises its display.
+        os.environ["SDL_VIDEODRIVER"] = "dummy"
+        os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    import pygame
+
+    from .csvlog import CsvLog
+    from .recording import Recorder
+    from .render_common import Hud
+
+    pygame.display.init()
+    pygame.font.init()
+    scene = make_scene(config)
+    render = render or not config.headless or bool(config.record) or bool(config.screenshot)
+    if config.headless:
+        screen = pygame.Surface(config.size)
+    else:
+        screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
+        pygame.display.set_caption(f"robokin-sim: {config.robot}")
+    renderer = make_renderer(config.robot, screen.get_size()) if render else None
+    recorder = (
+        Recorder(config.record, fps=min(config.fps, 60), every=config.record_every, width=config.record_width)
+        if config.record else None
+    )
+    log = CsvLog(config.log, scene.columns) if config.log else None
+    keyboard = None if config.headless else _Keyboard(pygame)
+    script: Iterator[Input] = config.keys.inputs()
+    clock = pygame.time.Clock()
+    hud = Hud()
+    budget = _frame_budget(config)
+    frames = 0
+    started = last = time.perf_counter()
+    written_record = written_log = written_shot = None
+    try:
+        while budget is None or frames < budget:
+            inp = next(script, NO_INPUT)
+            if keyboard is not None:
+                live = keyboard.poll()
+                inp = Input(inp.pressed | live.pressed, inp.held | live.held)
+                if keyboard.quit:
+                    break
+            if "esc" in inp.pressed:
+                break
+            if "space" in inp.pressed:
+                hud.paused = not hud.paused
+            if "h" in inp.pressed:
+                hud.help = not hud.help
+            for key in inp.pressed:
+                scene.press(key)
+            if not hud.paused:
+                scene.step(inp.held)
+                if log is not None:
+                    log.write(scene.row())
+            if renderer is not None:
+                if keyboard is not None and screen.get_size() != pygame.display.get_surface().get_size():
+                    screen = pygame.display.get_surface()
+                renderer.draw(screen, scene.state(), hud)
+                if recorder is not None:
+                    if recorder.wants():
+                        recorder.add(pygame.surfarray.array3d(screen).swapaxes(0, 1))
+                    else:
+                        recorder.skip()
+            frames += 1
+            if keyboard is not None:
+                pygame.display.flip()
+                clock.tick(config.fps)
+                hud.fps = clock.get_fps()
+            elif frames % 30 == 0:
+                now = time.perf_counter()
+                hud.fps = 30.0 / max(now - last, 1e-9)
+                last = now
+        if config.screenshot and renderer is not None:
+            written_shot = _save_png(pygame, screen, config.screenshot)
+    finally:
+        if recorder is not None:
+            written_record = recorder.close()
+        if log is not None:
+            written_log = log.close()
+        pygame.display.quit()
+    return RunResult(
+        frames=frames, steps=scene.steps, record=written_record, log=written_log, screenshot=written_shot,
+        seconds=time.perf_counter() - started, scene=scene,
+    )

@@ -1,0 +1,150 @@
+"""Recordings of the window: GIF with Pillow, MP4 with imageio + imageio-ffmpeg.
+
+Both are written to a temporary file next to the target and renamed into place when complete,
+so an interrupted run never leaves a half-written recording under the requested name.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import zlib
+from typing import List, Optional
+
+import numpy as np
+
+
+def _temporary_path(path: str) -> str:
+    """A new empty file next to ``path`` (same directory, so renaming is atomic), same extension."""
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    stem, ext = os.path.splitext(os.path.basename(path))
+    fd, tmp = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part" + ext, dir=directory)
+    os.close(fd)
+    return tmp
+
+
+class Recorder:
+    """Collects frames (H, W, 3) uint8 RGB and writes them when closed.
+
+    Args:
+        path: Target file, ``.gif`` or ``.mp4``.
+        fps: Playback frames per second.
+        every: Keep one frame in ``every`` (the others are skipped).
+        width: Width of the written frames in pixels (None: as given); even for MP4.
+    """
+
+    def __init__(self, path: str, fps: float = 30.0, every: int = 1, width: Optional[int] = None) -> None:
+        self.path = path
+        self.kind = os.path.splitext(path)[1].lower()
+        if self.kind not in (".gif", ".mp4"):
+            raise ValueError(f"record: expected a .gif or .mp4 path, got {path!r}")
+        self.fps = float(fps)
+        self.every = max(1, int(every))
+        self.width = width
+        self.frames_written = 0
+        self._count = 0
+        self._shape = None
+        self._tmp = _temporary_path(path)
+        # GIF frames are kept as compressed palette images (a long run stays small in memory);
+        # MP4 frames stream straight to ffmpeg.
+        self._gif: List[bytes] = []
+        self._writer = None
+
+    def wants(self) -> bool:
+        """True when the next frame offered to :meth:`add` will be kept (lets callers skip the copy)."""
+        return self._count % self.every == 0
+
+    def skip(self) -> None:
+        """Counts a frame that is not kept (see :meth:`wants`)."""
+        self._count += 1
+
+    def add(self, rgb: np.ndarray) -> None:
+        """Offers one frame, (H, W, 3) uint8; keeps one in ``every``."""
+        keep = self.wants()
+        self._count += 1
+        if not keep:
+            return
+        from PIL import Image
+
+        image = Image.fromarray(np.ascontiguousarray(rgb, dtype=np.uint8), "RGB")
+        if self._shape is None:
+            w, h = image.size
+            if self.width:
+                w, h = self.width, max(2, round(h * self.width / w))
+            if self.kind == ".mp4":
+                w, h = w - w % 2, h - h % 2  # yuv420p wants even sizes
+            self._shape = (w, h)
+        if image.size != self._shape:  # first frame fixes the size; a resized window is rescaled
+            image = image.resize(self._shape, Image.Resampling.LANCZOS if self.width else Image.Resampling.BILINEAR)
+        if self.kind == ".gif":
+            # A fixed palette without dithering keeps flat colours flat, so frames compress well.
+            paletted = image.quantize(palette=_gif_palette(), dither=Image.Dither.NONE)
+            self._gif.append(zlib.compress(paletted.tobytes(), 6))
+        else:
+            if self._writer is None:
+                import imageio.v2 as imageio
+
+                self._writer = imageio.get_writer(
+                    self._tmp, format="FFMPEG", mode="I", fps=self.fps, codec="libx264",
+                    quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
+                )
+            self._writer.append_data(np.asarray(image))
+        self.frames_written += 1
+
+    def close(self) -> Optional[str]:
+        """Writes the file and renames it into place; returns its path (None if no frame was kept)."""
+        try:
+            if self.frames_written == 0:
+                return None
+            if self.kind == ".gif":
+                self._write_gif()
+            else:
+                self._writer.close()
+                self._writer = None
+            os.replace(self._tmp, self.path)
+            return self.path
+        finally:
+            if self._writer is not None:
+                self._writer.close()
+            if os.path.exists(self._tmp):
+                os.remove(self._tmp)
+
+    def _write_gif(self) -> None:
+        from PIL import Image
+
+        palette = _gif_palette()
+
+        def frame(blob: bytes) -> "Image.Image":
+            image = Image.frombytes("P", self._shape, zlib.decompress(blob))
+            image.putpalette(palette.getpalette())
+            return image
+
+        frames = [frame(b) for b in self._gif]
+        duration = int(round(1000.0 * self.every / self.fps))
+        frames[0].save(
+            self._tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
+            loop=0, optimize=False, disposal=1,
+        )
+
+
+_PALETTE = None
+
+
+def _gif_palette():
+    """A 256-colour palette: the theme's flat colours exactly, then a colour cube and greys for
+    the antialiased edges of text."""
+    global _PALETTE
+    if _PALETTE is None:
+        from PIL import Image
+
+        from .theme import COLOURS
+
+        colours = list(dict.fromkeys(COLOURS))
+        levels = [0, 51, 102, 153, 204, 255]
+        colours += [(r, g, b) for r in levels for g in levels for b in levels]
+        colours += [(round(i * 255 / 23),) * 3 for i in range(24)]
+        colours = colours[:256]
+        _PALETTE = Image.new("P", (1, 1))
+        _PALETTE.putpalette([c for rgb in colours for c in rgb])
+    return _PALETTE

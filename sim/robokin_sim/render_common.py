@@ -1,0 +1,40 @@
+"""Pieces every renderer uses: what the loop tells it besides the state, and the background grid."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import pygame
+
+from . import theme
+from .view import Viewport
+
+
+@dataclasses.dataclass
+class Hud:
+    """Loop state shown on screen: measured frames per second, pause and help flags."""
+
+    fps: float = 0.0
+    paused: bool = False
+    help: bool = False
+
+
+def draw_grid(surface: pygame.Surface, view: Viewport, spacing: float) -> None:
+    """Grid lines every ``spacing`` metres and the world axes through the origin."""
+    w, h = view.size
+    lo = view.to_world((0, h))
+    hi = view.to_world((w, 0))
+    if not all(math.isfinite(c) for c in (*lo, *hi)):
+        return
+    for axis in (0, 1):
+        k0, k1 = math.ceil(lo[axis] / spacing), math.floor(hi[axis] / spacing)
+        for k in range(k0, k1 + 1):
+            p = [0.0, 0.0]
+            p[axis] = k * spacing
+            px = view.point(p)
+            colour = theme.AXES if k == 0 else theme.GRID
+            if axis == 0:
+                pygame.draw.line(surface, colour, (px[0], 0), (px[0], h), 1)
+            else:
+                pygame.draw.line(surface, colour, (0, px[1]), (w, px[1]), 1)

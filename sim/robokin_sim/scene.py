@@ -1,0 +1,62 @@
+"""What every scene offers the game loop: keys in, one step at a time, a log row out.
+
+A scene owns the model state of one robot and its step logic; it never draws (the renderers do)
+and never prints. The kinematics it needs are calls into robokin's core.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import FrozenSet, Sequence, Tuple
+
+#: Seconds of simulated time per step: the seed program ran at 60 frames per second, one step each.
+DT = 1.0 / 60.0
+
+
+class Scene:
+    """Base class: step counting and the interface the loop relies on.
+
+    Subclasses set ``robot``, ``columns`` and implement :meth:`press`, :meth:`advance`,
+    :meth:`reset` and :meth:`row`.
+    """
+
+    robot: str = ""
+    columns: Tuple[str, ...] = ()
+
+    def __init__(self) -> None:
+        self.steps = 0
+        #: One line telling what the last step did (shown on the panel), e.g. why a move was refused.
+        self.message = ""
+
+    @property
+    def time(self) -> float:
+        """Simulated time of the current state, seconds (``steps * DT``)."""
+        return self.steps * DT
+
+    def press(self, key: str) -> None:
+        """A key went down (mode switches, toggles, reset). Unknown keys are ignored."""
+
+    def step(self, held: FrozenSet[str]) -> None:
+        """Advances the model by one step with the keys held during it."""
+        self.advance(held)
+        self.steps += 1
+
+    def advance(self, held: FrozenSet[str]) -> None:
+        raise NotImplementedError
+
+    def reset(self) -> None:
+        raise NotImplementedError
+
+    def row(self) -> Sequence:
+        """The log row of the current state, matching ``columns``."""
+        raise NotImplementedError
+
+
+def finite(*values: float) -> bool:
+    """True when every value is a finite number."""
+    return all(math.isfinite(v) for v in values)
+
+
+def arrows(held: FrozenSet[str]) -> Tuple[int, int]:
+    """The direction (dx, dy) in whole steps the arrow keys ask for (opposite keys cancel)."""
+    return (("right" in held) - ("left" in held), ("up" in held) - ("down" in held))
