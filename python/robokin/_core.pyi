@@ -3,7 +3,7 @@
 Arrays are float64; bad input raises ValueError naming the argument.
 """
 
-from typing import Optional, Sequence, Tuple, Union
+from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -101,3 +101,102 @@ def rpr_self_motion(
     point: ArrayLike, t1: ArrayLike, l1: float, l3: float, lower: ArrayLike, upper: ArrayLike
 ) -> NDArray:
     """(2, K, 3) joints putting the RPR tip at ``point`` for each t1 sample and branch; NaN where none."""
+
+# --- the planar 3-RRR parallel robot of seed 002 (cpp/bindings/rrr3.cpp) ---------------------
+
+Mode = Tuple[int, int, int]
+
+class RRR3Newton:
+    """Answer of RRR3.ik_newton; unpacks as ``alpha, beta = result``."""
+
+    @property
+    def alpha(self) -> NDArray: ...
+    @property
+    def beta(self) -> NDArray: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def error(self) -> float:
+        """Largest loop-closure residual (m)."""
+    def __iter__(self) -> Iterator[NDArray]: ...
+
+class RRR3Fk:
+    """Answer of RRR3.fk."""
+
+    @property
+    def pose(self) -> NDArray: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def error(self) -> float:
+        """Largest ``| |A_i B_i| - l2 |`` (m)."""
+
+class RRR3Singularity:
+    """Answer of RRR3.singularity. ``det_a_norm = det A / platform_radius`` and
+    ``det_b_norm = det B / l1**3`` make one tolerance fit any robot size; ``distance`` is the
+    inverse condition number of A with its third column divided by platform_radius (0 at a
+    parallel singularity, at most 1)."""
+
+    @property
+    def kind(self) -> str:
+        """``"none"``, ``"parallel"`` or ``"serial"``."""
+    @property
+    def det_a(self) -> float: ...
+    @property
+    def det_b(self) -> float: ...
+    @property
+    def det_a_norm(self) -> float: ...
+    @property
+    def det_b_norm(self) -> float: ...
+    @property
+    def distance(self) -> float: ...
+    @property
+    def leg(self) -> Optional[int]:
+        """The stretched or folded leg of a serial singularity."""
+    @property
+    def lines(self) -> Optional[str]:
+        """For a parallel singularity, ``"parallel"`` or ``"concurrent"`` lines A_iB_i."""
+
+class RRR3:
+    """The planar 3-RRR parallel robot (seed 002, geometry and conventions of DESIGN.md).
+
+    Base joints ``O_i = R_b u(t_i)``, platform joints ``B_i = E + R_e R(phi) u(t_i)``,
+    ``t_i = -90 deg + 120 deg i``. A pose is ``(x, y, phi)``; a working mode ``(m_0, m_1, m_2)``
+    with ``m_i = sign(beta_i)``.
+    """
+
+    modes: Tuple[Mode, ...]
+    """The 8 modes in ik_all's row order, ``itertools.product((1, -1), repeat=3)``."""
+
+    def __init__(self, base_radius: float = 0.13, platform_radius: float = 0.07, l1: float = 0.12,
+                 l2: float = 0.12) -> None: ...
+    @property
+    def base_radius(self) -> float: ...
+    @property
+    def platform_radius(self) -> float: ...
+    @property
+    def l1(self) -> float: ...
+    @property
+    def l2(self) -> float: ...
+    def ik(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
+        """Actuated angles (3,); ``UnreachableError`` (with ``.leg``) when a leg cannot reach."""
+    def ik_all(self, pose: ArrayLike) -> NDArray:
+        """(8, 3): row k for ``modes[k]``, NaN rows where unreachable."""
+    def ik_batch(self, poses: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
+        """(N, 3) for (N, 3) poses, NaN rows where a leg cannot reach; both cores, GIL released."""
+    def ik_newton(self, pose: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Newton:
+        """Newton-Raphson on the 6 loop equations from ``guess`` = (alpha, beta), shape (2, 3) or (6,)."""
+    def fk(self, alpha: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Fk:
+        """One assembly mode by Newton from a guess pose."""
+    def fk_all(self, alpha: ArrayLike) -> NDArray:
+        """(k, 3) every assembly mode, k <= 6, sorted by phi in [-pi, pi); each closes the loops to 1e-10 m."""
+    def points(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Dict[str, NDArray]:
+        """(3, 2) arrays ``"O"``, ``"A"``, ``"B"`` for drawing."""
+    def jacobians(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Tuple[NDArray, NDArray]:
+        """The seed's ``(A, B)``: ``A v = B alpha_dot``, v = (v_x, v_y, w) in the effector frame."""
+    def singularity(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1), tol: float = 1e-3) -> RRR3Singularity:
+        """Serial when ``|det_b_norm| < tol``, else parallel when ``|det_a_norm| < tol``, else none."""

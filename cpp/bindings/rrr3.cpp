@@ -1,0 +1,222 @@
+// robokin.RRR3: the planar 3-RRR parallel robot of seed 002.
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/rrr3.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+namespace robokin::bind {
+namespace {
+
+using Elbows = Eigen::Matrix<double, 3, 2>;
+
+Mode as_mode(py::handle obj) {
+  Array a = as_array(obj, "mode");
+  if (a.ndim() != 1 || a.shape(0) != 3) fail("mode: expected 3 signs (m_0, m_1, m_2), got shape " + shape_of(a));
+  Mode m;
+  for (int i = 0; i < 3; ++i) {
+    const double v = a.data()[i];
+    if (v != 1.0 && v != -1.0) fail("mode: every entry must be +1 or -1, got " + std::to_string(v));
+    m[i] = static_cast<int>(v);
+  }
+  return m;
+}
+
+Pose as_pose(py::handle obj, const char* name = "pose") { return as_vector(obj, name, 3); }
+
+py::array_t<double> vec3(const Eigen::Vector3d& v) {
+  py::array_t<double> out(3);
+  std::copy(v.data(), v.data() + 3, out.mutable_data());
+  return out;
+}
+
+py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
+
+py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mode_obj) {
+  const Mode mode = as_mode(mode_obj);
+  Array poses = as_array(poses_obj, "poses");
+  if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
+  require_finite(poses.data(), poses.size(), "poses");
+  const long n = static_cast<long>(poses.shape(0));
+  py::array_t<double> out = new_array({n, 3});
+  double* dst = out.mutable_data();
+  const double* src = poses.data();
+  {
+    py::gil_scoped_release release;
+    r.ik_batch(src, n, mode, dst);
+  }
+  return out;
+}
+
+py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
+  const Pose pose = as_pose(pose_obj);
+  py::array_t<double> out = new_array({8, 3});
+  for (int k = 0; k < 8; ++k) {
+    double* row = out.mutable_data() + 3 * k;
+    if (r.ik(pose, RRR3::mode_at(k), row) >= 0) row[0] = row[1] = row[2] = NAN;
+  }
+  return out;
+}
+
+RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, int max_iter, double tol) {
+  const Pose pose = as_pose(pose_obj);
+  Array g = as_array(guess_obj, "guess");
+  if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
+    fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
+  require_finite(g.data(), 6, "guess");
+  if (max_iter < 0) fail("max_iter: must be >= 0");
+  if (!(tol > 0)) fail("tol: must be positive");
+  return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
+                     max_iter, tol);
+}
+
+RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_iter, double tol) {
+  const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
+  const Pose guess = as_pose(guess_obj, "guess");
+  if (max_iter < 0) fail("max_iter: must be >= 0");
+  if (!(tol > 0)) fail("tol: must be positive");
+  return r.fk(alpha, guess, max_iter, tol);
+}
+
+py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
+  const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
+  std::vector<Pose> poses;
+  {
+    py::gil_scoped_release release;
+    poses = r.fk_all(alpha);
+  }
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(poses.size()), 3});
+  for (size_t k = 0; k < poses.size(); ++k) std::copy(poses[k].data(), poses[k].data() + 3, out.mutable_data() + 3 * k);
+  return out;
+}
+
+py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+  const Pose pose = as_pose(pose_obj);
+  const Elbows A = r.elbows(r.ik_or_throw(pose, as_mode(mode_obj)));
+  Elbows O, B;
+  for (int i = 0; i < 3; ++i) {
+    O.row(i) = r.base_joint(i).transpose();
+    B.row(i) = r.platform_joint(pose, i).transpose();
+  }
+  py::dict d;
+  d["O"] = rows32(O);
+  d["A"] = rows32(A);
+  d["B"] = rows32(B);
+  return d;
+}
+
+py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+  Eigen::Matrix3d A, B;
+  r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
+  return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
+}
+
+double positive_tol(double tol) {
+  if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
+  return tol;
+}
+
+}  // namespace
+
+void bind_rrr3(py::module_& m) {
+  // LegUnreachable -> robokin.UnreachableError (a ValueError) with the leg as an attribute. The
+  // class is looked up when raised, so the import order of the package does not matter.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const LegUnreachable& e) {
+      py::object cls = py::module_::import("robokin.errors").attr("UnreachableError");
+      py::object exc = cls(e.what());
+      exc.attr("leg") = e.leg();
+      PyErr_SetObject(cls.ptr(), exc.ptr());
+    }
+  });
+
+  py::class_<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).")
+      .def_property_readonly("alpha", [](const RRR3Newton& r) { return vec3(r.alpha); })
+      .def_property_readonly("beta", [](const RRR3Newton& r) { return vec3(r.beta); })
+      .def_readonly("converged", &RRR3Newton::converged)
+      .def_readonly("iterations", &RRR3Newton::iterations)
+      .def_readonly("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
+      .def("__iter__", [](const RRR3Newton& r) { return py::iter(py::make_tuple(vec3(r.alpha), vec3(r.beta))); })
+      .def("__repr__", [](const RRR3Newton& r) {
+        return "RRR3Newton(converged=" + std::string(r.converged ? "True" : "False") +
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+      });
+
+  py::class_<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.")
+      .def_property_readonly("pose", [](const RRR3Fk& r) { return vec3(r.pose); })
+      .def_readonly("converged", &RRR3Fk::converged)
+      .def_readonly("iterations", &RRR3Fk::iterations)
+      .def_readonly("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
+      .def("__repr__", [](const RRR3Fk& r) {
+        return "RRR3Fk(converged=" + std::string(r.converged ? "True" : "False") +
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+      });
+
+  py::class_<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.")
+      .def_readonly("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
+      .def_readonly("det_a", &RRR3Singularity::det_a)
+      .def_readonly("det_b", &RRR3Singularity::det_b)
+      .def_readonly("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.")
+      .def_readonly("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.")
+      .def_readonly("distance", &RRR3Singularity::distance,
+                    "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.")
+      .def_property_readonly("leg", [](const RRR3Singularity& s) -> py::object {
+        return s.leg < 0 ? py::object(py::none()) : py::object(py::int_(s.leg));
+      }, "The stretched or folded leg of a serial singularity, else None.")
+      .def_property_readonly("lines", [](const RRR3Singularity& s) -> py::object {
+        return s.lines.empty() ? py::object(py::none()) : py::object(py::str(s.lines));
+      }, "For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.")
+      .def("__repr__", [](const RRR3Singularity& s) {
+        return "RRR3Singularity(kind='" + s.kind + "', det_a_norm=" + std::to_string(s.det_a_norm) +
+               ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
+      });
+
+  py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
+      .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
+           py::arg("base_radius") = 0.13, py::arg("platform_radius") = 0.07, py::arg("l1") = 0.12,
+           py::arg("l2") = 0.12)
+      .def_property_readonly("base_radius", &RRR3::base_radius)
+      .def_property_readonly("platform_radius", &RRR3::platform_radius)
+      .def_property_readonly("l1", &RRR3::l1)
+      .def_property_readonly("l2", &RRR3::l2)
+      .def_property_readonly_static("modes", [](py::object) {
+        py::list modes;
+        for (int k = 0; k < 8; ++k) {
+          const Mode md = RRR3::mode_at(k);
+          modes.append(py::make_tuple(md[0], md[1], md[2]));
+        }
+        return py::tuple(modes);
+      }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.")
+      .def("ik", [](const RRR3& r, py::handle pose, py::handle mode) {
+        return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
+      .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
+      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
+      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = 50,
+           py::arg("tol") = 1e-12, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
+      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = 50, py::arg("tol") = 1e-12,
+           "One assembly mode by Newton from a guess pose.")
+      .def("fk_all", &fk_all, py::arg("alpha"), "(k, 3) every assembly mode, k <= 6, sorted by phi.")
+      .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
+      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
+      .def("singularity", [](const RRR3& r, py::handle pose, py::handle mode, double tol) {
+        return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = 1e-3,
+           "Classification with tol on the normalised determinants.")
+      .def("__repr__", [](const RRR3& r) {
+        return "RRR3(base_radius=" + std::to_string(r.base_radius()) + ", platform_radius=" +
+               std::to_string(r.platform_radius()) + ", l1=" + std::to_string(r.l1()) + ", l2=" +
+               std::to_string(r.l2()) + ")";
+      });
+}
+
+}  // namespace robokin::bind
