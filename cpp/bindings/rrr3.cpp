@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 
 #include "robokin/rrr3.hpp"
+#include "robokin/rrr3_plan.hpp"
 
 #include <pybind11/stl.h>
 
@@ -119,6 +120,38 @@ double positive_tol(double tol) {
   return tol;
 }
 
+double finite_option(double v, const char* name) {
+  if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
+  return v;
+}
+
+RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode, bool avoid, double max_step,
+              double margin, double serial_margin, double span, double resolution, double smoothing) {
+  Array pts = as_array(points_obj, "points");
+  if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
+  require_finite(pts.data(), pts.size(), "points");
+  RRR3PlanOptions o;
+  o.phi = finite_option(phi, "phi");
+  o.mode = as_mode(mode);
+  o.avoid = avoid;
+  o.max_step = finite_option(max_step, "max_step");
+  o.margin = finite_option(margin, "margin");
+  o.serial_margin = finite_option(serial_margin, "serial_margin");
+  o.span = finite_option(span, "span");
+  o.resolution = finite_option(resolution, "resolution");
+  o.smoothing = finite_option(smoothing, "smoothing");
+  if (!(o.max_step > 0)) fail("max_step: must be positive");
+  if (!(o.resolution > 0 && o.resolution <= o.max_step)) fail("resolution: must be positive and at most max_step");
+  if (o.span < 0 || o.span > M_PI) fail("span: must be in [0, pi]");
+  if (o.span / o.resolution > 1e5) fail("resolution: too fine for span (more than 2e5 orientations)");
+  if (o.margin < 0) fail("margin: must be >= 0");
+  if (o.serial_margin < 0) fail("serial_margin: must be >= 0");
+  if (o.smoothing < 0) fail("smoothing: must be >= 0");
+  const long count = static_cast<long>(pts.shape(0));
+  py::gil_scoped_release release;
+  return plan_path(r, pts.data(), count, o);
+}
+
 }  // namespace
 
 void bind_rrr3(py::module_& m) {
@@ -176,6 +209,24 @@ void bind_rrr3(py::module_& m) {
                ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
       });
 
+  py::class_<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan: the poses to follow and what they give.")
+      .def_property_readonly("poses", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.poses)); },
+                             "(K, 3) poses (x, y, phi).")
+      .def_property_readonly("alpha", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.alpha)); },
+                             "(K, 3) actuated angles, NaN rows where unreachable.")
+      .def_property_readonly("det_a_norm", [](const RRR3Plan& p) { return to_numpy(p.det_a_norm); },
+                             "det A / platform_radius along the path.")
+      .def_property_readonly("det_b_norm", [](const RRR3Plan& p) { return to_numpy(p.det_b_norm); },
+                             "det B / l1^3 along the path.")
+      .def_property_readonly("distance", [](const RRR3Plan& p) { return to_numpy(p.distance); },
+                             "Distance to parallel singularities (inverse condition number of A) along the path.")
+      .def_readonly("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
+      .def_readonly("feasible", &RRR3Plan::feasible,
+                    "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
+      .def("__repr__", [](const RRR3Plan& p) {
+        return "RRR3Plan(points=" + std::to_string(p.poses.rows()) + ", feasible=" + (p.feasible ? "True" : "False") + ")";
+      });
+
   py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
       .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
            py::arg("base_radius") = 0.13, py::arg("platform_radius") = 0.07, py::arg("l1") = 0.12,
@@ -212,6 +263,11 @@ void bind_rrr3(py::module_& m) {
         return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = 1e-3,
            "Classification with tol on the normalised determinants.")
+      .def("plan", &plan, py::arg("points"), py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("avoid") = true, py::arg("max_step") = 0.01, py::arg("margin") = 0.05,
+           py::arg("serial_margin") = 0.02, py::arg("span") = 1.0, py::arg("resolution") = 0.005,
+           py::arg("smoothing") = 10.0,
+           "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.")
       .def("__repr__", [](const RRR3& r) {
         return "RRR3(base_radius=" + std::to_string(r.base_radius()) + ", platform_radius=" +
                std::to_string(r.platform_radius()) + ", l1=" + std::to_string(r.l1()) + ", l2=" +

@@ -170,12 +170,13 @@ void RRR3::jacobians_at(const Pose& pose, const Eigen::Matrix<double, 3, 2>& elb
                         Eigen::Matrix3d& B) const {
   B.setZero();
   const Eigen::Vector2d e = pose.head<2>();
+  const double c = std::cos(pose(2)), s = std::sin(pose(2));
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector2d a = elbows.row(i).transpose();
     const Eigen::Vector2d ab = platform_joint(pose, i) - a;
     const double n = ab.norm();
-    const double g = std::atan2(ab.y(), ab.x()) - pose(2);
-    A.row(i) << std::cos(g), std::sin(g), cross(ab, e - a) / n;
+    // (cos g_i, sin g_i) with g_i = atan2(A_iB_i) - phi: the unit A_iB_i seen in the effector frame.
+    A.row(i) << (c * ab.x() + s * ab.y()) / n, (c * ab.y() - s * ab.x()) / n, cross(ab, e - a) / n;
     B(i, i) = cross(ab, o_[i] - a) / n;
   }
 }

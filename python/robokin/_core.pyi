@@ -161,6 +161,29 @@ class RRR3Singularity:
     def lines(self) -> Optional[str]:
         """For a parallel singularity, ``"parallel"`` or ``"concurrent"`` lines A_iB_i."""
 
+class RRR3Plan:
+    """Answer of RRR3.plan: the poses to follow and what they give along the path."""
+
+    @property
+    def poses(self) -> NDArray:
+        """(K, 3) poses (x, y, phi)."""
+    @property
+    def alpha(self) -> NDArray:
+        """(K, 3) actuated angles, NaN rows where unreachable."""
+    @property
+    def det_a_norm(self) -> NDArray: ...
+    @property
+    def det_b_norm(self) -> NDArray: ...
+    @property
+    def distance(self) -> NDArray:
+        """Inverse condition number of A along the path (RRR3Singularity.distance)."""
+    @property
+    def sign(self) -> int:
+        """The sign of det A kept along the path."""
+    @property
+    def feasible(self) -> bool:
+        """Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A."""
+
 class RRR3:
     """The planar 3-RRR parallel robot (seed 002, geometry and conventions of DESIGN.md).
 
@@ -200,3 +223,17 @@ class RRR3:
         """The seed's ``(A, B)``: ``A v = B alpha_dot``, v = (v_x, v_y, w) in the effector frame."""
     def singularity(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1), tol: float = 1e-3) -> RRR3Singularity:
         """Serial when ``|det_b_norm| < tol``, else parallel when ``|det_a_norm| < tol``, else none."""
+    def plan(
+        self, points: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
+        max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
+        resolution: float = 0.005, smoothing: float = 10.0,
+    ) -> RRR3Plan:
+        """Poses to follow the (K, 2) points at the nominal orientation ``phi`` in one mode.
+
+        With ``avoid`` the orientations minimise ``sum (phi_k - phi)^2 + smoothing (phi_k -
+        phi_{k-1})^2`` over a grid (step ``resolution``, within ``phi +- span``) by dynamic
+        programming, with ``|phi_k - phi_{k-1}| <= max_step``, every pose reachable in ``mode``,
+        ``|det_b_norm| >= serial_margin``, det A of the sign it has at the first point, and a
+        distance to parallel singularities below ``margin`` penalised heavily. Excursions from
+        the nominal orientation go out and back once (dips are filled), so nothing chatters.
+        """
