@@ -4,6 +4,7 @@
 
 #include "robokin/rrr3.hpp"
 #include "robokin/rrr3_plan.hpp"
+#include "robokin/rrr3_workspace.hpp"
 
 #include <pybind11/stl.h>
 
@@ -152,6 +153,45 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   return plan_path(r, pts.data(), count, o);
 }
 
+long grid_size(long n) {
+  if (n < 2 || n > 20000) fail("n: expected a grid size in [2, 20000], got " + std::to_string(n));
+  return n;
+}
+
+RRR3Workspace workspace_map(const RRR3& r, double phi, py::handle mode_obj, long n, double tol) {
+  const Mode mode = as_mode(mode_obj);
+  finite_option(phi, "phi");
+  grid_size(n);
+  positive_tol(tol);
+  py::gil_scoped_release release;
+  return workspace(r, phi, mode, n, tol);
+}
+
+py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mode_obj, long n, double tol) {
+  Array g = as_array(robots_obj, "robots");
+  if (g.ndim() != 2 || g.shape(1) != 4)
+    fail("robots: expected shape (K, 4) rows (base_radius, platform_radius, l1, l2), got " + shape_of(g));
+  std::vector<RRR3> robots;
+  for (py::ssize_t k = 0; k < g.shape(0); ++k) {
+    const double* row = g.data() + 4 * k;
+    try {
+      robots.emplace_back(row[0], row[1], row[2], row[3]);
+    } catch (const std::invalid_argument& e) {
+      fail("robots[" + std::to_string(k) + "]: " + e.what());
+    }
+  }
+  const Mode mode = as_mode(mode_obj);
+  finite_option(phi, "phi");
+  grid_size(n);
+  positive_tol(tol);
+  std::vector<double> areas;
+  {
+    py::gil_scoped_release release;
+    areas = region_areas(robots, phi, mode, n, tol);
+  }
+  return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
+}
+
 }  // namespace
 
 void bind_rrr3(py::module_& m) {
@@ -227,6 +267,34 @@ void bind_rrr3(py::module_& m) {
         return "RRR3Plan(points=" + std::to_string(p.poses.rows()) + ", feasible=" + (p.feasible ? "True" : "False") + ")";
       });
 
+  py::class_<RRR3Workspace>(m, "RRR3Workspace", "Answer of RRR3.workspace: a constant-orientation map.")
+      .def_property_readonly("cells", [](const RRR3Workspace& w) {
+        py::array_t<std::uint8_t> out({w.n, w.n});
+        std::copy(w.cells.begin(), w.cells.end(), out.mutable_data());
+        return out;
+      }, "(n, n) codes, row j at y[j], column i at x[i]: 0 unreachable, 1 regular, 2 parallel, 3 serial.")
+      .def_property_readonly("x", [](const RRR3Workspace& w) {
+        return to_numpy(Eigen::VectorXd(w.x0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
+      }, "Cell centres along x (n,).")
+      .def_property_readonly("y", [](const RRR3Workspace& w) {
+        return to_numpy(Eigen::VectorXd(w.y0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
+      }, "Cell centres along y (n,).")
+      .def_property_readonly("extent", [](const RRR3Workspace& w) {
+        return py::make_tuple(w.x0, w.x0 + w.n * w.h, w.y0, w.y0 + w.n * w.h);
+      }, "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.")
+      .def_readonly("cell_size", &RRR3Workspace::h)
+      .def_readonly("reachable_area", &RRR3Workspace::reachable_area, "Area of the reachable cells (m^2).")
+      .def_readonly("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
+      .def_readonly("area", &RRR3Workspace::region_area,
+                    "Area of the largest singularity-free 4-connected region (m^2).")
+      .def("__repr__", [](const RRR3Workspace& w) {
+        return "RRR3Workspace(n=" + std::to_string(w.n) + ", area=" + std::to_string(w.region_area) + ")";
+      });
+
+  m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
+        py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("n") = 150, py::arg("tol") = 1e-3,
+        "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
+
   py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
       .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
            py::arg("base_radius") = 0.13, py::arg("platform_radius") = 0.07, py::arg("l1") = 0.12,
@@ -263,6 +331,9 @@ void bind_rrr3(py::module_& m) {
         return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = 1e-3,
            "Classification with tol on the normalised determinants.")
+      .def("workspace", &workspace_map, py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("n") = 200, py::arg("tol") = 1e-3,
+           "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
       .def("plan", &plan, py::arg("points"), py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
            py::arg("avoid") = true, py::arg("max_step") = 0.01, py::arg("margin") = 0.05,
            py::arg("serial_margin") = 0.02, py::arg("span") = 1.0, py::arg("resolution") = 0.005,

@@ -184,6 +184,36 @@ class RRR3Plan:
     def feasible(self) -> bool:
         """Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A."""
 
+class RRR3Workspace:
+    """Answer of RRR3.workspace: a constant-orientation map on an n x n grid."""
+
+    @property
+    def cells(self) -> npt.NDArray[np.uint8]:
+        """(n, n) codes, row j at ``y[j]``, column i at ``x[i]``: 0 unreachable, 1 regular,
+        2 parallel singular (``|det_a_norm| < tol`` or det A changes sign to a neighbour), 3 serial."""
+    @property
+    def x(self) -> NDArray: ...
+    @property
+    def y(self) -> NDArray: ...
+    @property
+    def extent(self) -> Tuple[float, float, float, float]:
+        """``(x_min, x_max, y_min, y_max)`` for matplotlib's imshow."""
+    @property
+    def cell_size(self) -> float: ...
+    @property
+    def reachable_area(self) -> float:
+        """Area of the reachable cells (m^2)."""
+    @property
+    def regular_area(self) -> float:
+        """Area of the reachable, non-singular cells (m^2)."""
+    @property
+    def area(self) -> float:
+        """Area of the largest 4-connected singularity-free region (m^2)."""
+
+def rrr3_region_areas(robots: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), n: int = 150,
+                      tol: float = 1e-3) -> NDArray:
+    """RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2). Use robokin.rrr3_design."""
+
 class RRR3:
     """The planar 3-RRR parallel robot (seed 002, geometry and conventions of DESIGN.md).
 
@@ -223,6 +253,10 @@ class RRR3:
         """The seed's ``(A, B)``: ``A v = B alpha_dot``, v = (v_x, v_y, w) in the effector frame."""
     def singularity(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1), tol: float = 1e-3) -> RRR3Singularity:
         """Serial when ``|det_b_norm| < tol``, else parallel when ``|det_a_norm| < tol``, else none."""
+    def workspace(self, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), n: int = 200,
+                  tol: float = 1e-3) -> RRR3Workspace:
+        """Constant-orientation workspace on an n x n grid around the reachable set, with its
+        singular cells and areas; computed on every core."""
     def plan(
         self, points: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
         max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
