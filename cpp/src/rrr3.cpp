@@ -3,6 +3,8 @@
 
 #include "robokin/parallel.hpp"
 
+#include "fast_math.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -46,21 +48,22 @@ Eigen::Vector2d RRR3::platform_joint(const Pose& pose, int i) const {
 
 int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
   const double c = std::cos(pose(2)), s = std::sin(pose(2));
-  const double reach_in = std::abs(l1_ - l2_), reach_out = l1_ + l2_;
+  const double in2 = (l1_ - l2_) * (l1_ - l2_), out2 = (l1_ + l2_) * (l1_ + l2_);
   for (int i = 0; i < 3; ++i) {
     const double dx = pose(0) + c * b_[i].x() - s * b_[i].y() - o_[i].x();
     const double dy = pose(1) + s * b_[i].x() + c * b_[i].y() - o_[i].y();
-    const double r = std::sqrt(dx * dx + dy * dy);
+    const double r2 = dx * dx + dy * dy;
     // r == 0 with l1 == l2 leaves alpha free: no unique answer, so it counts as unreachable.
-    if (!(r >= reach_in && r <= reach_out) || r == 0) {
+    if (!(r2 >= in2 && r2 <= out2) || r2 == 0) {
       for (int j = i; j < 3; ++j) alpha[j] = kNaN;
       return i;
     }
-    // The law of cosines gives the angle theta at O_i between O_iB_i and O_iA_i. Rotating the
-    // unit vector O_iB_i by -m theta gives the direction of link 1: one atan2, no acos.
-    const double ct = std::min(1.0, std::max(-1.0, (l1_ * l1_ + r * r - l2_ * l2_) / (2 * l1_ * r)));
-    const double st = mode[i] * std::sqrt(1 - ct * ct);
-    alpha[i] = std::atan2(ct * dy - st * dx, ct * dx + st * dy);
+    // The law of cosines gives the angle theta at O_i between O_iB_i and O_iA_i:
+    // cos theta = K / (2 l1 r), sin theta = S / (2 l1 r). Rotating O_iB_i by -m theta gives the
+    // direction of link 1, scaled by 2 l1 r > 0, which atan2 ignores: no acos, no division.
+    const double K = l1_ * l1_ + r2 - l2_ * l2_;
+    const double S = mode[i] * std::sqrt(std::max(0.0, 4 * l1_ * l1_ * r2 - K * K));
+    alpha[i] = fast_atan2(K * dy - S * dx, K * dx + S * dy);
   }
   return -1;
 }

@@ -19,7 +19,7 @@ namespace {
 
 constexpr int kDegree = 6;
 constexpr int kFit = 16;    // samples for the exact coefficients (> 2 * kDegree + 1)
-constexpr int kScan = 720;  // scan step 0.5 deg
+constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by the dip test
 
 struct TrigPoly {
   double a[kDegree + 1];  // F = a_0 + sum_k a_k cos(k phi) + b_k sin(k phi)
