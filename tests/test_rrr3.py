@@ -338,3 +338,16 @@ def test_degenerate_geometry_does_not_crash():
         robot.ik([0, 0, 0])
     assert np.isnan(robot.ik_batch(np.zeros((2, 3)))).all()
     robot.fk_all([0.0, 2.0, 4.0])  # any answer, but no crash
+
+
+def test_ik_is_periodic_in_phi_for_any_orientation(robot, rng):
+    """The fast sine/cosine and atan2 of the core hold for small and huge orientations alike."""
+    poses = np.array(random_poses(robot, rng, 5))
+    for turns in [1, -7, 1000, 20_000, 10**6]:
+        shifted = poses + [0, 0, 2 * np.pi * turns]
+        got = robot.ik_batch(shifted, (1, -1, 1))
+        want = robot.ik_batch(poses, (1, -1, 1))
+        tol = 1e-14 * max(1.0, 2 * np.pi * abs(turns))  # phi itself is rounded to that
+        np.testing.assert_allclose(np.angle(np.exp(1j * (got - want))), 0, atol=tol)
+        for p, row in zip(shifted, got):
+            np.testing.assert_array_equal(robot.ik(p, (1, -1, 1)), row)

@@ -3,7 +3,7 @@
 
 #include "robokin/parallel.hpp"
 
-#include "fast_math.hpp"
+#include "rrr3_leg.hpp"
 
 #include <cmath>
 #include <limits>
@@ -47,23 +47,18 @@ Eigen::Vector2d RRR3::platform_joint(const Pose& pose, int i) const {
 }
 
 int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
-  const double c = std::cos(pose(2)), s = std::sin(pose(2));
-  const double in2 = (l1_ - l2_) * (l1_ - l2_), out2 = (l1_ + l2_) * (l1_ + l2_);
+  double c, s;
+  if (platform_sincos_fast(pose(2))) {
+    simd::sincos(pose(2), s, c);
+  } else {
+    c = std::cos(pose(2)), s = std::sin(pose(2));
+  }
   for (int i = 0; i < 3; ++i) {
-    const double dx = pose(0) + c * b_[i].x() - s * b_[i].y() - o_[i].x();
-    const double dy = pose(1) + s * b_[i].x() + c * b_[i].y() - o_[i].y();
-    const double r2 = dx * dx + dy * dy;
-    // r == 0 with l1 == l2 leaves alpha free: no unique answer, so it counts as unreachable.
-    if (!(r2 >= in2 && r2 <= out2) || r2 == 0) {
+    alpha[i] = leg_alpha(pose(0), pose(1), c, s, o_[i].x(), o_[i].y(), b_[i].x(), b_[i].y(), mode[i], l1_, l2_);
+    if (std::isnan(alpha[i])) {
       for (int j = i; j < 3; ++j) alpha[j] = kNaN;
       return i;
     }
-    // The law of cosines gives the angle theta at O_i between O_iB_i and O_iA_i:
-    // cos theta = K / (2 l1 r), sin theta = S / (2 l1 r). Rotating O_iB_i by -m theta gives the
-    // direction of link 1, scaled by 2 l1 r > 0, which atan2 ignores: no acos, no division.
-    const double K = l1_ * l1_ + r2 - l2_ * l2_;
-    const double S = mode[i] * std::sqrt(std::max(0.0, 4 * l1_ * l1_ * r2 - K * K));
-    alpha[i] = fast_atan2(K * dy - S * dx, K * dx + S * dy);
   }
   return -1;
 }
@@ -78,15 +73,6 @@ Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
                                   std::to_string(std::abs(l1_ - l2_)) + ", " + std::to_string(l1_ + l2_) + "]");
   }
   return alpha;
-}
-
-void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out) const {
-  parallel_for(count, 8192, [&](long begin, long end) {
-    for (long k = begin; k < end; ++k) {
-      double* row = out + 3 * k;
-      if (ik(Pose(poses[3 * k], poses[3 * k + 1], poses[3 * k + 2]), mode, row) >= 0) row[0] = row[1] = row[2] = kNaN;
-    }
-  });
 }
 
 RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
