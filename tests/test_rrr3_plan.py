@@ -123,6 +123,8 @@ def test_plan_bad_input(robot):
         robot.plan(np.zeros((5, 2)), mode=(1, 1, 0))
     with pytest.raises(ValueError, match="phi"):
         robot.plan(np.zeros((5, 2)), phi=float("inf"))
+    with pytest.raises(ValueError, match="points"):
+        robot.plan(np.zeros((100_000, 2)), span=3.0, resolution=0.001)  # 6001 orientations for each of 1e5 points
     assert robot.plan(np.zeros((0, 2))).poses.shape == (0, 3)
     far = robot.plan(np.array([[1.0, 1.0], [1.0, 1.01]]))  # unreachable everywhere: no crash
     assert not far.feasible and np.isnan(far.alpha).all()

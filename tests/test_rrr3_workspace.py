@@ -77,6 +77,8 @@ def test_singular_cells(robot, ws):
 def test_workspace_bad_input(robot):
     with pytest.raises(ValueError, match="n"):
         robot.workspace(n=1)
+    with pytest.raises(ValueError, match="n"):
+        robot.workspace(n=100_000)
     with pytest.raises(ValueError, match="mode"):
         robot.workspace(mode=(1, 1, 2))
     with pytest.raises(ValueError, match="phi"):
