@@ -1,0 +1,127 @@
+"""Draws an :class:`~robokin_sim.scene_rrr3.Rrr3State`: workspace, path, trail, legs, platform, panel."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pygame
+
+from . import theme
+from .panel import Text, draw_footer, draw_help, draw_panel, number
+from .render_common import Hud, draw_grid
+from .view import Viewport
+
+#: Cell code of the core's workspace map -> colour (0 unreachable is left transparent).
+CELL_COLOURS = {1: theme.WORKSPACE_FILL, 2: (246, 200, 200), 3: theme.WORKSPACE}
+#: Length of the platform frame's axes (m).
+FRAME_AXIS = 0.035
+
+
+class Rrr3Renderer:
+    """Renderer of the 3-RRR scene; the viewport spans +-0.27 m around the base centre."""
+
+    def __init__(self, size) -> None:
+        self.view = Viewport(center=(0.0, -0.005), extent=(0.27, 0.27), size=size)
+        self.text = Text(18)
+        self.small = Text(16)
+        self._ws_key = None
+        self._ws_surface = None
+        self._ws_pos = (0, 0)
+
+    # --- pieces -------------------------------------------------------------------------------
+    def _workspace(self, surface: pygame.Surface, ws) -> None:
+        """Blits the core's workspace map at the current orientation, scaled once per change."""
+        if ws is None:
+            return
+        key = (id(ws), self.view.size)
+        if key != self._ws_key:
+            cells = ws.cells
+            rgb = np.zeros(cells.shape + (3,), dtype=np.uint8)
+            rgb[:] = theme.BACKGROUND
+            for code, colour in CELL_COLOURS.items():
+                rgb[cells == code] = colour
+            # Outline: reachable cells next to an unreachable one (the workspace boundary).
+            reach = cells > 0
+            edge = reach & ~(
+                np.roll(reach, 1, 0) & np.roll(reach, -1, 0) & np.roll(reach, 1, 1) & np.roll(reach, -1, 1)
+            )
+            rgb[edge] = theme.WORKSPACE
+            # Rows run along y upwards; pygame wants (x, y-down).
+            img = pygame.surfarray.make_surface(np.ascontiguousarray(rgb[::-1].swapaxes(0, 1)))
+            img.set_colorkey(theme.BACKGROUND)
+            x0, x1, y0, y1 = ws.extent
+            top_left = self.view.point((x0, y1))
+            bottom_right = self.view.point((x1, y0))
+            size = (max(1, bottom_right[0] - top_left[0]), max(1, bottom_right[1] - top_left[1]))
+            self._ws_surface = pygame.transform.scale(img, size)
+            self._ws_pos = top_left
+            self._ws_key = key
+            self._ws_held = ws  # keeps id(ws) from being reused while it is the cache key
+        surface.blit(self._ws_surface, self._ws_pos)
+
+    def _robot(self, surface: pygame.Surface, state) -> None:
+        v = self.view
+        pts = state.points
+        o, a, b = (v.to_px(pts[k]) for k in ("O", "A", "B"))
+        if not (np.all(np.isfinite(o)) and np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+            return
+        o, a, b = (np.rint(p).astype(int).tolist() for p in (o, a, b))
+        pygame.draw.polygon(surface, theme.AXES, o, 1)  # the base triangle
+        state_colour = theme.STATE_COLOURS.get(state.state, theme.SINGULAR)
+        pygame.draw.polygon(surface, theme.PLATFORM_FILL, b)
+        pygame.draw.polygon(surface, state_colour, b, 3)
+        width = max(3, v.length(0.008))
+        for i in range(3):
+            pygame.draw.line(surface, theme.LINK_1, o[i], a[i], width)
+            pygame.draw.line(surface, theme.LINK_2, a[i], b[i], width)
+        for i in range(3):
+            # Motors at O (filled squares), passive joints at A and B (rings).
+            pygame.draw.rect(surface, theme.BASE, (o[i][0] - 7, o[i][1] - 7, 15, 15))
+            for c in (a[i], b[i]):
+                pygame.draw.circle(surface, theme.JOINT_FILL, c, 6)
+                pygame.draw.circle(surface, theme.JOINT_EDGE, c, 6, 2)
+        x, y, phi = (float(c) for c in state.pose)
+        e = v.point((x, y))
+        ux = (x + FRAME_AXIS * math.cos(phi), y + FRAME_AXIS * math.sin(phi))
+        uy = (x - FRAME_AXIS * math.sin(phi), y + FRAME_AXIS * math.cos(phi))
+        pygame.draw.line(surface, theme.FRAME_X, e, v.point(ux), 3)
+        pygame.draw.line(surface, theme.FRAME_Y, e, v.point(uy), 3)
+        pygame.draw.circle(surface, theme.TARGET, e, 4)
+
+    # --- the frame ----------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, state, hud: Hud) -> None:
+        if surface.get_size() != self.view.size:
+            self.view.resize(surface.get_size())
+        v = self.view
+        surface.fill(theme.BACKGROUND)
+        draw_grid(surface, v, 0.05)
+        self._workspace(surface, state.workspace)
+        if state.path is not None:
+            pygame.draw.lines(surface, theme.PATH, True, v.points(state.path), 2)
+        if len(state.trail) > 1:
+            pygame.draw.lines(surface, theme.TRAIL, False, v.points(state.trail), 3)
+        if state.points is not None:
+            self._robot(surface, state)
+        x, y, phi = (float(c) for c in state.pose)
+        m = state.working_mode
+        rows = [
+            ("mode", state.mode, None),
+            ("x, y (m)", f"{number(x)}, {number(y)}", None),
+            ("phi (rad)", number(phi), None),
+            ("alpha (rad)", " ".join(number(a, "{:+.2f}") for a in state.alpha), None),
+            ("det A", number(state.det_a, "{:+.3e}"), None),
+            ("det B", number(state.det_b, "{:+.3e}"), None),
+            ("working mode", "({:+d}, {:+d}, {:+d})".format(*m), None),
+            ("singularity", state.state, theme.STATE_COLOURS.get(state.state, theme.SINGULAR)),
+            ("avoidance", "on" if state.avoid else "off", None),
+            ("fps", f"{hud.fps:.0f}", None),
+        ]
+        draw_panel(surface, self.text, rows)
+        lines = [state.message] if state.message else []
+        if hud.paused:
+            lines.append("paused (space)")
+        lines.append("h: keys   red cells: parallel singularities at this orientation")
+        draw_footer(surface, self.small, lines)
+        if hud.help:
+            draw_help(surface, self.text, "rrr3")
