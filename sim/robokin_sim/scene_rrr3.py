@@ -85,6 +85,7 @@ class Rrr3Scene(Scene):
         self.start_avoid = bool(avoid)
         self.trail: deque = deque(maxlen=TRAIL)
         self._workspace_cache: dict = {}
+        self._plans: dict = {}
         self.reset()
 
     # --- the model, through the core ----------------------------------------------------------
@@ -147,7 +148,9 @@ class Rrr3Scene(Scene):
         points = self.paths[name]
         if not self.avoid:
             return np.zeros(len(points))
-        return model.avoidance_plan(self.robot_model, points, self.working_mode)
+        if name not in self._plans:  # planning takes ~0.1 s: once per path
+            self._plans[name] = model.avoidance_plan(self.robot_model, points, self.working_mode)
+        return self._plans[name]
 
     def _start_path(self, name: str, index: int = 0, keep_trail: bool = False) -> None:
         self.path = self.paths[name]
