@@ -21,6 +21,10 @@ def _temporary_path(path: str) -> str:
     stem, ext = os.path.splitext(os.path.basename(path))
     fd, tmp = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part" + ext, dir=directory)
     os.close(fd)
+    # mkstemp makes the file private; give it the permissions a plain open() would.
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
     return tmp
 
 
@@ -76,7 +80,7 @@ class Recorder:
                 w, h = w - w % 2, h - h % 2  # yuv420p wants even sizes
             self._shape = (w, h)
         if image.size != self._shape:  # first frame fixes the size; a resized window is rescaled
-            image = image.resize(self._shape, Image.Resampling.LANCZOS if self.width else Image.Resampling.BILINEAR)
+            image = image.resize(self._shape, Image.Resampling.BOX)
         if self.kind == ".gif":
             # A fixed palette without dithering keeps flat colours flat, so frames compress well.
             paletted = image.quantize(palette=_gif_palette(), dither=Image.Dither.NONE)
@@ -113,27 +117,34 @@ class Recorder:
     def _write_gif(self) -> None:
         from PIL import Image
 
-        palette = _gif_palette()
-
-        def frame(blob: bytes) -> "Image.Image":
-            image = Image.frombytes("P", self._shape, zlib.decompress(blob))
-            image.putpalette(palette.getpalette())
-            return image
-
-        frames = [frame(b) for b in self._gif]
+        palette = _gif_palette().getpalette()
+        # Pixels unchanged since the previous frame become the transparent index (frames are not
+        # disposed, so the previous picture shows through): long runs of one index compress well.
+        frames, previous = [], None
+        for blob in self._gif:
+            full = np.frombuffer(zlib.decompress(blob), dtype=np.uint8).reshape(self._shape[1], self._shape[0])
+            delta = full.copy()
+            if previous is not None:
+                delta[full == previous] = _TRANSPARENT
+            previous = full
+            image = Image.fromarray(delta, "P")
+            image.putpalette(palette)
+            frames.append(image)
         duration = int(round(1000.0 * self.every / self.fps))
         frames[0].save(
             self._tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
-            loop=0, optimize=False, disposal=1,
+            loop=0, optimize=False, disposal=1, transparency=_TRANSPARENT,
         )
 
 
 _PALETTE = None
+_TRANSPARENT = 63
 
 
 def _gif_palette():
-    """A 256-colour palette: the theme's flat colours exactly, then a colour cube and greys for
-    the antialiased edges of text."""
+    """A 64-colour palette: the theme's flat colours exactly, then greys for the antialiased text;
+    the last entry is the transparent index. Few colours (6-bit codes) and no dithering keep the
+    frames small: the edges of the scaled-down drawing snap to the nearest flat colour."""
     global _PALETTE
     if _PALETTE is None:
         from PIL import Image
@@ -141,10 +152,9 @@ def _gif_palette():
         from .theme import COLOURS
 
         colours = list(dict.fromkeys(COLOURS))
-        levels = [0, 51, 102, 153, 204, 255]
-        colours += [(r, g, b) for r in levels for g in levels for b in levels]
-        colours += [(round(i * 255 / 23),) * 3 for i in range(24)]
-        colours = colours[:256]
+        colours += [(g, g, g) for g in range(0, 256, 17) if (g, g, g) not in colours]
+        colours = colours[:_TRANSPARENT]
+        colours += [(255, 0, 255)] * (_TRANSPARENT + 1 - len(colours))  # padding, then transparent
         _PALETTE = Image.new("P", (1, 1))
         _PALETTE.putpalette([c for rgb in colours for c in rgb])
     return _PALETTE

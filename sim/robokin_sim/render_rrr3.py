@@ -13,7 +13,7 @@ from .render_common import Hud, draw_grid
 from .view import Viewport
 
 #: Cell code of the core's workspace map -> colour (0 unreachable is left transparent).
-CELL_COLOURS = {1: theme.WORKSPACE_FILL, 2: (246, 200, 200), 3: theme.WORKSPACE}
+CELL_COLOURS = {1: theme.WORKSPACE_FILL, 2: theme.SINGULAR_CELL, 3: theme.WORKSPACE}
 #: Length of the platform frame's axes (m).
 FRAME_AXIS = 0.035
 
@@ -25,17 +25,20 @@ class Rrr3Renderer:
         self.view = Viewport(center=(0.0, -0.005), extent=(0.27, 0.27), size=size)
         self.text = Text(18)
         self.small = Text(16)
-        self._ws_key = None
-        self._ws_surface = None
-        self._ws_pos = (0, 0)
+        self._backdrops: dict = {}
 
     # --- pieces -------------------------------------------------------------------------------
-    def _workspace(self, surface: pygame.Surface, ws) -> None:
-        """Blits the core's workspace map at the current orientation, scaled once per change."""
-        if ws is None:
-            return
+    def _backdrop(self, ws) -> pygame.Surface:
+        """Background, grid and the core's workspace map at the current orientation, drawn once
+        per orientation and window size (a few are kept: the orientation comes back often)."""
         key = (id(ws), self.view.size)
-        if key != self._ws_key:
+        cached = self._backdrops.get(key)
+        if cached is not None:
+            return cached[0]
+        surface = pygame.Surface(self.view.size)
+        surface.fill(theme.BACKGROUND)
+        draw_grid(surface, self.view, 0.05)
+        if ws is not None:
             cells = ws.cells
             rgb = np.zeros(cells.shape + (3,), dtype=np.uint8)
             rgb[:] = theme.BACKGROUND
@@ -54,11 +57,12 @@ class Rrr3Renderer:
             top_left = self.view.point((x0, y1))
             bottom_right = self.view.point((x1, y0))
             size = (max(1, bottom_right[0] - top_left[0]), max(1, bottom_right[1] - top_left[1]))
-            self._ws_surface = pygame.transform.scale(img, size)
-            self._ws_pos = top_left
-            self._ws_key = key
-            self._ws_held = ws  # keeps id(ws) from being reused while it is the cache key
-        surface.blit(self._ws_surface, self._ws_pos)
+            surface.blit(pygame.transform.scale(img, size), top_left)
+        if len(self._backdrops) >= 8:
+            self._backdrops.pop(next(iter(self._backdrops)))
+        # Holding ws keeps its id from being reused while it is a key.
+        self._backdrops[key] = (surface, ws)
+        return surface
 
     def _robot(self, surface: pygame.Surface, state) -> None:
         v = self.view
@@ -94,9 +98,7 @@ class Rrr3Renderer:
         if surface.get_size() != self.view.size:
             self.view.resize(surface.get_size())
         v = self.view
-        surface.fill(theme.BACKGROUND)
-        draw_grid(surface, v, 0.05)
-        self._workspace(surface, state.workspace)
+        surface.blit(self._backdrop(state.workspace), (0, 0))
         if state.path is not None:
             pygame.draw.lines(surface, theme.PATH, True, v.points(state.path), 2)
         if len(state.trail) > 1:
