@@ -1,0 +1,94 @@
+"""Command line, scripted keys, recordings and the entry points."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+from sim_helpers import read_log, run_sim
+
+from robokin_sim.config import parse_args
+from robokin_sim.loop import run
+from robokin_sim.keys import parse_script
+
+
+def test_key_script_parsing():
+    script = parse_script("right*20, down*10,l*10,space,Escape*2")
+    assert script.items == (("right", 20), ("down", 10), ("l", 10), ("space", 1), ("esc", 2))
+    assert script.frames == 43
+    inputs = list(parse_script("l*3,l*2").inputs())
+    assert [bool(i.pressed) for i in inputs] == [True, False, False, True, False]
+    assert all(i.held == {"l"} for i in inputs)
+    for bad in ("jump*3", "right*x", "right*0", "right*-2"):
+        with pytest.raises(ValueError, match="--keys"):
+            parse_script(bad)
+
+
+def test_bad_command_lines_exit_with_usage(capsys):
+    for argv in (["--robot", "rpr", "--mode", "clover"], ["--frames", "0"], ["--record", "x.avi"],
+                 ["--keys", "fly*2"], ["--size", "10x10"]):
+        with pytest.raises(SystemExit) as exc:
+            parse_args(argv)
+        assert exc.value.code == 2
+    assert "usage" in capsys.readouterr().err
+
+
+def test_defaults():
+    assert parse_args([]).mode == "free" and parse_args(["--robot", "rpr"]).mode == "line"
+    gif = parse_args(["--record", "a.gif"])
+    assert gif.record_every == 2 and gif.record_width == 400
+    assert parse_args(["--record", "a.mp4"]).record_every == 1
+
+
+def test_mp4_recording(tmp_path):
+    out = tmp_path / "clover.mp4"
+    res = run_sim("--mode", "clover", "--frames", "40", "--record", str(out), "--size", "320x240")
+    assert res.record == str(out) and out.stat().st_size > 1000
+    assert out.read_bytes()[4:8] == b"ftyp"
+    assert [p.name for p in tmp_path.iterdir()] == ["clover.mp4"]  # the temporary file was renamed
+
+
+def test_gif_recording_frames(tmp_path):
+    out = tmp_path / "free.gif"
+    run_sim("--frames", "30", "--keys", "right*30", "--record", str(out), "--record-every", "3", "--record-width", "200")
+    with Image.open(out) as im:
+        assert im.n_frames == 10 and im.size == (200, 200)
+        im.seek(9)
+        first_last = np.asarray(im.convert("RGB"))
+    assert first_last.std() > 0
+
+
+def test_headless_defaults_to_the_script_length(tmp_path):
+    log = tmp_path / "a.csv"
+    res = run_sim("--keys", "up*7,k*5", "--log", str(log), render=False)
+    assert res.frames == 12 and len(read_log(log)) == 12
+
+
+def test_esc_quits():
+    res = run_sim("--keys", "right*5,esc,right*5", "--frames", "100", render=False)
+    assert res.frames == 5 and res.steps == 5
+
+
+@pytest.mark.parametrize("entry", [["-m", "robokin_sim"], ["-c", "from robokin_sim.__main__ import main; main()"]])
+def test_entry_points(tmp_path, entry):
+    log = tmp_path / "run.csv"
+    env = dict(os.environ, SDL_VIDEODRIVER="dummy")
+    out = subprocess.run([sys.executable, *entry, "--headless", "--robot", "rpr", "--frames", "20", "--log", str(log)],
+                         capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert f"log: {log}" in out.stdout and len(read_log(log)) == 20
+
+
+def test_window_path_runs_with_the_dummy_driver(tmp_path):
+    """The windowed loop (events, flip, 60 fps pacing) on SDL's dummy driver."""
+    res = run(parse_args(["--frames", "12", "--keys", "right*3,h,o*8", "--fps", "120"]))
+    assert res.frames == 12 and res.steps == 12
+    assert res.seconds >= 11 / 120 * 0.8  # paced, not flat out
+
+
+def test_console_script_is_installed():
+    script = os.path.join(os.path.dirname(sys.executable), "robokin-sim")
+    out = subprocess.run([script, "--help"], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and "--no-avoid" in out.stdout
