@@ -92,3 +92,13 @@ def test_console_script_is_installed():
     script = os.path.join(os.path.dirname(sys.executable), "robokin-sim")
     out = subprocess.run([script, "--help"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0 and "--no-avoid" in out.stdout
+
+
+def test_demo_without_a_display_records_the_clover(tmp_path, monkeypatch):
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    monkeypatch.setattr(sys, "platform", "linux")
+    config = parse_args(["--demo", "--frames", "30", "--record", str(tmp_path / "d.gif")])
+    assert config.headless and config.mode == "clover" and config.log == os.path.join("out", "robokin-sim-rrr3-clover.csv")
+    monkeypatch.setenv("DISPLAY", ":0")
+    assert not parse_args(["--demo"]).headless

@@ -12,10 +12,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     Returns:
         The process exit status (0 on success).
     """
-    from .config import parse_args
+    from .config import has_display, parse_args
     from .loop import run
 
+    argv = sys.argv[1:] if argv is None else list(argv)
     config = parse_args(argv)
+    if "--demo" in argv and config.headless and not has_display():
+        print("robokin-sim: no display found, running headless and recording instead of opening a window")
     try:
         result = run(config)
     except KeyboardInterrupt:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
+import sys
 from typing import Optional, Sequence, Tuple
 
 from .keys import KeyScript, parse_script
@@ -46,6 +47,18 @@ class Config:
     avoid: bool = True
     size: Tuple[int, int] = (800, 800)
     fps: int = 60
+
+
+#: Frames of the headless demo: the approach to the clover and one full turn (39 + 628).
+DEMO_FRAMES = 667
+
+
+def has_display() -> bool:
+    """Whether a window can be opened: on Linux and other X11/Wayland systems, DISPLAY or
+    WAYLAND_DISPLAY must be set; other systems always have one."""
+    if sys.platform.startswith(("win", "darwin")):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
 def _positive_int(text: str) -> int:
@@ -95,6 +108,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="starting mode: rrr3 free|circle|clover (default free), rpr line|free (default line)",
     )
     parser.add_argument("--headless", action="store_true", help="no window (SDL dummy driver), run flat out")
+    parser.add_argument(
+        "--demo", action="store_true",
+        help="what `make run` does: the window when a display exists; without one, one headless turn of "
+        "the clover with a recording and a log under out/",
+    )
     parser.add_argument("--frames", type=_positive_int, metavar="N", help="stop after N frames")
     parser.add_argument("--record", type=_recording, metavar="OUT", help="write a recording (.gif or .mp4)")
     parser.add_argument(
@@ -118,6 +136,14 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> Config:
     """Parses the command line; exits with a usage message on bad input (argparse's behaviour)."""
     parser = build_parser()
     ns = parser.parse_args(argv)
+    if ns.demo and (ns.headless or not has_display()):
+        ns.headless = True
+        ns.mode = ns.mode or ("clover" if ns.robot == "rrr3" else "line")
+        ns.frames = ns.frames or DEMO_FRAMES
+        stem = os.path.join("out", f"robokin-sim-{ns.robot}-{ns.mode}")
+        ns.record = ns.record or stem + ".gif"
+        ns.log = ns.log or stem + ".csv"
+        ns.record_every = ns.record_every or 4
     mode = ns.mode or MODES[ns.robot][0]
     if mode not in MODES[ns.robot]:
         parser.error(f"--mode {mode} is not a mode of --robot {ns.robot} (choose from {', '.join(MODES[ns.robot])})")
