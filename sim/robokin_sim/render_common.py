@@ -38,3 +38,9 @@ def draw_grid(surface: pygame.Surface, view: Viewport, spacing: float) -> None:
                 pygame.draw.line(surface, colour, (px[0], 0), (px[0], h), 1)
             else:
                 pygame.draw.line(surface, colour, (0, px[1]), (w, px[1]), 1)
+
+
+def polyline(surface: pygame.Surface, colour, closed: bool, points: list, width: int) -> None:
+    """pygame.draw.lines, skipped when fewer than two (finite) points are left to draw."""
+    if len(points) >= 2:
+        pygame.draw.lines(surface, colour, closed, points, width)

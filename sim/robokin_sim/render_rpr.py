@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_footer, draw_help, draw_panel, number
-from .render_common import Hud, draw_grid
+from .render_common import Hud, draw_grid, polyline
 from .view import Viewport
 
 JOINT_NAMES = ("t1", "t2", "t3")
@@ -39,8 +39,7 @@ class RprRenderer:
             c = v.point(p)
             pygame.draw.circle(surface, theme.PATH, c, 6)
             surface.blit(self.text.render(label, theme.TEXT), (c[0] + 8, c[1] - 20))
-        if len(state.trail) > 1:
-            pygame.draw.lines(surface, theme.TRAIL, False, v.points(state.trail), 2)
+        polyline(surface, theme.TRAIL, False, v.points(state.trail), 2)
         self._arm(surface, state)
         joint = state.q
         rows = [

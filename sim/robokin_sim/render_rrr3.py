@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_footer, draw_help, draw_panel, number
-from .render_common import Hud, draw_grid
+from .render_common import Hud, draw_grid, polyline
 from .view import Viewport
 
 #: Cell code of the core's workspace map -> colour (0 unreachable is left transparent).
@@ -100,9 +100,8 @@ class Rrr3Renderer:
         v = self.view
         surface.blit(self._backdrop(state.workspace), (0, 0))
         if state.path is not None:
-            pygame.draw.lines(surface, theme.PATH, True, v.points(state.path), 2)
-        if len(state.trail) > 1:
-            pygame.draw.lines(surface, theme.TRAIL, False, v.points(state.trail), 3)
+            polyline(surface, theme.PATH, True, v.points(state.path), 2)
+        polyline(surface, theme.TRAIL, False, v.points(state.trail), 3)
         if state.points is not None:
             self._robot(surface, state)
         x, y, phi = (float(c) for c in state.pose)
