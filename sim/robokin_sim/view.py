@@ -39,7 +39,10 @@ class Viewport:
 
     def points(self, xy) -> list:
         """World points (K, 2) to a list of integer pixels, dropping non-finite rows."""
-        px = self.to_px(xy)
+        xy = np.asarray(xy, dtype=float)
+        if xy.size == 0:  # an empty trail is (0,), not (0, 2)
+            return []
+        px = self.to_px(xy.reshape(-1, xy.shape[-1]))
         px = px[np.all(np.isfinite(px), axis=1)]
         return np.rint(px).astype(int).tolist()
 
