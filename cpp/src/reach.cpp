@@ -91,13 +91,16 @@ ReachResult Reacher::reach(const Target& target, const Vector& q0) {
       min_norm_solve(J_ * h_, correction_);
       dq_ += h_ - correction_;
     }
-    r.q += opt_.dt * dq_;
+    dq_ *= opt_.dt;
+    if (!dq_.allFinite()) break;  // an absurd gain or target: stop at the last finite joints
+    r.q += dq_;
     if (opt_.saturate) r.q = r.q.cwiseMax(chain_.lower()).cwiseMin(chain_.upper());
     chain_.fk(r.q.data(), T_);
     task_error(target, T_, e_.data());
     ++r.iterations;
     r.error = e_.norm();
   } while (r.iterations < opt_.max_iter && !(r.error < opt_.tol));
+  r.error = e_.norm();
   r.converged = r.error < opt_.tol;
   return r;
 }
