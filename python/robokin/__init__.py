@@ -5,7 +5,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import paths, robots
-from ._core import Chain, ReachResult, TrackResult
+from ._core import RRR3, Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
 from .reach import reach, track
 
@@ -14,6 +14,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Chain",
     "PrecisionWarning",
+    "RRR3",
     "ReachResult",
     "TrackResult",
     "UnreachableError",
