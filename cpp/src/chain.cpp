@@ -5,7 +5,10 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -150,51 +153,213 @@ void Chain::build_fast_path() {
     if (std::abs(scale - 1.0) < 1e-12) scale = 1.0;
     const Rigid before = since_motion * P0 * G;
     if (links_.empty()) base_ = before;
-    else links_.back().after = before;
-    links_.push_back({prismatic, scale, Rigid()});
+    else links_.back().after = make_fixed(before);
+    links_.push_back({prismatic, scale, Fixed()});
     since_motion = G.inverse() * P0.inverse() * to_rigid(seg.pose(0.0));
   }
-  links_.back().after = since_motion;
+  links_.back().after = make_fixed(since_motion);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The evaluation kernel. It works on N "lanes": N configurations at once, stored as structure of
+// arrays, so that every step below is a plain loop over the lanes that the compiler vectorises
+// (SSE2 is enough) for a batch block, and unrolls to straight scalar code for N = 1. Both run the
+// same floating-point operations lane by lane, so a batch gives bit for bit the single results.
+
+constexpr int kBlock = 32;  // lanes of a batch block
+
+template <int N>
+struct Lanes {
+  double R[9][N];  // R(i, j) in R[3 * i + j]
+  double p[3][N];
+};
+
+namespace {
+
+// sin and cos of v[k], k < N. Cody-Waite reduction by pi/2 (pi/2 split in three parts of 33, 33
+// and 53 bits, so q * part is exact for |q| < 2^20), Taylor polynomials of sin and cos on
+// |r| <= pi/4 carried to r^17 / r^18 (truncation below 1e-19), the quadrant picked with bit
+// operations: no branch and no call, so the loop vectorises. Arguments beyond 1e5 (and NaN) go to
+// std::sin / std::cos, whose reduction is exact at any size.
+template <int N>
+inline void sincos_lanes(const double* __restrict v, double* __restrict s, double* __restrict c) {
+  constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
+  constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer, kept in the low bits
+  constexpr double kPio2A = 0x1.921fb54400000p+0, kPio2B = 0x1.0b4611a600000p-34,
+                   kPio2C = 0x1.3198a2e037073p-69;
+  for (int k = 0; k < N; ++k) {
+    const double x = v[k];
+    const double shifted = x * kTwoOverPi + kShift;
+    std::uint64_t quadrant;
+    std::memcpy(&quadrant, &shifted, sizeof quadrant);
+    const double q = shifted - kShift;
+    const double r = ((x - q * kPio2A) - q * kPio2B) - q * kPio2C;
+    const double r2 = r * r;
+    const double sr =
+        r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-2.505210838544172e-08 +
+            r2 * (1.6059043836821613e-10 + r2 * (-7.647163731819816e-13 + r2 * 2.8114572543455206e-15)))))));
+    const double cr =
+        1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-2.755731922398589e-07 +
+            r2 * (2.08767569878681e-09 + r2 * (-1.1470745597729725e-11 + r2 * (4.779477332387385e-14 +
+            r2 * -1.5619206968586225e-16))))))));
+    std::uint64_t sb, cb;
+    std::memcpy(&sb, &sr, sizeof sb);
+    std::memcpy(&cb, &cr, sizeof cb);
+    const std::uint64_t swap = std::uint64_t{0} - (quadrant & 1);  // odd quadrant: sin <-> cos
+    std::uint64_t so = (cb & swap) | (sb & ~swap), co = (sb & swap) | (cb & ~swap);
+    so ^= (quadrant & 2) << 62;        // quadrants 2, 3: sin changes sign
+    co ^= ((quadrant + 1) & 2) << 62;  // quadrants 1, 2: cos changes sign
+    std::memcpy(&s[k], &so, sizeof so);
+    std::memcpy(&c[k], &co, sizeof co);
+  }
+  for (int k = 0; k < N; ++k) {
+    if (!(std::abs(v[k]) <= 1e5)) {
+      s[k] = std::sin(v[k]);
+      c[k] = std::cos(v[k]);
+    }
+  }
+}
+
+// dst[k] (+)= sum_t src[t][k] * coef[t], the terms in order.
+template <int N, bool Add>
+inline void combine(double* __restrict dst, const double* const* src, const double* coef, int terms) {
+  switch (terms) {
+    case 0:
+      if (!Add) std::fill_n(dst, N, 0.0);
+      return;
+    case 1: {
+      const double* __restrict a = src[0];
+      const double ca = coef[0];
+      for (int k = 0; k < N; ++k) {
+        const double t = a[k] * ca;
+        dst[k] = Add ? dst[k] + t : t;
+      }
+      return;
+    }
+    case 2: {
+      const double *__restrict a = src[0], *__restrict b = src[1];
+      const double ca = coef[0], cb = coef[1];
+      for (int k = 0; k < N; ++k) {
+        const double t = a[k] * ca + b[k] * cb;
+        dst[k] = Add ? dst[k] + t : t;
+      }
+      return;
+    }
+    default: {
+      const double *__restrict a = src[0], *__restrict b = src[1], *__restrict c = src[2];
+      const double ca = coef[0], cb = coef[1], cc = coef[2];
+      for (int k = 0; k < N; ++k) {
+        const double t = a[k] * ca + b[k] * cb + c[k] * cc;
+        dst[k] = Add ? dst[k] + t : t;
+      }
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+Chain::Fixed Chain::make_fixed(const Rigid& F) {
+  Fixed f;
+  f.F = F;
+  f.identity = F.R == Eigen::Matrix3d::Identity() && F.p.isZero(0.0);
+  f.p_terms = 0;
+  for (int m = 0; m < 3; ++m)
+    if (F.p(m) != 0.0) f.p_index[f.p_terms] = m, f.p_coef[f.p_terms++] = F.p(m);
+  for (int j = 0; j < 3; ++j) {
+    f.r_terms[j] = 0;
+    for (int m = 0; m < 3; ++m)
+      if (F.R(m, j) != 0.0) f.r_index[j][f.r_terms[j]] = m, f.r_coef[j][f.r_terms[j]++] = F.R(m, j);
+  }
+  return f;
+}
+
+// The chain on N lanes: joint i of lane k is q[k * stride + i]. When axes is given (N = 1), the
+// point and z axis of every joint after its motion are stored there: axes[6 i .. 6 i + 5].
+template <int N>
+void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes) const {
+  double v[N], s[N], c[N];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) std::fill_n(L.R[3 * i + j], N, base_.R(i, j));
+    std::fill_n(L.p[i], N, base_.p(i));
+  }
+  for (int joint = 0; joint < dof_; ++joint) {
+    const Link& link = links_[joint];
+    for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
+    if (link.prismatic) {
+      // T <- T * Tz(v): p moves along the z column of R.
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < N; ++k) L.p[i][k] += v[k] * L.R[3 * i + 2][k];
+    } else {
+      // T <- T * Rz(v): the x and y columns of R turn by v.
+      sincos_lanes<N>(v, s, c);
+      for (int i = 0; i < 3; ++i) {
+        double* __restrict x = L.R[3 * i];
+        double* __restrict y = L.R[3 * i + 1];
+        for (int k = 0; k < N; ++k) {
+          const double xk = x[k], yk = y[k];
+          x[k] = c[k] * xk + s[k] * yk;
+          y[k] = c[k] * yk - s[k] * xk;
+        }
+      }
+    }
+    if (axes) {
+      for (int r = 0; r < 3; ++r) axes[6 * joint + r] = L.p[r][0], axes[6 * joint + 3 + r] = L.R[3 * r + 2][0];
+    }
+    // T <- T * after: p += R after.p, then R = R after.R, skipping after's zero entries.
+    const Fixed& f = link.after;
+    if (f.identity) continue;
+    for (int i = 0; i < 3; ++i) {
+      const double* row[3] = {L.R[3 * i], L.R[3 * i + 1], L.R[3 * i + 2]};
+      const double* src[3];
+      for (int t = 0; t < f.p_terms; ++t) src[t] = row[f.p_index[t]];
+      if (f.p_terms) combine<N, true>(L.p[i], src, f.p_coef, f.p_terms);
+      double next[3][N];
+      for (int j = 0; j < 3; ++j) {
+        for (int t = 0; t < f.r_terms[j]; ++t) src[t] = row[f.r_index[j][t]];
+        combine<N, false>(next[j], src, f.r_coef[j], f.r_terms[j]);
+      }
+      for (int j = 0; j < 3; ++j) std::copy_n(next[j], N, L.R[3 * i + j]);
+    }
+  }
 }
 
 namespace {
-// T <- T * Mz(v): rotation about the local z axis, or translation along it.
-inline void apply_motion(Rigid& T, bool prismatic, double v) {
-  if (prismatic) {
-    T.p += v * T.R.col(2);
-  } else {
-    const double c = std::cos(v), s = std::sin(v);
-    const Eigen::Vector3d x = T.R.col(0), y = T.R.col(1);
-    T.R.col(0) = c * x + s * y;
-    T.R.col(1) = c * y - s * x;
+template <int N>
+inline void lane_to_rigid(const Lanes<N>& L, int k, Rigid& T) {
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) T.R(i, j) = L.R[3 * i + j][k];
+    T.p(i) = L.p[i][k];
   }
 }
-inline void apply_fixed(Rigid& T, const Rigid& F) {
-  T.p += T.R * F.p;
-  T.R = T.R * F.R;
+
+template <int N>
+inline void lanes_to_4x4(const Lanes<N>& L, int count, double* m) {
+  for (int k = 0; k < count; ++k, m += 16) {
+    for (int r = 0; r < 3; ++r) {
+      m[4 * r + 0] = L.R[3 * r + 0][k];
+      m[4 * r + 1] = L.R[3 * r + 1][k];
+      m[4 * r + 2] = L.R[3 * r + 2][k];
+      m[4 * r + 3] = L.p[r][k];
+    }
+    m[12] = m[13] = m[14] = 0.0;
+    m[15] = 1.0;
+  }
 }
 }  // namespace
 
 void Chain::fk(const double* q, Rigid& T) const {
-  T = base_;
-  for (int i = 0; i < dof_; ++i) {
-    const Link& L = links_[i];
-    apply_motion(T, L.prismatic, L.scale * q[i]);
-    apply_fixed(T, L.after);
-  }
+  Lanes<1> L;
+  run_lanes<1>(L, q, 0, nullptr);
+  lane_to_rigid(L, 0, T);
 }
 
 void Chain::fk_jacobian(const double* q, Rigid& T, double* jac) const {
+  Lanes<1> L;
+  // Joint axes and points land in the Jacobian's columns (6 per joint, column-major); finished below.
+  run_lanes<1>(L, q, 0, jac);
+  lane_to_rigid(L, 0, T);
   Eigen::Map<Matrix6X> J(jac, 6, dof_);
-  T = base_;
-  for (int i = 0; i < dof_; ++i) {
-    const Link& L = links_[i];
-    apply_motion(T, L.prismatic, L.scale * q[i]);
-    // Stash the joint axis (z) and the point it passes through; columns are finished below.
-    J.col(i).head<3>() = T.p;
-    J.col(i).tail<3>() = T.R.col(2);
-    apply_fixed(T, L.after);
-  }
   for (int i = 0; i < dof_; ++i) {
     const Eigen::Vector3d z = J.col(i).tail<3>();
     if (links_[i].prismatic) {
@@ -210,18 +375,17 @@ void Chain::fk_jacobian(const double* q, Rigid& T, double* jac) const {
 
 void Chain::fk_batch(const double* q, long count, double* out) const {
   parallel_for(count, 20000, [&](long begin, long end) {
-    Rigid T;
-    for (long k = begin; k < end; ++k) {
-      fk(q + k * dof_, T);
-      double* m = out + 16 * k;
-      for (int r = 0; r < 3; ++r) {
-        m[4 * r + 0] = T.R(r, 0);
-        m[4 * r + 1] = T.R(r, 1);
-        m[4 * r + 2] = T.R(r, 2);
-        m[4 * r + 3] = T.p(r);
-      }
-      m[12] = m[13] = m[14] = 0.0;
-      m[15] = 1.0;
+    Lanes<kBlock> L;
+    long b = begin;
+    for (; b + kBlock <= end; b += kBlock) {
+      run_lanes<kBlock>(L, q + b * dof_, dof_, nullptr);
+      lanes_to_4x4(L, kBlock, out + 16 * b);
+    }
+    // The tail, one configuration at a time (the same operations as a block lane).
+    Lanes<1> one;
+    for (; b < end; ++b) {
+      run_lanes<1>(one, q + b * dof_, 0, nullptr);
+      lanes_to_4x4(one, 1, out + 16 * b);
     }
   });
 }

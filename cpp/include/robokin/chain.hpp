@@ -39,6 +39,9 @@ struct SegmentSpec {
   Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
 };
 
+template <int N>
+struct Lanes;  // N configurations evaluated together (chain.cpp)
+
 class Chain {
  public:
   // Standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha); modified (Craig): A = Rx(alpha) Tx(a) Rz(theta) Tz(d).
@@ -66,11 +69,24 @@ class Chain {
   std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
 
  private:
+  // A constant frame applied on the right (T <- T * F), with its nonzero entries listed so that
+  // the evaluation skips the zeros.
+  struct Fixed {
+    Rigid F;
+    bool identity = true;
+    int p_terms = 0, p_index[3] = {0, 0, 0};
+    double p_coef[3] = {0, 0, 0};
+    int r_terms[3] = {0, 0, 0}, r_index[3][3] = {};
+    double r_coef[3][3] = {};
+  };
   struct Link {  // joint motion about / along the local z axis, then a fixed frame
     bool prismatic;
     double scale;
-    Rigid after;
+    Fixed after;
   };
+  static Fixed make_fixed(const Rigid& F);
+  template <int N>
+  void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
