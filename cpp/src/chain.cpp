@@ -188,8 +188,7 @@ namespace {
 // |r| <= pi/4 carried to r^17 / r^18 (truncation below 1e-19), the quadrant picked with bit
 // operations: no branch and no call, so the loop vectorises. Arguments beyond 1e5 (and NaN) go to
 // std::sin / std::cos, whose reduction is exact at any size.
-template <int N>
-inline void sincos_lanes(const double* __restrict v, double* __restrict s, double* __restrict c) {
+inline void sincos_n(const double* __restrict v, double* __restrict s, double* __restrict c, int N) {
   constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
   constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer, kept in the low bits
   constexpr double kPio2A = 0x1.921fb54400000p+0, kPio2B = 0x1.0b4611a600000p-34,
@@ -227,41 +226,9 @@ inline void sincos_lanes(const double* __restrict v, double* __restrict s, doubl
   }
 }
 
-// dst[k] (+)= sum_t src[t][k] * coef[t], the terms in order.
-template <int N, bool Add>
-inline void combine(double* __restrict dst, const double* const* src, const double* coef, int terms) {
-  switch (terms) {
-    case 0:
-      if (!Add) std::fill_n(dst, N, 0.0);
-      return;
-    case 1: {
-      const double* __restrict a = src[0];
-      const double ca = coef[0];
-      for (int k = 0; k < N; ++k) {
-        const double t = a[k] * ca;
-        dst[k] = Add ? dst[k] + t : t;
-      }
-      return;
-    }
-    case 2: {
-      const double *__restrict a = src[0], *__restrict b = src[1];
-      const double ca = coef[0], cb = coef[1];
-      for (int k = 0; k < N; ++k) {
-        const double t = a[k] * ca + b[k] * cb;
-        dst[k] = Add ? dst[k] + t : t;
-      }
-      return;
-    }
-    default: {
-      const double *__restrict a = src[0], *__restrict b = src[1], *__restrict c = src[2];
-      const double ca = coef[0], cb = coef[1], cc = coef[2];
-      for (int k = 0; k < N; ++k) {
-        const double t = a[k] * ca + b[k] * cb + c[k] * cc;
-        dst[k] = Add ? dst[k] + t : t;
-      }
-      return;
-    }
-  }
+template <int N>
+inline void sincos_lanes(const double* __restrict v, double* __restrict s, double* __restrict c) {
+  sincos_n(v, s, c, N);
 }
 
 }  // namespace
@@ -269,15 +236,8 @@ inline void combine(double* __restrict dst, const double* const* src, const doub
 Chain::Fixed Chain::make_fixed(const Rigid& F) {
   Fixed f;
   f.F = F;
-  f.identity = F.R == Eigen::Matrix3d::Identity() && F.p.isZero(0.0);
-  f.p_terms = 0;
-  for (int m = 0; m < 3; ++m)
-    if (F.p(m) != 0.0) f.p_index[f.p_terms] = m, f.p_coef[f.p_terms++] = F.p(m);
-  for (int j = 0; j < 3; ++j) {
-    f.r_terms[j] = 0;
-    for (int m = 0; m < 3; ++m)
-      if (F.R(m, j) != 0.0) f.r_index[j][f.r_terms[j]] = m, f.r_coef[j][f.r_terms[j]++] = F.R(m, j);
-  }
+  f.move = !F.p.isZero(0.0);
+  f.turn = F.R != Eigen::Matrix3d::Identity();
   return f;
 }
 
@@ -286,20 +246,33 @@ Chain::Fixed Chain::make_fixed(const Rigid& F) {
 template <int N>
 void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes) const {
   double v[N], s[N], c[N];
+  // One configuration: the sines and cosines of all joints first, in one vectorised pass (they do
+  // not depend on the chain product, which then runs without waiting for them).
+  constexpr int kMaxJoints = 32;
+  double v1[kMaxJoints], s1[kMaxJoints], c1[kMaxJoints];
+  const bool all_at_once = N == 1 && dof_ <= kMaxJoints;
+  if (all_at_once) {
+    for (int joint = 0; joint < dof_; ++joint) v1[joint] = links_[joint].scale * q[joint];
+    sincos_n(v1, s1, c1, dof_);
+  }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) std::fill_n(L.R[3 * i + j], N, base_.R(i, j));
     std::fill_n(L.p[i], N, base_.p(i));
   }
   for (int joint = 0; joint < dof_; ++joint) {
     const Link& link = links_[joint];
-    for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
+    if (all_at_once) {
+      v[0] = v1[joint], s[0] = s1[joint], c[0] = c1[joint];
+    } else {
+      for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
+      if (!link.prismatic) sincos_lanes<N>(v, s, c);
+    }
     if (link.prismatic) {
       // T <- T * Tz(v): p moves along the z column of R.
       for (int i = 0; i < 3; ++i)
         for (int k = 0; k < N; ++k) L.p[i][k] += v[k] * L.R[3 * i + 2][k];
     } else {
       // T <- T * Rz(v): the x and y columns of R turn by v.
-      sincos_lanes<N>(v, s, c);
       for (int i = 0; i < 3; ++i) {
         double* __restrict x = L.R[3 * i];
         double* __restrict y = L.R[3 * i + 1];
@@ -313,20 +286,26 @@ void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes) c
     if (axes) {
       for (int r = 0; r < 3; ++r) axes[6 * joint + r] = L.p[r][0], axes[6 * joint + 3 + r] = L.R[3 * r + 2][0];
     }
-    // T <- T * after: p += R after.p, then R = R after.R, skipping after's zero entries.
+    // T <- T * after: p += R after.p, then R = R after.R (each skipped when it changes nothing).
     const Fixed& f = link.after;
-    if (f.identity) continue;
     for (int i = 0; i < 3; ++i) {
-      const double* row[3] = {L.R[3 * i], L.R[3 * i + 1], L.R[3 * i + 2]};
-      const double* src[3];
-      for (int t = 0; t < f.p_terms; ++t) src[t] = row[f.p_index[t]];
-      if (f.p_terms) combine<N, true>(L.p[i], src, f.p_coef, f.p_terms);
-      double next[3][N];
-      for (int j = 0; j < 3; ++j) {
-        for (int t = 0; t < f.r_terms[j]; ++t) src[t] = row[f.r_index[j][t]];
-        combine<N, false>(next[j], src, f.r_coef[j], f.r_terms[j]);
+      double* __restrict x = L.R[3 * i];
+      double* __restrict y = L.R[3 * i + 1];
+      double* __restrict z = L.R[3 * i + 2];
+      if (f.move) {
+        const double f0 = f.F.p(0), f1 = f.F.p(1), f2 = f.F.p(2);
+        double* __restrict p = L.p[i];
+        for (int k = 0; k < N; ++k) p[k] += x[k] * f0 + y[k] * f1 + z[k] * f2;
       }
-      for (int j = 0; j < 3; ++j) std::copy_n(next[j], N, L.R[3 * i + j]);
+      if (f.turn) {
+        const Eigen::Matrix3d& F = f.F.R;
+        for (int k = 0; k < N; ++k) {
+          const double xk = x[k], yk = y[k], zk = z[k];
+          x[k] = xk * F(0, 0) + yk * F(1, 0) + zk * F(2, 0);
+          y[k] = xk * F(0, 1) + yk * F(1, 1) + zk * F(2, 1);
+          z[k] = xk * F(0, 2) + yk * F(1, 2) + zk * F(2, 2);
+        }
+      }
     }
   }
 }

@@ -69,15 +69,11 @@ class Chain {
   std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
 
  private:
-  // A constant frame applied on the right (T <- T * F), with its nonzero entries listed so that
-  // the evaluation skips the zeros.
+  // A constant frame applied on the right (T <- T * F); move / turn say whether its translation /
+  // rotation differ from the identity (the evaluation skips what changes nothing).
   struct Fixed {
     Rigid F;
-    bool identity = true;
-    int p_terms = 0, p_index[3] = {0, 0, 0};
-    double p_coef[3] = {0, 0, 0};
-    int r_terms[3] = {0, 0, 0}, r_index[3][3] = {};
-    double r_coef[3][3] = {};
+    bool move = false, turn = false;
   };
   struct Link {  // joint motion about / along the local z axis, then a fixed frame
     bool prismatic;
