@@ -94,3 +94,74 @@ def test_nan_in_batch_is_rejected():
     Q[777, 1] = np.nan
     with pytest.raises(ValueError, match="q"):
         chain.fk(Q)
+
+
+# --------------------------------------------------------------------------- the Reach loop
+L1, L3 = rk.robots.RPR_L1, rk.robots.RPR_L3
+
+
+def _reach_literal(p_target, theta, lower, upper):
+    """Seed 000, Algorithm 1, line by line, with eqs. (1) and (9)."""
+    n, delta, d, dt = 25, 1e-5, 0.75, 0.025
+
+    def fk(t):
+        return np.array([(L1 + t[1]) * np.cos(t[0]) + L3 * np.cos(t[0] + t[2]),
+                         (L1 + t[1]) * np.sin(t[0]) + L3 * np.sin(t[0] + t[2])])
+
+    def jac(t):
+        s1, c1, s13, c13 = np.sin(t[0]), np.cos(t[0]), np.sin(t[0] + t[2]), np.cos(t[0] + t[2])
+        return np.array([[-(L1 + t[1]) * s1 - L3 * s13, c1, -L3 * s13],
+                         [(L1 + t[1]) * c1 + L3 * c13, s1, L3 * c13]])
+
+    p = fk(theta)
+    while True:
+        J = jac(theta)
+        theta = np.clip(theta + dt * (J.T @ np.linalg.inv(J @ J.T) @ (d * (p_target - p) / dt)), lower, upper)
+        p = fk(theta)
+        n -= 1
+        if n == 0 or np.linalg.norm(p_target - p) < delta:
+            return theta, 25 - n
+
+
+def test_track_equals_the_literal_seed_algorithm_point_by_point():
+    chain = rk.robots.rpr()
+    lower, upper = chain.limits
+    q0 = np.array([math.pi / 2, 0.5, math.pi / 2])
+    points = rk.paths.line(chain.fk(q0)[:2, 3], (1.5, 1.0), 0.002)
+    tr = rk.track(chain, points, q0)
+    q = q0
+    for k, p in enumerate(points):
+        q, iterations = _reach_literal(p, q, lower, upper)
+        np.testing.assert_allclose(tr.q[k], q, rtol=0, atol=1e-9)
+        assert tr.iterations[k] == iterations
+    assert tr.converged.all()
+
+
+def test_reach_and_track_agree_on_every_task():
+    rng = np.random.default_rng(5)
+    cases = [(rk.robots.ur5(), "pose"), (rk.robots.ur5(), "position"), (rk.robots.puma560(), "pose"),
+             (rk.robots.planar_3r(), "xyphi"), (rk.robots.rpr(), "xy"), (rk.robots.prr(), "position")]
+    for chain, task in cases:
+        q0 = random_q(chain, rng) * 0.5
+        q1 = q0 + rng.uniform(-0.02, 0.02, chain.dof)
+        T = chain._fk_kdl(q1)
+        target = {"pose": T, "position": T[:3, 3], "xy": T[:2, 3],
+                  "xyphi": np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])}[task]
+        res = rk.reach(chain, target, q0, task=task, saturate=False)
+        assert res.converged, (chain, task, res)
+        tr = rk.track(chain, np.asarray(target)[None], q0, task=task, saturate=False)
+        np.testing.assert_array_equal(tr.q[0], res.q)
+        assert tr.iterations[0] == res.iterations and tr.error[0] == res.error
+
+
+def test_track_with_nullspace_and_damping_stays_within_tolerance():
+    chain = rk.robots.rpr()
+    lower, upper = chain.limits
+    q0 = np.array([math.pi / 2, 0.5, math.pi / 2])
+    points = rk.paths.line(chain.fk(q0)[:2, 3], (1.5, 1.0), 0.005)
+    for options in ({"nullspace": "joint_limits"}, {"damping": 1e-3}, {"nullspace": np.array([0.5, 0.0, 0.2])}):
+        tr = rk.track(chain, points, q0, **options)
+        assert tr.converged.all(), options
+        assert np.all(tr.q >= lower - 1e-15) and np.all(tr.q <= upper + 1e-15)
+        for k in range(0, len(points), 97):
+            np.testing.assert_allclose(chain._fk_kdl(tr.q[k])[:2, 3], points[k], rtol=0, atol=1e-5)
