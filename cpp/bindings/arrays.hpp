@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -96,9 +98,22 @@ inline double* float64_data(const py::array& a) {
   return reinterpret_cast<double*>(py::detail::array_proxy(a.ptr())->data);
 }
 
+// True when no value is NaN or inf: their exponent bits are all ones. Integer operations only, with
+// no early exit, so that the loop vectorises (a batch of a million rows is checked in a few
+// hundred microseconds).
+inline bool all_finite(const double* data, py::ssize_t size) {
+  std::uint64_t bad = 0;
+  for (py::ssize_t i = 0; i < size; ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, data + i, sizeof bits);
+    const std::uint64_t exponent = (bits >> 32) & 0x7ff00000u;
+    bad |= (exponent + 0x00100000u) >> 31;  // 1 only when the exponent is 0x7ff
+  }
+  return bad == 0;
+}
+
 inline void require_finite(const double* data, py::ssize_t size, const char* name) {
-  for (py::ssize_t i = 0; i < size; ++i)
-    if (!std::isfinite(data[i])) fail(std::string(name) + ": contains NaN or inf");
+  if (!all_finite(data, size)) fail(std::string(name) + ": contains NaN or inf");
 }
 
 // A finite vector of length n (any length when n < 0).
