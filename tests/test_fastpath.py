@@ -54,6 +54,15 @@ def test_large_joint_values_equal_kdl():
         np.testing.assert_allclose(chain.fk(q[None])[0], chain._fk_kdl(q), rtol=0, atol=1e-9)
 
 
+def test_batch_blocks_equal_single_calls_at_any_joint_value():
+    chain, rng = rk.robots.ur5(), np.random.default_rng(6)
+    Q = rng.uniform(-1.0, 1.0, (200, 6)) * 10.0 ** rng.integers(-3, 8, (200, 6))  # beyond 1e5: std::sin
+    batch = chain.fk(Q)
+    for k in range(len(Q)):
+        np.testing.assert_array_equal(batch[k], chain.fk(Q[k]))
+        np.testing.assert_allclose(batch[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-9)
+
+
 def test_every_input_route_gives_the_same_result():
     chain = rk.robots.ur5()
     q = np.random.default_rng(4).uniform(-3, 3, 6)
