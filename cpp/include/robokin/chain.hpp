@@ -83,10 +83,11 @@ class Chain {
   static Fixed make_fixed(const Rigid& F);
   template <int N>
   void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
-  // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 builds.
+  // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
   void batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const;
   void batch_range(const double* q, long begin, long end, double* out, bool stream) const;
   void batch_range_avx2(const double* q, long begin, long end, double* out, bool stream) const;
+  void batch_range_avx512(const double* q, long begin, long end, double* out, bool stream) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
