@@ -149,7 +149,9 @@ def test_track_equals_the_literal_seed_algorithm_point_by_point():
 def test_reach_and_track_agree_on_every_task():
     rng = np.random.default_rng(5)
     cases = [(rk.robots.ur5(), "pose"), (rk.robots.ur5(), "position"), (rk.robots.puma560(), "pose"),
-             (rk.robots.planar_3r(), "xyphi"), (rk.robots.rpr(), "xy"), (rk.robots.prr(), "position")]
+             (rk.robots.planar_3r(), "xyphi"), (rk.robots.rpr(), "xy"), (rk.robots.prr(), "position"),
+             (rk.robots.rp(), "xy"),  # 2 joints, 7 joints: the loop's dynamic-size build
+             (rk.Chain.from_dh([(0.3, math.pi / 2 * (i % 2), 0.1, 0.0, "R") for i in range(7)]), "pose")]
     for chain, task in cases:
         q0 = random_q(chain, rng) * 0.5
         q1 = q0 + rng.uniform(-0.02, 0.02, chain.dof)

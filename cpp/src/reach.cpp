@@ -120,7 +120,7 @@ int Reacher::run_rows(const Target& target, double& error) {
   Eigen::Map<Eigen::Matrix<double, M, N>> J(J_.data(), M, n_);
   Eigen::Map<JointVector> q(q_.data(), n_), dq(dq_.data(), n_), h(h_.data(), n_), correction(correction_.data(), n_);
   const Eigen::Map<const JointVector> lower(chain_.lower().data(), n_), upper(chain_.upper().data(), n_),
-      qbar(qbar_.data(), n_), weights(opt_.nullspace_weights.data(), opt_.nullspace_weights.size() ? n_ : 0);
+      qbar(qbar_.data(), n_);
   Eigen::Map<RowsVector> e(e_);
   const int* rows = kTaskRows[static_cast<int>(task_)];
   const bool use_nullspace = opt_.nullspace_weights.size() != 0;
@@ -137,6 +137,7 @@ int Reacher::run_rows(const Target& target, double& error) {
       // it on every iteration leaves a residual of order |dt dq_H|^2 that never drops below tol.
       // It is applied on the first iteration of each Reach only: the following iterations are the
       // seed's minimum-norm corrections, which remove that residual.
+      const Eigen::Map<const JointVector> weights(opt_.nullspace_weights.data(), n_);
       h = weights.cwiseProduct(qbar - q);
       const RowsVector Jh = J * h;
       min_norm_solve<M>(J, Jh, opt_.damping, correction);
