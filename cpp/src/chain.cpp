@@ -2,6 +2,8 @@
 
 #include "robokin/parallel.hpp"
 
+#include "fast_math.hpp"
+
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
 
@@ -194,43 +196,12 @@ struct Lanes {
 
 namespace {
 
-// sin and cos of v[k], k < N. Cody-Waite reduction by pi/2 (pi/2 split in three parts of 33, 33
-// and 53 bits, so q * part is exact for |q| < 2^20), Taylor polynomials of sin and cos on
-// |r| <= pi/4 carried to r^17 / r^18 (truncation below 1e-19), the quadrant picked with bit
-// operations: no branch and no call, so the loop vectorises. Arguments beyond 1e5 (and NaN) go to
-// std::sin / std::cos, whose reduction is exact at any size.
+// sin and cos of v[k], k < N: the vectorisable simd::sincos, then std::sin / std::cos where it is
+// out of range (beyond 1e5, NaN).
 ROBOKIN_KERNEL void sincos_n(const double* __restrict v, double* __restrict s, double* __restrict c, int N) {
-  constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
-  constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer, kept in the low bits
-  constexpr double kPio2A = 0x1.921fb54400000p+0, kPio2B = 0x1.0b4611a600000p-34,
-                   kPio2C = 0x1.3198a2e037073p-69;
+  for (int k = 0; k < N; ++k) simd::sincos(v[k], s[k], c[k]);
   for (int k = 0; k < N; ++k) {
-    const double x = v[k];
-    const double shifted = x * kTwoOverPi + kShift;
-    std::uint64_t quadrant;
-    std::memcpy(&quadrant, &shifted, sizeof quadrant);
-    const double q = shifted - kShift;
-    const double r = ((x - q * kPio2A) - q * kPio2B) - q * kPio2C;
-    const double r2 = r * r;
-    const double sr =
-        r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-2.505210838544172e-08 +
-            r2 * (1.6059043836821613e-10 + r2 * (-7.647163731819816e-13 + r2 * 2.8114572543455206e-15)))))));
-    const double cr =
-        1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-2.755731922398589e-07 +
-            r2 * (2.08767569878681e-09 + r2 * (-1.1470745597729725e-11 + r2 * (4.779477332387385e-14 +
-            r2 * -1.5619206968586225e-16))))))));
-    std::uint64_t sb, cb;
-    std::memcpy(&sb, &sr, sizeof sb);
-    std::memcpy(&cb, &cr, sizeof cb);
-    const std::uint64_t swap = std::uint64_t{0} - (quadrant & 1);  // odd quadrant: sin <-> cos
-    std::uint64_t so = (cb & swap) | (sb & ~swap), co = (sb & swap) | (cb & ~swap);
-    so ^= (quadrant & 2) << 62;        // quadrants 2, 3: sin changes sign
-    co ^= ((quadrant + 1) & 2) << 62;  // quadrants 1, 2: cos changes sign
-    std::memcpy(&s[k], &so, sizeof so);
-    std::memcpy(&c[k], &co, sizeof co);
-  }
-  for (int k = 0; k < N; ++k) {
-    if (!(std::abs(v[k]) <= 1e5)) {
+    if (!simd::sincos_in_range(v[k])) {
       s[k] = std::sin(v[k]);
       c[k] = std::cos(v[k]);
     }
