@@ -3,34 +3,48 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace robokin {
 
 namespace simd {
 
-// Round to nearest for |x| < 2^51 (the default rounding mode does the work).
-inline double round_nearest(double x) {
-  constexpr double kMagic = 6755399441055744.0;  // 1.5 * 2^52
-  return (x + kMagic) - kMagic;
-}
+// True where sincos below is accurate (a few ulp); elsewhere (and for NaN) use std::sin / std::cos,
+// whose reduction is exact at any size.
+inline bool sincos_in_range(double x) { return std::abs(x) <= 1e5; }
 
-// sin and cos for |a| < 1e5: a = k pi/2 + r, |r| <= pi/4 (pi/2 in two parts, k kHi exact), Taylor
-// series of sin r to r^15 and cos r to r^16 (remainders below 5e-17).
-inline void sincos(double a, double& s, double& c) {
-  constexpr double kHi = 1.5707963267341256;     // pi/2 to 33 bits
-  constexpr double kLo = 6.077100506506192e-11;  // pi/2 - kHi
-  const double k = round_nearest(a * (2 / M_PI));
-  const double r = (a - k * kHi) - k * kLo, r2 = r * r;
-  const double sp = 1.0 / 6 + r2 * (-1.0 / 120 + r2 * (1.0 / 5040 + r2 * (-1.0 / 362880 + r2 * (1.0 / 39916800 +
-                    r2 * (-1.0 / 6227020800 + r2 * (1.0 / 1307674368000))))));
-  const double cp = -0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
-                    r2 * (1.0 / 479001600 + r2 * (-1.0 / 87178291200 + r2 * (1.0 / 20922789888000)))))));
-  const double sr = r - r * r2 * sp, cr = 1 + r2 * cp;
-  const double q = k - 4 * round_nearest((k - 1.5) * 0.25);  // k mod 4 in {0, 1, 2, 3}
-  const bool odd = (q == 1) | (q == 3);
-  const double ss = odd ? cr : sr, cc = odd ? sr : cr;
-  s = q >= 2 ? -ss : ss;
-  c = ((q == 1) | (q == 2)) ? -cc : cc;
+// sin and cos of x for |x| <= 1e5. Cody-Waite reduction by pi/2 (pi/2 split in three parts of 33,
+// 33 and 53 bits, so q * part is exact for |q| < 2^20), Taylor polynomials of sin and cos on
+// |r| <= pi/4 carried to r^17 / r^18 (truncation below 1e-19), the quadrant picked with bit
+// operations: no branch and no call, so loops over it vectorise.
+inline void sincos(double x, double& s, double& c) {
+  constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
+  constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer, kept in the low bits
+  constexpr double kPio2A = 0x1.921fb54400000p+0, kPio2B = 0x1.0b4611a600000p-34,
+                   kPio2C = 0x1.3198a2e037073p-69;
+  const double shifted = x * kTwoOverPi + kShift;
+  std::uint64_t quadrant;
+  std::memcpy(&quadrant, &shifted, sizeof quadrant);
+  const double q = shifted - kShift;
+  const double r = ((x - q * kPio2A) - q * kPio2B) - q * kPio2C;
+  const double r2 = r * r;
+  const double sr =
+      r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-2.505210838544172e-08 +
+          r2 * (1.6059043836821613e-10 + r2 * (-7.647163731819816e-13 + r2 * 2.8114572543455206e-15)))))));
+  const double cr =
+      1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-2.755731922398589e-07 +
+          r2 * (2.08767569878681e-09 + r2 * (-1.1470745597729725e-11 + r2 * (4.779477332387385e-14 +
+          r2 * -1.5619206968586225e-16))))))));
+  std::uint64_t sb, cb;
+  std::memcpy(&sb, &sr, sizeof sb);
+  std::memcpy(&cb, &cr, sizeof cb);
+  const std::uint64_t swap = std::uint64_t{0} - (quadrant & 1);  // odd quadrant: sin <-> cos
+  std::uint64_t so = (cb & swap) | (sb & ~swap), co = (sb & swap) | (cb & ~swap);
+  so ^= (quadrant & 2) << 62;        // quadrants 2, 3: sin changes sign
+  co ^= ((quadrant + 1) & 2) << 62;  // quadrants 1, 2: cos changes sign
+  std::memcpy(&s, &so, sizeof so);
+  std::memcpy(&c, &co, sizeof co);
 }
 
 // atan2(y, x) for (x, y) != (0, 0): t = min / max of |x|, |y| in [0, 1]; above tan(pi/8) use

@@ -48,7 +48,7 @@ Eigen::Vector2d RRR3::platform_joint(const Pose& pose, int i) const {
 
 int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
   double c, s;
-  if (platform_sincos_fast(pose(2))) {
+  if (simd::sincos_in_range(pose(2))) {
     simd::sincos(pose(2), s, c);
   } else {
     c = std::cos(pose(2)), s = std::sin(pose(2));

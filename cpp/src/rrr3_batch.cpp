@@ -48,7 +48,7 @@ void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* o
       ik_block(p, nb, o, b, m, l1_, l2_, dst);
       // Huge orientations: the series' range reduction is not exact there, use the scalar path.
       for (long k = 0; k < nb; ++k)
-        if (!platform_sincos_fast(p[3 * k + 2]) && ik(Pose(p[3 * k], p[3 * k + 1], p[3 * k + 2]), mode, dst + 3 * k) >= 0)
+        if (!simd::sincos_in_range(p[3 * k + 2]) && ik(Pose(p[3 * k], p[3 * k + 1], p[3 * k + 2]), mode, dst + 3 * k) >= 0)
           dst[3 * k] = dst[3 * k + 1] = dst[3 * k + 2] = nan;
     }
   });

@@ -10,9 +10,6 @@
 
 namespace robokin {
 
-// sin and cos of the platform orientation: the vectorisable series where it is exact to an ulp.
-inline bool platform_sincos_fast(double phi) { return std::abs(phi) < 1e5; }
-
 // alpha of a leg with base joint o and platform joint b (effector frame) at position (x, y) and
 // orientation (c, s) = (cos phi, sin phi), elbow sign m; NaN when the leg cannot reach.
 // The law of cosines gives the angle theta at O between OB and OA: cos theta = K / (2 l1 r),
