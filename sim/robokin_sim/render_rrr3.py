@@ -26,6 +26,7 @@ class Rrr3Renderer:
         self.text = Text(18)
         self.small = Text(16)
         self._backdrops: dict = {}
+        self._grids: dict = {}
 
     # --- pieces -------------------------------------------------------------------------------
     def _backdrop(self, ws) -> pygame.Surface:
@@ -35,24 +36,27 @@ class Rrr3Renderer:
         cached = self._backdrops.get(key)
         if cached is not None:
             return cached[0]
-        surface = pygame.Surface(self.view.size)
-        surface.fill(theme.BACKGROUND)
-        draw_grid(surface, self.view, 0.05)
+        grid = self._grids.get(self.view.size)
+        if grid is None:
+            grid = pygame.Surface(self.view.size)
+            grid.fill(theme.BACKGROUND)
+            draw_grid(grid, self.view, 0.05)
+            self._grids = {self.view.size: grid}
+        surface = grid.copy()
         if ws is not None:
-            cells = ws.cells
-            rgb = np.zeros(cells.shape + (3,), dtype=np.uint8)
-            rgb[:] = theme.BACKGROUND
-            for code, colour in CELL_COLOURS.items():
-                rgb[cells == code] = colour
+            # An 8-bit image of the cell codes with a palette: cheap to build and to scale, so a
+            # rotation that changes the map every frame stays fast.
+            codes = np.asarray(ws.cells, dtype=np.uint8).copy()
+            reach = codes > 0
             # Outline: reachable cells next to an unreachable one (the workspace boundary).
-            reach = cells > 0
             edge = reach & ~(
                 np.roll(reach, 1, 0) & np.roll(reach, -1, 0) & np.roll(reach, 1, 1) & np.roll(reach, -1, 1)
             )
-            rgb[edge] = theme.WORKSPACE
+            codes[edge] = 3
             # Rows run along y upwards; pygame wants (x, y-down).
-            img = pygame.surfarray.make_surface(np.ascontiguousarray(rgb[::-1].swapaxes(0, 1)))
-            img.set_colorkey(theme.BACKGROUND)
+            img = pygame.surfarray.make_surface(np.ascontiguousarray(codes[::-1].T))
+            img.set_palette([theme.BACKGROUND, *(CELL_COLOURS[k] for k in (1, 2, 3))] + [theme.BACKGROUND] * 252)
+            img.set_colorkey(0)
             x0, x1, y0, y1 = ws.extent
             top_left = self.view.point((x0, y1))
             bottom_right = self.view.point((x1, y0))
