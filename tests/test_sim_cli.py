@@ -102,3 +102,12 @@ def test_demo_without_a_display_records_the_clover(tmp_path, monkeypatch):
     assert config.headless and config.mode == "clover" and config.log == os.path.join("out", "robokin-sim-rrr3-clover.csv")
     monkeypatch.setenv("DISPLAY", ":0")
     assert not parse_args(["--demo"]).headless
+
+
+def test_unwritable_output_is_a_clean_error(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    env = dict(os.environ, SDL_VIDEODRIVER="dummy")
+    out = subprocess.run([sys.executable, "-m", "robokin_sim", "--headless", "--frames", "3", "--log",
+                          str(blocker / "sub" / "x.csv")], capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 1 and "robokin-sim: error:" in out.stderr and "Traceback" not in out.stderr

@@ -23,6 +23,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         result = run(config)
     except KeyboardInterrupt:
         return 130
+    except OSError as exc:  # an output file that cannot be written
+        print(f"robokin-sim: error: {exc}", file=sys.stderr)
+        return 1
+    except Exception as exc:
+        import pygame
+
+        if isinstance(exc, pygame.error) and not config.headless:
+            print(f"robokin-sim: error: cannot open a window ({exc}); try --headless or --demo", file=sys.stderr)
+            return 1
+        raise
     rate = result.frames / result.seconds if result.seconds > 0 else float("inf")
     print(f"robokin-sim: {config.robot}, {result.frames} frames, {result.steps} steps in {result.seconds:.2f} s "
           f"({rate:.0f} frames/s)")

@@ -179,11 +179,10 @@ class Rrr3Scene(Scene):
                 self._approach, self.mode = None, self._path_name
                 self.message = self._path_name
         else:
-            self._path_step(advance=True)
+            self._path_step()
 
-    def _path_step(self, advance: bool) -> None:
-        if advance:
-            self._index = (self._index + 1) % len(self.path)
+    def _path_step(self) -> None:
+        self._index = (self._index + 1) % len(self.path)
         x, y = self.path[self._index]
         pose = np.array([x, y, self._plan[self._index]])
         evaluated = self._evaluate(pose)
