@@ -90,7 +90,7 @@ class Rrr3Scene(Scene):
 
     # --- the model, through the core ----------------------------------------------------------
     def _evaluate(self, pose):
-        """(alpha, det_a, det_b, state) at ``pose``, or None where a leg cannot reach it."""
+        """The core's :class:`~robokin_sim.rrr3_model.Evaluation` at ``pose``, or None if a leg cannot reach it."""
         return model.evaluate(self.robot_model, pose, self.working_mode)
 
     def _set(self, pose, evaluated) -> None:
