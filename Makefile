@@ -5,7 +5,7 @@ VPY    := $(VENV)/bin/python
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run test test-asan bench clean
+.PHONY: setup run demo-rpr test test-asan bench clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -20,7 +20,11 @@ $(VENV)/.installed: $(VENV)/.base $(SOURCES)
 	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test]"
 	touch $@
 
+# The simulator: a window when there is a display; otherwise the clover, headless, recorded to out/.
 run: setup
+	$(VPY) -m robokin_sim --demo
+
+demo-rpr: setup
 	$(VPY) -m robokin.demo
 
 test: setup

@@ -8,7 +8,6 @@ summary and writes Figure 2 of the seed to a PNG.
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import time
 
@@ -17,9 +16,7 @@ import numpy as np
 from . import paths, robots
 from .reach import track
 
-#: Point 1 is reached only with t1 = pi/2 (its self-motion set is that one configuration).
-Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
-P2 = np.array([1.5, 1.0])
+Q1, P2 = robots.RPR_LINE_Q1, robots.RPR_LINE_P2
 
 
 def main(argv=None) -> int:

@@ -15,6 +15,10 @@ from ._core import Chain
 RPR_L1, RPR_STROKE, RPR_L3 = 1.5, 1.5, 1.0
 #: Seed 000's joint limits [t1, t2, t3].
 RPR_LIMITS = (np.array([0.0, 0.0, 0.0]), np.array([math.pi / 2, RPR_STROKE, math.pi]))
+#: Seed 000's Figure 2: the straight line starts at point 1, on the workspace boundary, reached only
+#: with t1 = pi/2 (these joints), and ends at point 2 (x, y).
+RPR_LINE_Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
+RPR_LINE_P2 = np.array([1.5, 1.0])
 
 
 def _translate_x(length: float) -> np.ndarray:

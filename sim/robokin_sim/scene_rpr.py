@@ -9,7 +9,6 @@ keeps the joints away from their limits. Free mode moves the tip 1 cm per step w
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 from collections import deque
 from typing import FrozenSet, Optional, Tuple
@@ -19,11 +18,8 @@ import robokin as rk
 
 from .scene import Scene, arrows
 
-#: Joints at point 1: t1 at its upper limit pi/2 (the boundary of the workspace), as in seed 000's
-#: Figure 2, with the prismatic joint a third out and link 3 square to link 1.
-Q1 = np.array([math.pi / 2, 0.5, math.pi / 2])
-#: Point 2, across the workspace (metres).
-P2 = np.array([2.5, 1.0])
+#: Seed 000's Figure 2 line: joints at point 1 (t1 at its upper limit, the workspace boundary), point 2.
+Q1, P2 = rk.robots.RPR_LINE_Q1, rk.robots.RPR_LINE_P2
 #: Spacing of the line's points: the seed cuts the segment into "very close" points.
 LINE_STEP = 0.01
 #: Tip move per step in free mode and during approaches (metres).
