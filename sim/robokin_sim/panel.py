@@ -128,3 +128,15 @@ def draw_footer(surface: pygame.Surface, text: Text, lines: List[str]) -> None:
     for s in lines:
         surface.blit(text.render(s, theme.TEXT_DIM), (8, y))
         y += text.height
+
+
+def draw_overlays(surface: pygame.Surface, text: Text, small: Text, robot: str, message: str, paused: bool,
+                  show_help: bool, hint: str = "h: keys") -> None:
+    """The footer (message, "paused", the help hint) and, when asked for, the key list."""
+    lines = [message] if message else []
+    if paused:
+        lines.append("paused (space)")
+    lines.append(hint)
+    draw_footer(surface, small, lines)
+    if show_help:
+        draw_help(surface, text, robot)

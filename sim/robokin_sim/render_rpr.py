@@ -8,7 +8,7 @@ import numpy as np
 import pygame
 
 from . import theme
-from .panel import Text, draw_footer, draw_help, draw_panel, number
+from .panel import Text, draw_overlays, draw_panel, number
 from .render_common import Hud, draw_grid, polyline
 from .view import Viewport
 
@@ -52,13 +52,7 @@ class RprRenderer:
         ]
         bars = [(JOINT_NAMES[i], float(joint[i]), float(state.lower[i]), float(state.upper[i])) for i in range(3)]
         draw_panel(surface, self.text, rows, bars=bars)
-        lines = [state.message] if state.message else []
-        if hud.paused:
-            lines.append("paused (space)")
-        lines.append("h: keys")
-        draw_footer(surface, self.small, lines)
-        if hud.help:
-            draw_help(surface, self.text, "rpr")
+        draw_overlays(surface, self.text, self.small, "rpr", state.message, hud.paused, hud.help)
 
     def _arm(self, surface: pygame.Surface, state) -> None:
         v = self.view

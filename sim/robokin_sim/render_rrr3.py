@@ -8,7 +8,7 @@ import numpy as np
 import pygame
 
 from . import theme
-from .panel import Text, draw_footer, draw_help, draw_panel, number
+from .panel import Text, draw_overlays, draw_panel, number
 from .render_common import Hud, draw_grid, polyline
 from .view import Viewport
 
@@ -123,10 +123,5 @@ class Rrr3Renderer:
             ("fps", f"{hud.fps:.0f}", None),
         ]
         draw_panel(surface, self.text, rows)
-        lines = [state.message] if state.message else []
-        if hud.paused:
-            lines.append("paused (space)")
-        lines.append("h: keys   red cells: parallel singularities at this orientation")
-        draw_footer(surface, self.small, lines)
-        if hud.help:
-            draw_help(surface, self.text, "rrr3")
+        draw_overlays(surface, self.text, self.small, "rrr3", state.message, hud.paused, hud.help,
+                      hint="h: keys   red cells: parallel singularities at this orientation")
