@@ -5,4 +5,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_chain(m);
   robokin::bind::bind_reach(m);
   robokin::bind::bind_rpr(m);
+  robokin::bind::bind_ik_closed(m);
 }

@@ -4,7 +4,7 @@ Serial chains from Denavit-Hartenberg tables, forward kinematics and Jacobians, 
 with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
-from . import paths, robots
+from . import closed, paths, robots
 from ._core import Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
 from .reach import reach, track
@@ -17,6 +17,7 @@ __all__ = [
     "ReachResult",
     "TrackResult",
     "UnreachableError",
+    "closed",
     "paths",
     "reach",
     "robots",
