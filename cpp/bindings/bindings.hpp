@@ -8,4 +8,5 @@ void bind_chain(pybind11::module_& m);
 void bind_reach(pybind11::module_& m);
 void bind_rpr(pybind11::module_& m);
 void bind_ik_closed(pybind11::module_& m);
+void bind_ik(pybind11::module_& m);
 }  // namespace robokin::bind

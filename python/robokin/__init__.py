@@ -7,6 +7,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 from . import closed, paths, robots
 from ._core import Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
+from .ik import IKBatchResult, IKResult, ik, ik_batch
 from .reach import reach, track
 
 __version__ = "0.1.0"
@@ -14,10 +15,14 @@ __version__ = "0.1.0"
 __all__ = [
     "Chain",
     "PrecisionWarning",
+    "IKBatchResult",
+    "IKResult",
     "ReachResult",
     "TrackResult",
     "UnreachableError",
     "closed",
+    "ik",
+    "ik_batch",
     "paths",
     "reach",
     "robots",
