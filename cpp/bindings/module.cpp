@@ -7,4 +7,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_rpr(m);
   robokin::bind::bind_ik_closed(m);
   robokin::bind::bind_ik(m);
+  robokin::bind::bind_urdf(m);
 }

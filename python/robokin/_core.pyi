@@ -183,3 +183,9 @@ class _KdlIk:
     """Benchmark reference: KDL's ChainIkSolverPos_LMA ("lma") or ChainIkSolverPos_NR_JL ("nr_jl")."""
     def __init__(self, chain: Chain, solver: str = "lma", max_iter: int = 500, eps: float = 1e-5) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> Tuple[NDArray, int]: ...
+
+# --- URDF (cpp/bindings/urdf.cpp) ----------------------------------------------------------------
+# cpp/bindings/urdf.cpp adds a static method to Chain (kept out of the Chain section above to avoid
+# merge conflicts; move it into the class when merging):
+#     @staticmethod
+#     def from_urdf(path_or_string: Union[str, os.PathLike], base: str, tip: str) -> Chain: ...
