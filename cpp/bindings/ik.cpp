@@ -8,7 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
+#include <atomic>
+#include <chrono>
 
 namespace robokin::bind {
 namespace {
@@ -42,8 +43,13 @@ Target one_target(Task task, py::handle obj) {
 
 std::uint64_t seed_arg(py::handle seed) {
   if (seed.is_none()) {
-    std::random_device rd;
-    return (static_cast<std::uint64_t>(rd()) << 32) ^ rd();
+    // A fresh seed per call, cheaply: splitmix64 of a counter mixed with the clock.
+    static std::atomic<std::uint64_t> counter{0};
+    std::uint64_t z = counter.fetch_add(0x9E3779B97F4A7C15ull) +
+                      static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
   }
   if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) fail("seed: expected None or an int");
   try {
@@ -88,7 +94,9 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
   const Target t = one_target(o.task, target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   const std::uint64_t s = seed_arg(seed);
-  IkSolver solver(chain, o);
+  // One solver per thread, kept between calls: no workspace allocation per solve.
+  thread_local IkSolver solver(chain, o);
+  solver.reset(chain, o);
   if (o.timeout > 1e-3 || o.restarts > 16) {
     py::gil_scoped_release release;
     return solver.solve(t, q0.data(), s);

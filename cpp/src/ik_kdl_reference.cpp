@@ -25,8 +25,10 @@ KdlIkReference::KdlIkReference(const Chain& chain, const std::string& solver, in
   const unsigned n = s.chain.getNrOfJoints();
   s.q_init = KDL::JntArray(n);
   s.q_out = KDL::JntArray(n);
-  if (solver == "lma") {
+  if (solver == "lma") {  // KDL's default task-space weights (1, 1, 1, 0.01, 0.01, 0.01)
     s.pos = std::make_unique<KDL::ChainIkSolverPos_LMA>(s.chain, eps, max_iter);
+  } else if (solver == "lma_unit") {  // unit weights: rotations count as much as positions
+    s.pos = std::make_unique<KDL::ChainIkSolverPos_LMA>(s.chain, Eigen::Matrix<double, 6, 1>::Ones(), eps, max_iter);
   } else if (solver == "nr_jl") {
     KDL::JntArray lo(n), hi(n);
     lo.data = chain.lower();
@@ -35,7 +37,7 @@ KdlIkReference::KdlIkReference(const Chain& chain, const std::string& solver, in
     s.vel = std::make_unique<KDL::ChainIkSolverVel_pinv>(s.chain);
     s.pos = std::make_unique<KDL::ChainIkSolverPos_NR_JL>(s.chain, lo, hi, *s.fk, *s.vel, max_iter, eps);
   } else {
-    throw std::invalid_argument("solver: expected 'lma' or 'nr_jl', got '" + solver + "'");
+    throw std::invalid_argument("solver: expected 'lma', 'lma_unit' or 'nr_jl', got '" + solver + "'");
   }
 }
 

@@ -38,14 +38,21 @@ const char* ik_method_name(IkMethod method) {
   return "?";
 }
 
-IkSolver::IkSolver(const Chain& chain, const IkOptions& options)
-    : chain_(chain), opt_(options), n_(chain.dof()), m_(task_rows(options.task)) {
+IkSolver::IkSolver(const Chain& chain, const IkOptions& options) { reset(chain, options); }
+
+void IkSolver::reset(const Chain& chain, const IkOptions& options) {
+  chain_ = &chain;
+  opt_ = options;
+  const int n = chain.dof(), m = task_rows(options.task);
+  if (n == n_ && m == m_) return;  // the workspace fits already
+  n_ = n;
+  m_ = m;
   J6_.resize(6, n_);
+  HA_.resize(6, n_);
   J_.resize(m_, n_);
   Jt_.resize(m_, n_);
   Jw_.resize(m_, n_);
   M_.resize(m_, n_);
-  HA_.resize(6, n_);
   An_.resize(n_, n_);
   Am_.resize(m_, m_);
   e_.resize(m_);
@@ -63,9 +70,9 @@ IkSolver::IkSolver(const Chain& chain, const IkOptions& options)
 
 // Joint value v brought within the limits of joint i, by multiples of 2 pi for a revolute joint.
 bool IkSolver::fit(int i, double& v) const {
-  const double lo = chain_.lower()(i), hi = chain_.upper()(i);
+  const double lo = chain_->lower()(i), hi = chain_->upper()(i);
   if (v >= lo && v <= hi) return true;
-  if (chain_.prismatic(i) || hi - lo <= 0) return false;
+  if (chain_->prismatic(i) || hi - lo <= 0) return false;
   const double k = std::ceil((lo - v) / kTwoPi);  // smallest shift up to reach lo
   const double w = v + k * kTwoPi;
   if (w >= lo && w <= hi) {
@@ -99,7 +106,7 @@ void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double
 
 void IkSolver::errors(const Target& target, const double* q, double& ep, double& er) const {
   Rigid T;
-  chain_.fk(q, T);
+  chain_->fk(q, T);
   double e[6];
   errors_of(target, T, e, ep, er);
 }
@@ -107,7 +114,7 @@ void IkSolver::errors(const Target& target, const double* q, double& ep, double&
 // FK (+ Jacobian rows of the task) and the error at q, into (J, e, ep, er); returns the cost |e|^2.
 double IkSolver::evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep,
                           double& er) {
-  chain_.fk_jacobian(q.data(), T_, J6_.data());
+  chain_->fk_jacobian(q.data(), T_, J6_.data());
   select_rows(J6_, J);
   errors_of(target, T_, e.data(), ep, er);
   return e.squaredNorm();
@@ -146,7 +153,7 @@ void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const
         qt_(i) = v;
         continue;
       }
-      const double lim = v < chain_.lower()(i) ? chain_.lower()(i) : chain_.upper()(i);
+      const double lim = v < chain_->lower()(i) ? chain_->lower()(i) : chain_->upper()(i);
       frozen_[i] = true;
       qt_(i) = lim;
       r_ -= J.col(i) * (lim - q(i));
@@ -194,8 +201,8 @@ void hessian_times(const Chain& chain, const Matrix6X& J6, const Vector& a, Matr
 void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < n_; ++i) {
-    double lo = chain_.lower()(i), hi = chain_.upper()(i);
-    const double span = chain_.prismatic(i) ? 1.0 : M_PI;
+    double lo = chain_->lower()(i), hi = chain_->upper()(i);
+    const double span = chain_->prismatic(i) ? 1.0 : M_PI;
     if (!std::isfinite(lo) && !std::isfinite(hi)) lo = -span, hi = span;
     else if (!std::isfinite(lo)) lo = hi - 2 * span;
     else if (!std::isfinite(hi)) hi = lo + 2 * span;
@@ -210,7 +217,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   if (met(ep, er)) return true;
   double mu = 0, nu = 2;
   if (opt_.method == IkMethod::LM) {
-    mu = opt_.damping * std::max(1e-12, (J_.transpose() * J_).diagonal().maxCoeff());
+    mu = opt_.damping * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
   }
   for (int it = 0; it < budget; ++it) {
     if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return false;
@@ -262,7 +269,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
         for (int ls = 0; ls < 30; ++ls) {
           for (int i = 0; i < n_; ++i) {
             double v = q(i) + alpha * a_(i);
-            if (!fit(i, v)) v = std::min(std::max(v, chain_.lower()(i)), chain_.upper()(i));
+            if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
             qt_(i) = v;
           }
           cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
@@ -285,7 +292,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
         if (opt_.method == IkMethod::Halley) {
           // Newton step a, then Halley's correction: solve (J + 1/2 H a) b = e.
           damped_pinv(J_, e_, a_);
-          hessian_times(chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
+          hessian_times(*chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
           select_rows(HA_, M_);
           M_ = J_ + 0.5 * M_;
           constrained_step(q, M_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
@@ -321,7 +328,7 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
   const double deadline = opt_.timeout > 0 ? start + opt_.timeout : 0.0;
   Vector q = Eigen::Map<const Vector>(q0, n_);
   for (int i = 0; i < n_; ++i)
-    if (!fit(i, q(i))) q(i) = std::min(std::max(q(i), chain_.lower()(i)), chain_.upper()(i));
+    if (!fit(i, q(i))) q(i) = std::min(std::max(q(i), chain_->lower()(i)), chain_->upper()(i));
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   std::mt19937_64 rng(seed);
@@ -348,11 +355,11 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
 void IkSolver::finalise(const Target& target, IkResult& r) const {
   for (int i = 0; i < n_; ++i) {
     double& v = r.q(i);
-    if (!chain_.prismatic(i)) {
+    if (!chain_->prismatic(i)) {
       const double w = std::remainder(v, kTwoPi);
-      if (w >= chain_.lower()(i) && w <= chain_.upper()(i)) v = w;
+      if (w >= chain_->lower()(i) && w <= chain_->upper()(i)) v = w;
     }
-    if (!fit(i, v)) v = std::min(std::max(v, chain_.lower()(i)), chain_.upper()(i));
+    if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
   }
   errors(target, r.q.data(), r.error_p, r.error_r);
   r.success = r.q.allFinite() && met(r.error_p, r.error_r);

@@ -47,6 +47,8 @@ void hessian_times(const Chain& chain, const Matrix6X& J6, const Vector& a, Matr
 class IkSolver {
  public:
   IkSolver(const Chain& chain, const IkOptions& options);
+  // Re-targets the solver (the workspace is kept when the sizes match): the chain must outlive use.
+  void reset(const Chain& chain, const IkOptions& options);
 
   // Solves from q0; restarts draw from a generator seeded with `seed`.
   IkResult solve(const Target& target, const double* q0, std::uint64_t seed);
@@ -71,9 +73,9 @@ class IkSolver {
   void random_q(std::mt19937_64& rng, Vector& q) const;
   void finalise(const Target& target, IkResult& r) const;
 
-  const Chain& chain_;
+  const Chain* chain_ = nullptr;
   IkOptions opt_;
-  int n_, m_;
+  int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
   Eigen::MatrixXd J_, Jt_, Jw_, M_, An_, Am_;
