@@ -82,7 +82,7 @@ IkOptions options_arg(const std::string& method, const std::string& task, double
     if (!(d > 0) || !std::isfinite(d)) fail("damping: must be None or a positive number");
     o.damping = d;
   } else {
-    o.damping = o.method == IkMethod::LM ? 1e-3 : 1e-6;
+    o.damping = o.method == IkMethod::LM ? 1e-1 : o.method == IkMethod::Halley ? 1e-9 : 1e-6;
   }
   return o;
 }

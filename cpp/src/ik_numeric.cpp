@@ -13,6 +13,10 @@ namespace robokin {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
+// LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
+constexpr double kMuShrink = 0.1;
+// With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
+constexpr int kStallWindow = 12;
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -166,8 +170,40 @@ void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const
     if (frozen_[i]) dq_(i) = qt_(i) - q(i);
 }
 
+// dq = (J^T J + (mu + rel max diag(J^T J)) I)^-1 J^T r; fixed-size arithmetic for 6 x 6.
+void IkSolver::normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq) {
+  if (m_ == 6 && n_ == 6) {
+    using M6 = Eigen::Matrix<double, 6, 6>;
+    using V6 = Eigen::Matrix<double, 6, 1>;
+    const Eigen::Map<const M6> Jf(J.data());
+    M6 A;
+    A.noalias() = Jf.transpose() * Jf;
+    A.diagonal().array() += mu + rel * A.diagonal().maxCoeff();
+    V6 g;
+    g.noalias() = Jf.transpose() * Eigen::Map<const V6>(r.data());
+    Eigen::Map<V6>(dq.data()) = A.llt().solve(g);
+    return;
+  }
+  An_.noalias() = J.transpose() * J;
+  An_.diagonal().array() += mu + rel * An_.diagonal().maxCoeff();
+  g_.noalias() = J.transpose() * r;
+  llt_n_.compute(An_);
+  dq = llt_n_.solve(g_);
+}
+
 void IkSolver::damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
   // dq = J^T (J J^T + lambda^2 I)^-1 r
+  if (m_ == 6) {
+    using M6 = Eigen::Matrix<double, 6, 6>;
+    using V6 = Eigen::Matrix<double, 6, 1>;
+    const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> Jf(J.data(), 6, n_);
+    M6 A;
+    A.noalias() = Jf * Jf.transpose();
+    A.diagonal().array() += opt_.damping * opt_.damping;
+    const V6 y = A.llt().solve(Eigen::Map<const V6>(r.data()));
+    dq.noalias() = Jf.transpose() * y;
+    return;
+  }
   Am_.noalias() = J * J.transpose();
   Am_.diagonal().array() += opt_.damping * opt_.damping;
   llt_m_.compute(Am_);
@@ -211,7 +247,8 @@ void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
 }
 
 // One attempt from q (within limits) for at most `budget` iterations; q is left at the best point.
-bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline) {
+bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline,
+                       bool may_stall) {
   double ep, er;
   double cost = evaluate(target, q, J_, e_, ep, er);
   if (met(ep, er)) return true;
@@ -219,18 +256,19 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   if (opt_.method == IkMethod::LM) {
     mu = opt_.damping * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
   }
+  double window_cost = cost;
   for (int it = 0; it < budget; ++it) {
     if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return false;
+    if (may_stall && it > 0 && it % kStallWindow == 0) {
+      if (cost > 0.5 * window_cost) return false;  // crawling: a restart does better
+      window_cost = cost;
+    }
     ++iterations;
     double ept, ert, cost_t;
     switch (opt_.method) {
       case IkMethod::LM: {
         constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-          An_.noalias() = J.transpose() * J;
-          An_.diagonal().array() += mu;
-          g_.noalias() = J.transpose() * r;
-          llt_n_.compute(An_);
-          dq = llt_n_.solve(g_);
+          normal_solve(J, r, mu, 0.0, dq);
         });
         cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
         // Gain ratio of the actual to the predicted (linear model) decrease, Nielsen's update.
@@ -245,7 +283,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
           cost = cost_t;
           if (met(ept, ert)) return true;
           const double t = 2 * rho - 1;
-          mu *= std::max(1.0 / 3.0, 1.0 - t * t * t);
+          mu *= std::max(kMuShrink, 1.0 - t * t * t);
           nu = 2;
         } else {
           mu *= nu;
@@ -256,11 +294,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
       }
       case IkMethod::GN: {
         constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-          An_.noalias() = J.transpose() * J;
-          An_.diagonal().array() += 1e-12 * (1.0 + An_.diagonal().maxCoeff());
-          g_.noalias() = J.transpose() * r;
-          llt_n_.compute(An_);
-          dq = llt_n_.solve(g_);
+          normal_solve(J, r, 1e-12, 1e-12, dq);  // a hair of regularisation for singular J
         });
         // Backtracking line search on the Gauss-Newton direction.
         double alpha = 1.0;
@@ -338,7 +372,7 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
       random_q(rng, q);
     }
     ++r.attempts;
-    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline);
+    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts);
     double ep, er;
     errors(target, q.data(), ep, er);
     const double c = ep * ep + er * er;

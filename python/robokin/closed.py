@@ -119,6 +119,17 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
+_PUMA560_LIMITS = []
+
+
+def _puma560_limits():
+    if not _PUMA560_LIMITS:
+        from .robots import puma560 as _puma
+
+        _PUMA560_LIMITS.append(_puma().limits)
+    return _PUMA560_LIMITS[0]
+
+
 def puma560(target, limits="default") -> IKSolutions:
     """All (up to 8) solutions of :func:`robokin.robots.puma560` for the tool frame ``target``.
 
@@ -127,9 +138,7 @@ def puma560(target, limits="default") -> IKSolutions:
         limits: ``"default"`` for the PUMA's joint limits, ``None`` for none, a pair or a Chain.
     """
     if isinstance(limits, str) and limits == "default":
-        from .robots import puma560 as _puma
-
-        limits = _puma().limits
+        limits = _puma560_limits()
     g = PUMA560
     return _core.ik_spherical_wrist(target, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], _limits(limits))
 

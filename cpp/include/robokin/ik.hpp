@@ -59,7 +59,8 @@ class IkSolver {
   const IkOptions& options() const { return opt_; }
 
  private:
-  bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline);
+  // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
+  bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline, bool may_stall);
   double evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep, double& er);
   void errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const;
   void select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const;
@@ -68,6 +69,7 @@ class IkSolver {
   // `solve(J, r, dq)` maps a Jacobian (frozen joints' columns zeroed) and a residual to a step.
   template <class Solve>
   void constrained_step(const Vector& q, const Eigen::MatrixXd& J, const Vector& e, Solve solve);
+  void normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq);
   void damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq);
   bool fit(int i, double& v) const;  // wraps a joint value by 2 pi into its limits; false if outside
   void random_q(std::mt19937_64& rng, Vector& q) const;
