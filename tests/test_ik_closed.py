@@ -226,3 +226,22 @@ def test_bad_input_names_the_argument():
         rk.closed.planar_3r((1.0, 0.0, 0.0), limits=([0, 0], [1, 1]))
     with pytest.raises(ValueError, match="target"):
         rk.closed.puma560(np.ones((4, 4)))
+
+
+def test_puma560_path_keeps_its_branch():
+    puma = rk.robots.puma560()
+    q_start = np.array([0.3, 0.5, -0.8, 2.9, 0.6, 3.0])  # q4, q6 near pi: wrapping must not jump
+    T0 = puma.fk(q_start)
+    K = 200
+    targets = np.repeat(T0[None], K, axis=0)
+    targets[:, 1, 3] += np.linspace(0.0, 0.1, K)
+    q, ok = rk.closed.puma560_path(targets, q_start)
+    assert ok.all()
+    for k in range(K):
+        assert np.abs(puma.fk(q[k]) - targets[k]).max() < 1e-10
+    assert np.abs(np.diff(np.vstack([q_start, q]), axis=0)).max() < 0.05
+    # an unreachable frame keeps the previous joints and says so
+    far = targets.copy()
+    far[100, 0, 3] = 3.0
+    q2, ok2 = rk.closed.puma560_path(far, q_start)
+    assert not ok2[100] and ok2.sum() == K - 1 and np.array_equal(q2[100], q2[99])

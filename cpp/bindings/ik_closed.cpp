@@ -76,6 +76,32 @@ ClosedFormSolutions spherical_wrist(py::handle target, double a2, double a3, dou
   return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), T, limits_arg(limits, 6));
 }
 
+py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, double d3, double d4, double d1,
+                               double d6, py::handle q0_obj, py::handle limits) {
+  Array a = as_array(targets_obj, "targets");
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+    fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
+  require_finite(a.data(), a.size(), "targets");
+  const long count = a.shape(0);
+  std::vector<Rigid> targets;
+  targets.reserve(count);
+  for (long k = 0; k < count; ++k)
+    targets.push_back(Rigid::from_matrix(as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets")));
+  const Vector q0 = as_vector(q0_obj, "q0", 6);
+  const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
+  const double tool = length_arg(d6, "d6", false);
+  const JointLimits lim = limits_arg(limits, 6);
+  py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{6}});
+  py::array_t<bool> ok(static_cast<py::ssize_t>(count));
+  double* qd = q.mutable_data();
+  bool* okd = ok.mutable_data();
+  {
+    py::gil_scoped_release release;
+    ik_spherical_wrist_path(g, tool, targets.data(), count, q0.data(), lim, qd, okd);
+  }
+  return py::make_tuple(q, ok);
+}
+
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
   py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
   std::copy(s.q.begin(), s.q.end(), out.mutable_data());
@@ -125,6 +151,8 @@ void bind_ik_closed(py::module_& m) {
         py::arg("method") = "algebraic", py::arg("limits") = py::none());
   m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1") = 0.0,
         py::arg("limits") = py::none());
+  m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
+        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
 }

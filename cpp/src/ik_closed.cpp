@@ -247,6 +247,28 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   return out;
 }
 
+void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok) {
+  double prev[6];
+  std::copy(q0, q0 + 6, prev);
+  for (long k = 0; k < count; ++k) {
+    ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
+    // Each solution's angles moved by 2 pi towards the previous joints, while within the limits.
+    for (int r = 0; r < s.count(); ++r)
+      for (int i = 0; i < 6; ++i) {
+        double& v = s.q[r * 6 + i];
+        const double lo = limits.lower.size() ? limits.lower(i) : -INFINITY;
+        const double hi = limits.upper.size() ? limits.upper(i) : INFINITY;
+        while (v - prev[i] > kPi && v - 2 * kPi >= lo) v -= 2 * kPi;
+        while (prev[i] - v > kPi && v + 2 * kPi <= hi) v += 2 * kPi;
+      }
+    const int best = nearest_solution(s, prev);
+    ok[k] = best >= 0;
+    if (best >= 0) std::copy(s.q.begin() + best * 6, s.q.begin() + best * 6 + 6, prev);
+    std::copy(prev, prev + 6, q_out + 6 * k);
+  }
+}
+
 int nearest_solution(const ClosedFormSolutions& s, const double* q) {
   int best = -1;
   double best_d = 0;

@@ -132,6 +132,10 @@ def ik_spherical_wrist(
     target: ArrayLike, a2: float, a3: float, d3: float, d4: float, d1: float = 0.0, d6: float = 0.0,
     limits: Optional[Tuple[ArrayLike, ArrayLike]] = None,
 ) -> IKSolutions: ...
+def ik_spherical_wrist_path(
+    targets: ArrayLike, a2: float, a3: float, d3: float, d4: float, d1: float, d6: float, q0: ArrayLike,
+    limits: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+) -> Tuple[NDArray, npt.NDArray[np.bool_]]: ...
 
 # --- numerical inverse kinematics (cpp/bindings/ik.cpp) ----------------------------------------
 

@@ -23,6 +23,7 @@ __all__ = [
     "planar_3r",
     "planar_rp",
     "puma560",
+    "puma560_path",
     "rpr_self_motion",
     "spherical_wrist_6r",
 ]
@@ -141,6 +142,28 @@ def puma560(target, limits="default") -> IKSolutions:
         limits = _puma560_limits()
     g = PUMA560
     return _core.ik_spherical_wrist(target, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], _limits(limits))
+
+
+def puma560_path(targets, q0, limits="default"):
+    """Follows a path of tool frames with the closed form: at each frame, the solution nearest to
+    the previous joints (``q0`` for the first), angles shifted by ``2 pi`` towards the previous
+    ones within the limits. The posture never jumps to another branch unless the path forces it.
+
+    Args:
+        targets: (K, 4, 4) tool frames.
+        q0: (6,) joints before the first frame.
+        limits: As :func:`puma560`.
+
+    Returns:
+        ``(q, ok)``: (K, 6) joints and (K,) booleans; where a frame has no solution, ``ok`` is
+        False and the row repeats the previous joints.
+    """
+    if isinstance(limits, str) and limits == "default":
+        limits = _puma560_limits()
+    g = PUMA560
+    return _core.ik_spherical_wrist_path(
+        targets, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], q0, _limits(limits)
+    )
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:

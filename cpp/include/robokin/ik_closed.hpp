@@ -63,6 +63,12 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits);
 
+// Along a path of tool frames: for each, the spherical-wrist solution nearest to the previous
+// joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value within the
+// limits: no branch jumps. ok[k] false (row k = previous joints) where the frame has no solution.
+void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok);
+
 // Row of `solutions` nearest to q (Euclidean distance between joint vectors); -1 when empty.
 int nearest_solution(const ClosedFormSolutions& solutions, const double* q);
 
