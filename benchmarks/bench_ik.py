@@ -3,8 +3,9 @@ random q within the limits), every method of robokin.ik from a fixed start and w
 against KDL's ChainIkSolverPos_LMA and ChainIkSolverPos_NR_JL (the project's KDL, in C++, called
 per target from Python like ours) and Pinocchio's documented damped least-squares loop.
 
-A solve counts only when forward kinematics of the answer is within 1e-9 m and 1e-9 rad of the
-target (the same check for every solver; KDL's own return code is shown alongside). Times are per
+A solve counts only when the answer, its angles wrapped by 2 pi into the joint limits where that
+fits, is within the limits and its forward kinematics is within 1e-9 m and 1e-9 rad of the target
+(the same check for every solver; KDL's own return code is shown alongside). Times are per
 call from Python (median and 95th percentile), one thread; ik_batch's throughput on every core
 is shown separately.
 
@@ -35,10 +36,26 @@ def rotation_angle(R: np.ndarray) -> float:
     return math.atan2(s, (np.trace(R) - 1.0) / 2.0)
 
 
+def wrapped(q, lo, hi):
+    """Revolute angles shifted by multiples of 2 pi into the limits where that fits (the same
+    courtesy for every solver: KDL's LMA and Pinocchio's loop do not know the limits)."""
+    q = np.array(q, dtype=float)
+    shift = np.ceil((lo - q) / (2 * np.pi)) * 2 * np.pi
+    moved = q + shift
+    fits = (q < lo) & (moved <= hi)
+    q[fits] = moved[fits]
+    shift = np.floor((hi - q) / (2 * np.pi)) * 2 * np.pi
+    moved = q + shift
+    fits = (q > hi) & (moved >= lo)
+    q[fits] = moved[fits]
+    return q
+
+
 def reached(chain, q, T, tol=TOL) -> bool:
     if q is None or not np.all(np.isfinite(q)):
         return False
     lo, hi = chain.limits
+    q = wrapped(q, lo, hi)
     if np.any(q < lo - 1e-12) or np.any(q > hi + 1e-12):
         return False
     F = chain._fk_kdl(q)

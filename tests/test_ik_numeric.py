@@ -188,3 +188,19 @@ def test_bad_input_names_the_argument():
         rk.ik_batch(chain, np.stack([T, T]), np.zeros((3, 6)))
     with pytest.raises(ValueError, match="q0"):
         rk.ik_batch(chain, np.stack([T, T]), np.zeros((2, 6)), path=True)
+
+
+def test_bound_solver_matches_ik():
+    chain = rk.robots.puma560()
+    _, T = random_targets(chain, 5, seed=21)
+    solver = rk.IKSolver(chain, method="halley", restarts=20, seed=9)
+    assert "IKSolver(method='halley'" in repr(solver) and solver.task == "pose"
+    for k in range(5):
+        a = solver.solve(T[k], np.zeros(6))
+        b = rk.ik(chain, T[k], np.zeros(6), method="halley", restarts=20, seed=9 + k)
+        assert np.array_equal(a.q, b.q) and a.success == b.success
+        assert a.success == verified(chain, a.q, T[k])
+    with pytest.raises(ValueError, match="q0"):
+        solver.solve(T[0], np.zeros(3))
+    with pytest.raises(ValueError, match="method"):
+        rk.IKSolver(chain, method="x")

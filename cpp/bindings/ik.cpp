@@ -150,6 +150,25 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
   return r;
 }
 
+// A solver bound to a chain and options: the per-call cost is the target and q0 only.
+struct BoundSolver {
+  const Chain* chain;
+  IkOptions options;
+  IkSolver solver;
+  bool seeded = false;
+  std::uint64_t seed = 0, calls = 0;
+
+  BoundSolver(const Chain& c, const IkOptions& o, py::handle seed_obj)
+      : chain(&c), options(o), solver(c, o), seeded(!seed_obj.is_none()), seed(seed_arg(seed_obj)) {}
+
+  IkResult solve(py::handle target, py::handle q0_obj) {
+    const Target t = one_target(options.task, target);
+    const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
+    const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
+    return solver.solve(t, q0.data(), s);
+  }
+};
+
 std::string repr(const IkResult& r) {
   char buf[200];
   std::snprintf(buf, sizeof buf,
@@ -213,6 +232,29 @@ void bind_ik(py::module_& m) {
         return to_numpy(out);
       },
       py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  py::class_<BoundSolver>(m, "IKSolver",
+                          "A numerical IK solver bound to a chain and options (robokin.ik's arguments):\n"
+                          "solve(target, q0) costs only the solve. Call k of a seeded solver uses seed + k.\n"
+                          "Not thread-safe: one solver per thread (ik_batch is the parallel route).")
+      .def(py::init([](const Chain& chain, const std::string& method, const std::string& task, double tol_p,
+                       double tol_r, int max_iter, int restarts, py::handle seed, py::handle timeout,
+                       py::handle damping) {
+             return std::make_unique<BoundSolver>(
+                 chain, options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), seed);
+           }),
+           py::arg("chain"), py::arg("method") = "lm", py::arg("task") = "pose", py::arg("tol_p") = 1e-9,
+           py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100, py::arg("restarts") = 0, py::arg("seed") = py::none(),
+           py::arg("timeout") = py::none(), py::arg("damping") = py::none(), py::keep_alive<1, 2>())
+      .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
+      .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
+      .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
+      .def("__repr__", [](const BoundSolver& b) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "IKSolver(method='%s', task='%s', tol_p=%g, tol_r=%g, max_iter=%d, restarts=%d)",
+                      ik_method_name(b.options.method), task_name(b.options.task), b.options.tol_p, b.options.tol_r,
+                      b.options.max_iter, b.options.restarts);
+        return std::string(buf);
+      });
   py::class_<KdlIkReference>(m, "_KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
       .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {
              if (max_iter < 1) fail("max_iter: must be at least 1");

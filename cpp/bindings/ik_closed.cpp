@@ -102,6 +102,16 @@ py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, dou
   return py::make_tuple(q, ok);
 }
 
+// A spherical-wrist solver with its geometry and limits parsed once (robokin.closed.puma560).
+struct SphericalWrist {
+  ArmGeometry arm;
+  double d6;
+  JointLimits limits;
+  ClosedFormSolutions solve(py::handle target) const {
+    return ik_spherical_wrist(arm, d6, Rigid::from_matrix(as_transform(target, "target")), limits);
+  }
+};
+
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
   py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
   std::copy(s.q.begin(), s.q.end(), out.mutable_data());
@@ -145,6 +155,13 @@ void bind_ik_closed(py::module_& m) {
           },
           py::arg("q"), "Index of the solution nearest to q (Euclidean in joint space); None when empty.")
       .def("__repr__", &repr);
+  py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
+      .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, py::handle limits) {
+             return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), limits_arg(limits, 6)};
+           }),
+           py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
+           py::arg("limits") = py::none())
+      .def("solve", &SphericalWrist::solve, py::arg("target"));
   m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
   m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
   m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),

@@ -7,7 +7,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 from . import closed, paths, robots
 from ._core import Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
-from .ik import IKBatchResult, IKResult, ik, ik_batch
+from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 
 __version__ = "0.1.0"
@@ -17,6 +17,7 @@ __all__ = [
     "PrecisionWarning",
     "IKBatchResult",
     "IKResult",
+    "IKSolver",
     "ReachResult",
     "TrackResult",
     "UnreachableError",

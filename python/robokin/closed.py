@@ -120,15 +120,24 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
-_PUMA560_LIMITS = []
+_PUMA560_CACHE = {}
 
 
 def _puma560_limits():
-    if not _PUMA560_LIMITS:
+    if "limits" not in _PUMA560_CACHE:
         from .robots import puma560 as _puma
 
-        _PUMA560_LIMITS.append(_puma().limits)
-    return _PUMA560_LIMITS[0]
+        _PUMA560_CACHE["limits"] = _puma().limits
+    return _PUMA560_CACHE["limits"]
+
+
+def _puma560_solver(default_limits: bool):
+    key = "default" if default_limits else "none"
+    if key not in _PUMA560_CACHE:
+        g = PUMA560
+        lim = _puma560_limits() if default_limits else None
+        _PUMA560_CACHE[key] = _core._SphericalWrist6R(g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], lim)
+    return _PUMA560_CACHE[key]
 
 
 def puma560(target, limits="default") -> IKSolutions:
@@ -138,8 +147,8 @@ def puma560(target, limits="default") -> IKSolutions:
         target: Tool frame (4, 4).
         limits: ``"default"`` for the PUMA's joint limits, ``None`` for none, a pair or a Chain.
     """
-    if isinstance(limits, str) and limits == "default":
-        limits = _puma560_limits()
+    if limits is None or (isinstance(limits, str) and limits == "default"):
+        return _puma560_solver(limits is not None).solve(target)
     g = PUMA560
     return _core.ik_spherical_wrist(target, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], _limits(limits))
 

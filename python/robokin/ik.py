@@ -14,6 +14,9 @@ of the step (an active set renewed at every iteration, so no joint sticks at a l
 angles are wrapped by ``2 pi`` into limits wider than ``2 pi``. Success is decided on the returned
 ``q`` (wrapped, clamped) by forward kinematics: position error ``< tol_p`` and orientation error
 ``< tol_r``.
+
+For many calls with the same options, ``IKSolver(chain, method=..., ...)`` binds the chain and the
+options once; ``solver.solve(target, q0)`` then costs only the solve.
 """
 
 from __future__ import annotations
@@ -21,9 +24,9 @@ from __future__ import annotations
 from typing import Optional
 
 from . import _core
-from ._core import IKBatchResult, IKResult
+from ._core import IKBatchResult, IKResult, IKSolver
 
-__all__ = ["IKBatchResult", "IKResult", "ik", "ik_batch"]
+__all__ = ["IKBatchResult", "IKResult", "IKSolver", "ik", "ik_batch"]
 
 
 def ik(
