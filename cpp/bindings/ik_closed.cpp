@@ -123,7 +123,7 @@ std::string repr(const ClosedFormSolutions& s) {
   if (s.singular) out += ", singular";
   out += s.count() ? ":" : ")";
   for (int k = 0; k < s.count(); ++k) {
-    out += "\n  " + s.postures[k] + ": [";
+    out += "\n  " + std::string(s.postures[k]) + ": [";
     for (int i = 0; i < s.dof; ++i) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.q[k * s.dof + i]);
@@ -140,7 +140,14 @@ void bind_ik_closed(py::module_& m) {
   py::class_<ClosedFormSolutions>(m, "IKSolutions",
                                   "Every closed-form solution of a pose: q (k, dof) and one posture label per row.")
       .def_property_readonly("q", &solutions_q, "(k, dof) joint vectors, one per solution.")
-      .def_readonly("postures", &ClosedFormSolutions::postures, "Posture label of each row of q.")
+      .def_property_readonly(
+          "postures",
+          [](const ClosedFormSolutions& s) {
+            py::list out;
+            for (const char* p : s.postures) out.append(py::str(p));
+            return out;
+          },
+          "Posture label of each row of q.")
       .def_readonly("singular", &ClosedFormSolutions::singular,
                     "True at a singularity (postures coincide, or a joint is free: 0 was chosen).")
       .def_readonly("dof", &ClosedFormSolutions::dof)

@@ -43,8 +43,24 @@ bool fit_limits(double* q, int n, const JointLimits& lim) {
   return true;
 }
 
-void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, std::string posture) {
-  if (fit_limits(q, out.dof, lim)) out.add(q, std::move(posture));
+void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture) {
+  if (fit_limits(q, out.dof, lim)) out.add(q, posture);
+}
+
+// Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
+const char* const kShoulder[] = {"shoulder right", "shoulder left", "shoulder singular"};
+const char* const kElbow[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
+const char* const kWrist[] = {"", ", wrist no flip", ", wrist flip"};
+
+const char* arm_label(int shoulder, int elbow, int wrist) {
+  static const std::vector<std::string> labels = [] {
+    std::vector<std::string> all;
+    for (const char* s : kShoulder)
+      for (const char* e : kElbow)
+        for (const char* w : kWrist) all.push_back(std::string(s) + ", " + e + w);
+    return all;
+  }();
+  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
 }
 
 // Elbow cosine: returns false when out of reach, clamps and flags the singular case otherwise.
@@ -94,7 +110,7 @@ Eigen::Matrix3d rot_x(double a) {
 
 struct ArmSolution {
   double q[3];
-  std::string label;
+  int shoulder, elbow;  // indices into kShoulder, kElbow
 };
 
 // The arm's solutions (q1, q2, q3) putting the wrist centre (origin of frame 4; the tip for the
@@ -125,16 +141,14 @@ std::vector<ArmSolution> arm_solve(const ArmGeometry& g, const Eigen::Vector3d& 
       s.q[0] = q1;
       s.q[1] = th[k][0];
       s.q[2] = th[k][1] - psi;
-      const char* shoulder = shoulder_singular ? "shoulder singular" : (side == 0 ? "shoulder right" : "shoulder left");
-      std::string elbow;
+      s.shoulder = shoulder_singular ? 2 : side;
       if (n == 1) {
-        elbow = lab[k];
+        s.elbow = th[k][1] > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
       } else {
         // Elbow above the shoulder-wrist line: sin(theta') < 0 when the wrist is in front (r > 0).
         const bool up = (std::sin(th[k][1]) < 0) != (r < 0);
-        elbow = up ? "elbow up" : "elbow down";
+        s.elbow = up ? 0 : 1;
       }
-      s.label = std::string(shoulder) + ", " + elbow;
       out.push_back(s);
     }
     singular = singular || elbow_singular || shoulder_singular;
@@ -217,7 +231,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
                                        const JointLimits& limits) {
   ClosedFormSolutions out;
   out.dof = 3;
-  for (ArmSolution& s : arm_solve(arm, p, out.singular)) add_if_admissible(out, s.q, limits, s.label);
+  for (ArmSolution& s : arm_solve(arm, p, out.singular)) add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0));
   return out;
 }
 
@@ -225,6 +239,8 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
                                        const JointLimits& limits) {
   ClosedFormSolutions out;
   out.dof = 6;
+  out.q.reserve(48);
+  out.postures.reserve(8);
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
   const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
   for (ArmSolution& s : arm_solve(arm, pw, out.singular)) {
@@ -241,7 +257,7 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
       if (flip) q4 += kPi;
       const Eigen::Matrix3d N = rot_z(-q4) * M;
       double q[6] = {s.q[0], s.q[1], s.q[2], q4, std::atan2(-N(0, 2), N(2, 2)), std::atan2(N(1, 0), N(1, 1))};
-      add_if_admissible(out, q, limits, s.label + (flip ? ", wrist flip" : ", wrist no flip"));
+      add_if_admissible(out, q, limits, arm_label(s.shoulder, s.elbow, flip ? 2 : 1));
     }
   }
   return out;

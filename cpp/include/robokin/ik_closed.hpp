@@ -13,13 +13,13 @@ namespace robokin {
 struct ClosedFormSolutions {
   int dof = 0;
   std::vector<double> q;  // row-major, size() / dof rows
-  std::vector<std::string> postures;
+  std::vector<const char*> postures;  // static strings: no allocation per label
   bool singular = false;  // the pose is at a singularity (coinciding or infinitely many solutions)
 
   int count() const { return static_cast<int>(postures.size()); }
-  void add(const double* joints, std::string posture) {
+  void add(const double* joints, const char* posture) {
     q.insert(q.end(), joints, joints + dof);
-    postures.push_back(std::move(posture));
+    postures.push_back(posture);
   }
 };
 
