@@ -5,14 +5,15 @@ VPY    := $(VENV)/bin/python
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run test bench clean
+.PHONY: setup run test test-asan bench clean
 setup: $(VENV)/.installed
 
-$(VENV)/.base:
+# A virtual environment with the build tools (for .venv and .venv-asan alike).
+%/.base:
 	scripts/install-system-deps.sh
-	$(PYTHON) -m venv $(VENV)
-	$(VPY) -m pip install -q --upgrade pip
-	$(VPY) -m pip install -q "scikit-build-core>=0.10" "pybind11>=2.12" cmake ninja
+	$(PYTHON) -m venv $*
+	$*/bin/python -m pip install -q --upgrade pip
+	$*/bin/python -m pip install -q "scikit-build-core>=0.10" "pybind11>=2.12" cmake ninja
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.base $(SOURCES)
@@ -25,10 +26,24 @@ run: setup
 test: setup
 	$(VPY) -m pytest -q
 
+# The whole suite against a sanitizer build (its own venv and build directory). The ASan runtime
+# must be loaded before Python (with libstdc++, so that its exception interceptor finds __cxa_throw);
+# Python's own allocations are not leak-checked.
+ASAN_VENV := .venv-asan
+$(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES)
+	$(ASAN_VENV)/bin/python -m pip install -q --no-build-isolation \
+	  -Cbuild-dir=build/asan -Ccmake.define.ROBOKIN_SANITIZE=ON -Ccmake.build-type=RelWithDebInfo ".[sim,plot,test]"
+	touch $@
+
+test-asan: $(ASAN_VENV)/.installed
+	LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libstdc++.so)" \
+	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
+
 bench: setup
 	scripts/install-system-deps.sh python3-pykdl
 	$(VPY) -m pip install -q pin
 	$(VPY) benchmarks/run_all.py
 
 clean:
-	rm -rf build $(VENV)
+	rm -rf build $(VENV) $(ASAN_VENV)

@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -17,11 +19,13 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 [[noreturn]] inline void fail(const std::string& message) { throw py::value_error(message); }
 
-inline std::string shape_of(const py::array& a) {
+inline std::string shape_of(py::ssize_t ndim, const py::ssize_t* shape) {
   std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
-  return s + (a.ndim() == 1 ? ",)" : ")");
+  for (py::ssize_t i = 0; i < ndim; ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
+  return s + (ndim == 1 ? ",)" : ")");
 }
+
+inline std::string shape_of(const py::array& a) { return shape_of(a.ndim(), a.shape()); }
 
 // A C-contiguous float64 view of obj (no copy when it already is one).
 inline Array as_array(py::handle obj, const char* name) {
@@ -39,9 +43,77 @@ inline Array as_array(py::handle obj, const char* name) {
   return a;
 }
 
+// The fast path: obj is exactly a numpy.ndarray of native-order float64, C-contiguous and aligned,
+// so its buffer is used as it is (no conversion object, no dtype object, no reference counting).
+// Anything else (lists, other dtypes, strided views, subclasses) goes through as_array.
+struct Float64View {
+  const double* data = nullptr;
+  int ndim = 0;
+  const py::ssize_t* shape = nullptr;
+  py::ssize_t size = 0;
+};
+
+inline bool float64_view(py::handle obj, Float64View& view) {
+  using py::detail::npy_api;
+  const npy_api& api = npy_api::get();
+  if (Py_TYPE(obj.ptr()) != api.PyArray_Type_) return false;
+  const auto* a = py::detail::array_proxy(obj.ptr());
+  const auto* d = py::detail::array_descriptor_proxy(a->descr);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  constexpr char kSwapped = '<';
+#else
+  constexpr char kSwapped = '>';
+#endif
+  constexpr int kNeed = npy_api::NPY_ARRAY_C_CONTIGUOUS_ | npy_api::NPY_ARRAY_ALIGNED_;
+  if (d->type_num != npy_api::NPY_DOUBLE_ || d->byteorder == kSwapped || (a->flags & kNeed) != kNeed) return false;
+  view.data = reinterpret_cast<const double*>(a->data);
+  view.ndim = a->nd;
+  view.shape = a->dimensions;
+  view.size = 1;
+  for (int i = 0; i < a->nd; ++i) view.size *= a->dimensions[i];
+  return true;
+}
+
+inline Float64View view_of(const Array& a) {
+  Float64View v;
+  v.data = a.data();
+  v.ndim = static_cast<int>(a.ndim());
+  v.shape = a.shape();
+  v.size = a.size();
+  return v;
+}
+
+// A new C-contiguous float64 array, made by numpy's C API directly (pybind11's array_t
+// constructor builds shape and stride vectors and a dtype object first).
+inline py::array new_float64(int ndim, const py::ssize_t* shape) {
+  using py::detail::npy_api;
+  const npy_api& api = npy_api::get();
+  PyObject* descr = api.PyArray_DescrFromType_(npy_api::NPY_DOUBLE_);  // the reference is stolen below
+  PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, ndim, shape, nullptr, nullptr, 0, nullptr);
+  if (!a) throw py::error_already_set();
+  return py::reinterpret_steal<py::array>(a);
+}
+
+inline double* float64_data(const py::array& a) {
+  return reinterpret_cast<double*>(py::detail::array_proxy(a.ptr())->data);
+}
+
+// True when no value is NaN or inf: their exponent bits are all ones. Integer operations only, with
+// no early exit, so that the loop vectorises (a batch of a million rows is checked in a few
+// hundred microseconds).
+inline bool all_finite(const double* data, py::ssize_t size) {
+  std::uint64_t bad = 0;
+  for (py::ssize_t i = 0; i < size; ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, data + i, sizeof bits);
+    const std::uint64_t exponent = (bits >> 32) & 0x7ff00000u;
+    bad |= (exponent + 0x00100000u) >> 31;  // 1 only when the exponent is 0x7ff
+  }
+  return bad == 0;
+}
+
 inline void require_finite(const double* data, py::ssize_t size, const char* name) {
-  for (py::ssize_t i = 0; i < size; ++i)
-    if (!std::isfinite(data[i])) fail(std::string(name) + ": contains NaN or inf");
+  if (!all_finite(data, size)) fail(std::string(name) + ": contains NaN or inf");
 }
 
 // A finite vector of length n (any length when n < 0).

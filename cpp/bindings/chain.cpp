@@ -7,7 +7,10 @@
 
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
+#include <string_view>
+#include <vector>
 
 namespace robokin::bind {
 namespace {
@@ -98,13 +101,13 @@ Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle l
 }
 
 // q of shape (dof,) or (N, dof), finite. Returns N, or -1 for a single configuration.
-long check_q(const Chain& c, const Array& q, const char* name = "q") {
+long check_q(const Chain& c, const Float64View& q, const char* name = "q") {
   const long n = c.dof();
-  if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))
+  if (!((q.ndim == 1 && q.shape[0] == n) || (q.ndim == 2 && q.shape[1] == n)))
     fail(std::string(name) + ": expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) +
-         "), got " + shape_of(q));
-  require_finite(q.data(), q.size(), name);
-  return q.ndim() == 1 ? -1 : static_cast<long>(q.shape(0));
+         "), got " + shape_of(q.ndim, q.shape));
+  require_finite(q.data, q.size, name);
+  return q.ndim == 1 ? -1 : static_cast<long>(q.shape[0]);
 }
 
 Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
@@ -120,40 +123,76 @@ void write_rigid(const Rigid& T, double* m) {
   m[15] = 1.0;
 }
 
-py::array_t<double> fk(const Chain& c, py::handle q_obj) {
-  Array q = as_array(q_obj, "q");
+// q as a checked float64 view: the array itself when it already is C-contiguous float64 (the fast
+// path, nothing converted), else a converted copy kept alive in `holder`. Validated once, here.
+Float64View q_view(py::handle q_obj, Array& holder) {
+  Float64View v;
+  if (float64_view(q_obj, v)) return v;
+  holder = as_array(q_obj, "q");
+  return view_of(holder);
+}
+
+py::array fk(const Chain& c, py::handle q_obj) {
+  Array holder;
+  const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
   if (count < 0) {
     Rigid T;
-    c.fk(q.data(), T);
-    py::array_t<double> out({4, 4});
-    write_rigid(T, out.mutable_data());
+    c.fk(q.data, T);
+    const py::ssize_t shape[2] = {4, 4};
+    py::array out = new_float64(2, shape);
+    write_rigid(T, float64_data(out));
     return out;
   }
-  py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}, py::ssize_t{4}});
-  double* dst = out.mutable_data();
+  const py::ssize_t shape[3] = {count, 4, 4};
+  py::array out = new_float64(3, shape);
+  double* dst = float64_data(out);
   {
     py::gil_scoped_release release;
-    c.fk_batch(q.data(), count, dst);
+    c.fk_batch(q.data, count, dst);
   }
   return out;
 }
 
-py::array_t<double> jacobian(const Chain& c, py::handle q_obj, const std::string& task_str) {
-  const Task task = parse_task(task_str);
-  Array q = as_array(q_obj, "q");
+// The task's rows of the 6 x n geometric Jacobian.
+Task task_of(py::handle obj) {
+  if (PyUnicode_Check(obj.ptr())) {
+    Py_ssize_t len = 0;
+    const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
+    if (!s) throw py::error_already_set();
+    const std::string_view name(s, static_cast<size_t>(len));
+    if (name == "pose") return Task::Pose;
+    if (name == "xy") return Task::XY;
+    if (name == "position") return Task::Position;
+    if (name == "xyphi") return Task::XYPhi;
+    return parse_task(std::string(name));  // throws the ValueError naming the task
+  }
+  // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
+  throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
+}
+
+constexpr int kTaskRows[4][6] = {{0, 1, 2, 3, 4, 5}, {0, 1, 2}, {0, 1}, {0, 1, 5}};
+
+py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
+  const Task task = task_of(task_obj);
+  Array holder;
+  const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
   const int rows = task_rows(task), n = c.dof();
-  Matrix6X J6(6, n);
-  Eigen::MatrixXd J;
-  Rigid T;
+  const int* row_of = kTaskRows[static_cast<int>(task)];
   const long batch = count < 0 ? 1 : count;
-  py::array_t<double> out = count < 0 ? new_array({rows, n}) : new_array({batch, rows, n});
-  double* dst = out.mutable_data();
-  for (long k = 0; k < batch; ++k) {
-    c.fk_jacobian(q.data() + k * n, T, J6.data());
-    task_jacobian(task, J6, J);
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(dst + k * rows * n, rows, n) = J;
+  py::array out = count < 0 ? new_float64(2, std::array<py::ssize_t, 2>{rows, n}.data())
+                            : new_float64(3, std::array<py::ssize_t, 3>{batch, rows, n}.data());
+  double* dst = float64_data(out);
+  // The 6 x n Jacobian (column-major) on the stack for the usual sizes.
+  double small[6 * 16];
+  std::vector<double> large(n > 16 ? 6 * n : 0);
+  double* J = n > 16 ? large.data() : small;
+  Rigid T;
+  for (long k = 0; k < batch; ++k, dst += rows * n) {
+    c.fk_jacobian(q.data + k * n, T, J);
+    for (int r = 0; r < rows; ++r)
+      for (int j = 0; j < n; ++j) dst[r * n + j] = J[6 * j + row_of[r]];
   }
   return out;
 }

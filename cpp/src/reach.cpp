@@ -4,6 +4,7 @@
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <limits>
 
 #include <cmath>
 #include <stdexcept>
@@ -50,68 +51,149 @@ Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
   qbar_ = 0.5 * (chain.lower() + chain.upper());
   for (int i = 0; i < n_; ++i)
     if (!std::isfinite(qbar_(i))) qbar_(i) = 0.0;  // unlimited joints have zero weight
+  q_.resize(n_);
   J6_.resize(6, n_);
   J_.resize(m_, n_);
-  JJt_.resize(m_, m_);
-  e_.resize(m_);
   dq_.resize(n_);
   h_.resize(n_);
   correction_.resize(n_);
 }
 
-void Reacher::min_norm_solve(const TaskVector& rhs, Vector& out) {
-  JJt_.noalias() = J_ * J_.transpose();
-  JJt_.diagonal().array() += opt_.damping * opt_.damping;
-  const Eigen::LLT<TaskSquare> llt(JJt_);
-  const auto d = llt.matrixLLT().diagonal();
-  if (llt.info() == Eigen::Success && d.minCoeff() > 1e-9 * std::max(1.0, d.maxCoeff())) {
-    out.noalias() = J_.transpose() * llt.solve(rhs);
+namespace {
+
+constexpr int kTaskRows[4][6] = {{0, 1, 2, 3, 4, 5}, {0, 1, 2}, {0, 1}, {0, 1, 5}};
+
+// out <- J^T (J J^T + lambda^2 I)^-1 rhs, the minimum-norm (damped) solution of J out = rhs; the
+// least-squares minimum-norm solution when J J^T is singular and lambda = 0. M task rows: the
+// M x M system is solved by a Cholesky factorisation written out for fixed M (no calls, no
+// pivoting: J J^T is symmetric positive semi-definite), and handed to a complete orthogonal
+// decomposition of J when it is (nearly) singular, as before.
+template <int M, class JMap, class Out>
+void min_norm_solve(const JMap& J, const Eigen::Matrix<double, M, 1>& rhs, double damping, Out& out) {
+  Eigen::Matrix<double, M, M> A;
+  A.noalias() = J * J.transpose();
+  A.diagonal().array() += damping * damping;
+  // A = L L^T, L lower triangular (stored in the lower half of A).
+  bool ok = true;
+  double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
+  for (int j = 0; j < M && ok; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= A(j, k) * A(j, k);
+    if (!(d > 0.0)) {
+      ok = false;
+      break;
+    }
+    d = std::sqrt(d);
+    A(j, j) = d;
+    dmin = std::min(dmin, d);
+    dmax = std::max(dmax, d);
+    for (int i = j + 1; i < M; ++i) {
+      double x = A(i, j);
+      for (int k = 0; k < j; ++k) x -= A(i, k) * A(j, k);
+      A(i, j) = x / d;
+    }
+  }
+  if (ok && dmin > 1e-9 * std::max(1.0, dmax)) {
+    Eigen::Matrix<double, M, 1> y = rhs;
+    for (int i = 0; i < M; ++i) {  // L z = rhs
+      for (int k = 0; k < i; ++k) y(i) -= A(i, k) * y(k);
+      y(i) /= A(i, i);
+    }
+    for (int i = M - 1; i >= 0; --i) {  // L^T y = z
+      for (int k = i + 1; k < M; ++k) y(i) -= A(k, i) * y(k);
+      y(i) /= A(i, i);
+    }
+    out.noalias() = J.transpose() * y;
   } else {
-    out = Eigen::MatrixXd(J_).completeOrthogonalDecomposition().solve(Eigen::VectorXd(rhs));
+    out = Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(rhs));
   }
 }
 
-ReachResult Reacher::reach(const Target& target, const Vector& q0) {
-  ReachResult r;
-  r.q = q0;
+}  // namespace
+
+// The loop with M task rows and N joints known at compile time (N = Eigen::Dynamic otherwise):
+// fixed-size matrices on the stack, maps over the Reacher's buffers.
+template <int M, int N>
+int Reacher::run_rows(const Target& target, double& error) {
+  using RowsVector = Eigen::Matrix<double, M, 1>;
+  using JointVector = Eigen::Matrix<double, N, 1>;
+  Eigen::Map<Eigen::Matrix<double, M, N>> J(J_.data(), M, n_);
+  Eigen::Map<JointVector> q(q_.data(), n_), dq(dq_.data(), n_), h(h_.data(), n_), correction(correction_.data(), n_);
+  const Eigen::Map<const JointVector> lower(chain_.lower().data(), n_), upper(chain_.upper().data(), n_),
+      qbar(qbar_.data(), n_);
+  Eigen::Map<RowsVector> e(e_);
+  const int* rows = kTaskRows[static_cast<int>(task_)];
   const bool use_nullspace = opt_.nullspace_weights.size() != 0;
-  chain_.fk(r.q.data(), T_);
-  task_error(target, T_, e_.data());
+  const double step = opt_.gain / opt_.dt;
+  task_error(target, T_, e_);
+  error = e.norm();
+  int iterations = 0;
   do {
-    chain_.fk_jacobian(r.q.data(), T_, J6_.data());
-    task_jacobian(task_, J6_, J_);
+    for (int r = 0; r < M; ++r) J.row(r) = J6_.row(rows[r]);
     // Seed: dp = d (p_target - p) / dt; dq_M = J^p dp; q = Saturation(q + dt dq_M).
-    min_norm_solve((opt_.gain / opt_.dt) * e_, dq_);
-    if (use_nullspace && r.iterations == 0) {
+    const RowsVector rhs = step * e;
+    min_norm_solve<M>(J, rhs, opt_.damping, dq);
+    if (use_nullspace && iterations == 0) {
       // The homogeneous term dq_H = (1 - J^p J) h moves the tool only at second order, so adding
       // it on every iteration leaves a residual of order |dt dq_H|^2 that never drops below tol.
       // It is applied on the first iteration of each Reach only: the following iterations are the
       // seed's minimum-norm corrections, which remove that residual.
-      h_ = opt_.nullspace_weights.cwiseProduct(qbar_ - r.q);
-      min_norm_solve(J_ * h_, correction_);
-      dq_ += h_ - correction_;
+      const Eigen::Map<const JointVector> weights(opt_.nullspace_weights.data(), n_);
+      h = weights.cwiseProduct(qbar - q);
+      const RowsVector Jh = J * h;
+      min_norm_solve<M>(J, Jh, opt_.damping, correction);
+      dq += h - correction;
     }
-    r.q += opt_.dt * dq_;
-    if (opt_.saturate) r.q = r.q.cwiseMax(chain_.lower()).cwiseMin(chain_.upper());
-    chain_.fk(r.q.data(), T_);
-    task_error(target, T_, e_.data());
-    ++r.iterations;
-    r.error = e_.norm();
-  } while (r.iterations < opt_.max_iter && !(r.error < opt_.tol));
+    dq *= opt_.dt;
+    if (!dq.allFinite()) break;  // an absurd gain or target: stop at the last finite joints
+    q += dq;
+    if (opt_.saturate) q = q.cwiseMax(lower).cwiseMin(upper);
+    // Pose and Jacobian at the new joints: the error now, the Jacobian for the next iteration.
+    chain_.fk_jacobian(q_.data(), T_, J6_.data());
+    task_error(target, T_, e_);
+    ++iterations;
+    error = e.norm();
+  } while (iterations < opt_.max_iter && !(error < opt_.tol));
+  return iterations;
+}
+
+template <int M>
+int Reacher::run_joints(const Target& target, double& error) {
+  switch (n_) {
+    case 3: return run_rows<M, 3>(target, error);
+    case 6: return run_rows<M, 6>(target, error);
+    default: return run_rows<M, Eigen::Dynamic>(target, error);
+  }
+}
+
+int Reacher::run(const Target& target, double& error) {
+  switch (m_) {
+    case 2: return run_joints<2>(target, error);
+    case 3: return run_joints<3>(target, error);
+    default: return run_joints<6>(target, error);
+  }
+}
+
+ReachResult Reacher::reach(const Target& target, const Vector& q0) {
+  q_ = q0;
+  chain_.fk_jacobian(q_.data(), T_, J6_.data());
+  ReachResult r;
+  r.iterations = run(target, r.error);
   r.converged = r.error < opt_.tol;
+  r.q = q_;
   return r;
 }
 
 void Reacher::track(const Target* targets, long count, const Vector& q0, double* q_out,
                     double* err_out, bool* converged_out, int* iterations_out) {
-  Vector q = q0;
+  q_ = q0;
+  chain_.fk_jacobian(q_.data(), T_, J6_.data());
   for (long k = 0; k < count; ++k) {
-    ReachResult r = reach(targets[k], q);
-    q = r.q;
-    Eigen::Map<Vector>(q_out + k * n_, n_) = q;
-    err_out[k] = r.error;
-    converged_out[k] = r.converged;
-    iterations_out[k] = r.iterations;
+    double error = 0.0;
+    iterations_out[k] = run(targets[k], error);
+    err_out[k] = error;
+    converged_out[k] = error < opt_.tol;
+    Eigen::Map<Vector>(q_out + k * n_, n_) = q_;
   }
 }
 

@@ -5,7 +5,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import closed, paths, robots
-from ._core import Chain, ReachResult, TrackResult
+from ._core import RRR3, Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
@@ -18,6 +18,7 @@ __all__ = [
     "IKBatchResult",
     "IKResult",
     "IKSolver",
+    "RRR3",
     "ReachResult",
     "TrackResult",
     "UnreachableError",

@@ -3,7 +3,7 @@
 Arrays are float64; bad input raises ValueError naming the argument.
 """
 
-from typing import Optional, Sequence, Tuple, Union
+from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -101,6 +101,176 @@ def rpr_self_motion(
     point: ArrayLike, t1: ArrayLike, l1: float, l3: float, lower: ArrayLike, upper: ArrayLike
 ) -> NDArray:
     """(2, K, 3) joints putting the RPR tip at ``point`` for each t1 sample and branch; NaN where none."""
+
+# --- the planar 3-RRR parallel robot of seed 002 (cpp/bindings/rrr3.cpp) ---------------------
+
+Mode = Tuple[int, int, int]
+
+class RRR3Newton:
+    """Answer of RRR3.ik_newton; unpacks as ``alpha, beta = result``."""
+
+    @property
+    def alpha(self) -> NDArray: ...
+    @property
+    def beta(self) -> NDArray: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def error(self) -> float:
+        """Largest loop-closure residual (m)."""
+    def __iter__(self) -> Iterator[NDArray]: ...
+
+class RRR3Fk:
+    """Answer of RRR3.fk."""
+
+    @property
+    def pose(self) -> NDArray: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def error(self) -> float:
+        """Largest ``| |A_i B_i| - l2 |`` (m)."""
+
+class RRR3Singularity:
+    """Answer of RRR3.singularity. ``det_a_norm = det A / platform_radius`` and
+    ``det_b_norm = det B / l1**3`` make one tolerance fit any robot size; ``distance`` is the
+    inverse condition number of A with its third column divided by platform_radius (0 at a
+    parallel singularity, at most 1)."""
+
+    @property
+    def kind(self) -> str:
+        """``"none"``, ``"parallel"`` or ``"serial"``."""
+    @property
+    def det_a(self) -> float: ...
+    @property
+    def det_b(self) -> float: ...
+    @property
+    def det_a_norm(self) -> float: ...
+    @property
+    def det_b_norm(self) -> float: ...
+    @property
+    def distance(self) -> float: ...
+    @property
+    def leg(self) -> Optional[int]:
+        """The stretched or folded leg of a serial singularity."""
+    @property
+    def lines(self) -> Optional[str]:
+        """For a parallel singularity, ``"parallel"`` or ``"concurrent"`` lines A_iB_i."""
+
+class RRR3Plan:
+    """Answer of RRR3.plan: the poses to follow and what they give along the path."""
+
+    @property
+    def poses(self) -> NDArray:
+        """(K, 3) poses (x, y, phi)."""
+    @property
+    def alpha(self) -> NDArray:
+        """(K, 3) actuated angles, NaN rows where unreachable."""
+    @property
+    def det_a_norm(self) -> NDArray: ...
+    @property
+    def det_b_norm(self) -> NDArray: ...
+    @property
+    def distance(self) -> NDArray:
+        """Inverse condition number of A along the path (RRR3Singularity.distance)."""
+    @property
+    def sign(self) -> int:
+        """The sign of det A kept along the path."""
+    @property
+    def feasible(self) -> bool:
+        """Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A."""
+
+class RRR3Workspace:
+    """Answer of RRR3.workspace: a constant-orientation map on an n x n grid."""
+
+    @property
+    def cells(self) -> npt.NDArray[np.uint8]:
+        """(n, n) codes, row j at ``y[j]``, column i at ``x[i]``: 0 unreachable, 1 regular,
+        2 parallel singular (``|det_a_norm| < tol`` or det A changes sign to a neighbour), 3 serial."""
+    @property
+    def x(self) -> NDArray: ...
+    @property
+    def y(self) -> NDArray: ...
+    @property
+    def extent(self) -> Tuple[float, float, float, float]:
+        """``(x_min, x_max, y_min, y_max)`` for matplotlib's imshow."""
+    @property
+    def cell_size(self) -> float: ...
+    @property
+    def reachable_area(self) -> float:
+        """Area of the reachable cells (m^2)."""
+    @property
+    def regular_area(self) -> float:
+        """Area of the reachable, non-singular cells (m^2)."""
+    @property
+    def area(self) -> float:
+        """Area of the largest 4-connected singularity-free region (m^2)."""
+
+def rrr3_region_areas(robots: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), n: int = 150,
+                      tol: float = 1e-3) -> NDArray:
+    """RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2). Use robokin.rrr3_design."""
+
+class RRR3:
+    """The planar 3-RRR parallel robot (seed 002, geometry and conventions of DESIGN.md).
+
+    Base joints ``O_i = R_b u(t_i)``, platform joints ``B_i = E + R_e R(phi) u(t_i)``,
+    ``t_i = -90 deg + 120 deg i``. A pose is ``(x, y, phi)``; a working mode ``(m_0, m_1, m_2)``
+    with ``m_i = sign(beta_i)``.
+    """
+
+    modes: Tuple[Mode, ...]
+    """The 8 modes in ik_all's row order, ``itertools.product((1, -1), repeat=3)``."""
+
+    def __init__(self, base_radius: float = 0.13, platform_radius: float = 0.07, l1: float = 0.12,
+                 l2: float = 0.12) -> None: ...
+    @property
+    def base_radius(self) -> float: ...
+    @property
+    def platform_radius(self) -> float: ...
+    @property
+    def l1(self) -> float: ...
+    @property
+    def l2(self) -> float: ...
+    def ik(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
+        """Actuated angles (3,); ``UnreachableError`` (with ``.leg``) when a leg cannot reach."""
+    def ik_all(self, pose: ArrayLike) -> NDArray:
+        """(8, 3): row k for ``modes[k]``, NaN rows where unreachable."""
+    def ik_batch(self, poses: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
+        """(N, 3) for (N, 3) poses, NaN rows where a leg cannot reach; both cores, GIL released."""
+    def ik_newton(self, pose: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Newton:
+        """Newton-Raphson on the 6 loop equations from ``guess`` = (alpha, beta), shape (2, 3) or (6,)."""
+    def fk(self, alpha: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Fk:
+        """One assembly mode by Newton from a guess pose."""
+    def fk_all(self, alpha: ArrayLike) -> NDArray:
+        """(k, 3) every assembly mode, k <= 6, sorted by phi in [-pi, pi); each closes the loops to 1e-10 m."""
+    def points(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Dict[str, NDArray]:
+        """(3, 2) arrays ``"O"``, ``"A"``, ``"B"`` for drawing."""
+    def jacobians(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Tuple[NDArray, NDArray]:
+        """The seed's ``(A, B)``: ``A v = B alpha_dot``, v = (v_x, v_y, w) in the effector frame."""
+    def singularity(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1), tol: float = 1e-3) -> RRR3Singularity:
+        """Serial when ``|det_b_norm| < tol``, else parallel when ``|det_a_norm| < tol``, else none."""
+    def workspace(self, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), n: int = 200,
+                  tol: float = 1e-3) -> RRR3Workspace:
+        """Constant-orientation workspace on an n x n grid around the reachable set, with its
+        singular cells and areas; computed on every core."""
+    def plan(
+        self, points: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
+        max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
+        resolution: float = 0.005, smoothing: float = 10.0,
+    ) -> RRR3Plan:
+        """Poses to follow the (K, 2) points at the nominal orientation ``phi`` in one mode.
+
+        With ``avoid`` the orientations minimise ``sum (phi_k - phi)^2 + smoothing (phi_k -
+        phi_{k-1})^2`` over a grid (step ``resolution``, within ``phi +- span``) by dynamic
+        programming, with ``|phi_k - phi_{k-1}| <= max_step``, every pose reachable in ``mode``,
+        ``|det_b_norm| >= serial_margin``, det A of the sign it has at the first point, and a
+        distance to parallel singularities below ``margin`` penalised heavily. Excursions from
+        the nominal orientation go out and back once (dips are filled), so nothing chatters.
+        """
 
 # --- closed-form inverse kinematics (cpp/bindings/ik_closed.cpp) -------------------------------
 

@@ -39,6 +39,9 @@ struct SegmentSpec {
   Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
 };
 
+template <int N>
+struct Lanes;  // N configurations evaluated together (chain.cpp)
+
 class Chain {
  public:
   // Standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha); modified (Craig): A = Rx(alpha) Tx(a) Rz(theta) Tz(d).
@@ -66,11 +69,25 @@ class Chain {
   std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
 
  private:
+  // A constant frame applied on the right (T <- T * F); move / turn say whether its translation /
+  // rotation differ from the identity (the evaluation skips what changes nothing).
+  struct Fixed {
+    Rigid F;
+    bool move = false, turn = false;
+  };
   struct Link {  // joint motion about / along the local z axis, then a fixed frame
     bool prismatic;
     double scale;
-    Rigid after;
+    Fixed after;
   };
+  static Fixed make_fixed(const Rigid& F);
+  template <int N>
+  void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
+  // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
+  void batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const;
+  void batch_range(const double* q, long begin, long end, double* out, bool stream) const;
+  void batch_range_avx2(const double* q, long begin, long end, double* out, bool stream) const;
+  void batch_range_avx512(const double* q, long begin, long end, double* out, bool stream) const;
   void build_fast_path();
 
   KDL::Chain kdl_;

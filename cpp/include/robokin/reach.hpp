@@ -35,7 +35,7 @@ void check_reach_options(const Chain& chain, const ReachOptions& options);
 // The seed's weights for joint-limit avoidance: 1 / (q_max - q_min), 0 for unlimited joints.
 Vector joint_limit_weights(const Chain& chain);
 
-// Reuses its buffers across calls: one per thread, no allocation per iteration.
+// Reuses its buffers across calls: one per thread, no allocation per iteration nor per path point.
 class Reacher {
  public:
   Reacher(const Chain& chain, Task task, const ReachOptions& options);
@@ -50,19 +50,20 @@ class Reacher {
   ReachOptions opt_;
   int m_, n_;
   Vector qbar_;
-  // Task-sized matrices have at most 6 rows: fixed-capacity storage keeps the loop off the heap.
-  using TaskVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-  using TaskSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-  using TaskJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, Eigen::Dynamic>;
-  Matrix6X J6_;
-  TaskJacobian J_;
-  TaskSquare JJt_;
-  TaskVector e_;
-  Vector dq_, h_, correction_;
+  // The state of the loop: joints, tool pose and the 6 x n Jacobian at q_ (kept valid from one
+  // path point to the next, so that each iteration evaluates the chain once).
+  Vector q_;
   Rigid T_;
-  // out <- J^T (J J^T + lambda^2 I)^-1 rhs, the minimum-norm (damped) solution of J out = rhs;
-  // the least-squares minimum-norm solution when J J^T is singular and lambda = 0.
-  void min_norm_solve(const TaskVector& rhs, Vector& out);
+  Matrix6X J6_;
+  Eigen::MatrixXd J_;  // the task's rows, m x n
+  Vector dq_, h_, correction_;
+  double e_[6];
+  // One Reach from q_ toward target (J6_ and T_ valid at q_); returns the iterations run.
+  int run(const Target& target, double& error);
+  template <int M>
+  int run_joints(const Target& target, double& error);
+  template <int M, int N>
+  int run_rows(const Target& target, double& error);
 };
 
 }  // namespace robokin

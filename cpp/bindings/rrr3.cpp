@@ -1,0 +1,354 @@
+// robokin.RRR3: the planar 3-RRR parallel robot of seed 002.
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/rrr3.hpp"
+#include "robokin/rrr3_plan.hpp"
+#include "robokin/rrr3_workspace.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+namespace robokin::bind {
+namespace {
+
+using Elbows = Eigen::Matrix<double, 3, 2>;
+
+Mode as_mode(py::handle obj) {
+  Array a = as_array(obj, "mode");
+  if (a.ndim() != 1 || a.shape(0) != 3) fail("mode: expected 3 signs (m_0, m_1, m_2), got shape " + shape_of(a));
+  Mode m;
+  for (int i = 0; i < 3; ++i) {
+    const double v = a.data()[i];
+    if (v != 1.0 && v != -1.0) fail("mode: every entry must be +1 or -1, got " + std::to_string(v));
+    m[i] = static_cast<int>(v);
+  }
+  return m;
+}
+
+Pose as_pose(py::handle obj, const char* name = "pose") { return as_vector(obj, name, 3); }
+
+py::array_t<double> vec3(const Eigen::Vector3d& v) {
+  py::array_t<double> out(3);
+  std::copy(v.data(), v.data() + 3, out.mutable_data());
+  return out;
+}
+
+py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
+
+py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mode_obj) {
+  const Mode mode = as_mode(mode_obj);
+  Array poses = as_array(poses_obj, "poses");
+  if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
+  require_finite(poses.data(), poses.size(), "poses");
+  const long n = static_cast<long>(poses.shape(0));
+  py::array_t<double> out = new_array({n, 3});
+  double* dst = out.mutable_data();
+  const double* src = poses.data();
+  {
+    py::gil_scoped_release release;
+    r.ik_batch(src, n, mode, dst);
+  }
+  return out;
+}
+
+py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
+  const Pose pose = as_pose(pose_obj);
+  py::array_t<double> out = new_array({8, 3});
+  for (int k = 0; k < 8; ++k) {
+    double* row = out.mutable_data() + 3 * k;
+    if (r.ik(pose, RRR3::mode_at(k), row) >= 0) row[0] = row[1] = row[2] = NAN;
+  }
+  return out;
+}
+
+RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, int max_iter, double tol) {
+  const Pose pose = as_pose(pose_obj);
+  Array g = as_array(guess_obj, "guess");
+  if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
+    fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
+  require_finite(g.data(), 6, "guess");
+  if (max_iter < 0) fail("max_iter: must be >= 0");
+  if (!(tol > 0)) fail("tol: must be positive");
+  return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
+                     max_iter, tol);
+}
+
+RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_iter, double tol) {
+  const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
+  const Pose guess = as_pose(guess_obj, "guess");
+  if (max_iter < 0) fail("max_iter: must be >= 0");
+  if (!(tol > 0)) fail("tol: must be positive");
+  return r.fk(alpha, guess, max_iter, tol);
+}
+
+py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
+  const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
+  std::vector<Pose> poses;
+  {
+    py::gil_scoped_release release;
+    poses = r.fk_all(alpha);
+  }
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(poses.size()), 3});
+  for (size_t k = 0; k < poses.size(); ++k) std::copy(poses[k].data(), poses[k].data() + 3, out.mutable_data() + 3 * k);
+  return out;
+}
+
+py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+  const Pose pose = as_pose(pose_obj);
+  const Elbows A = r.elbows(r.ik_or_throw(pose, as_mode(mode_obj)));
+  Elbows O, B;
+  for (int i = 0; i < 3; ++i) {
+    O.row(i) = r.base_joint(i).transpose();
+    B.row(i) = r.platform_joint(pose, i).transpose();
+  }
+  py::dict d;
+  d["O"] = rows32(O);
+  d["A"] = rows32(A);
+  d["B"] = rows32(B);
+  return d;
+}
+
+py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+  Eigen::Matrix3d A, B;
+  r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
+  return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
+}
+
+double positive_tol(double tol) {
+  if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
+  return tol;
+}
+
+double finite_option(double v, const char* name) {
+  if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
+  return v;
+}
+
+RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode, bool avoid, double max_step,
+              double margin, double serial_margin, double span, double resolution, double smoothing) {
+  Array pts = as_array(points_obj, "points");
+  if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
+  require_finite(pts.data(), pts.size(), "points");
+  RRR3PlanOptions o;
+  o.phi = finite_option(phi, "phi");
+  o.mode = as_mode(mode);
+  o.avoid = avoid;
+  o.max_step = finite_option(max_step, "max_step");
+  o.margin = finite_option(margin, "margin");
+  o.serial_margin = finite_option(serial_margin, "serial_margin");
+  o.span = finite_option(span, "span");
+  o.resolution = finite_option(resolution, "resolution");
+  o.smoothing = finite_option(smoothing, "smoothing");
+  if (!(o.max_step > 0)) fail("max_step: must be positive");
+  if (!(o.resolution > 0 && o.resolution <= o.max_step)) fail("resolution: must be positive and at most max_step");
+  if (o.span < 0 || o.span > M_PI) fail("span: must be in [0, pi]");
+  if (o.span / o.resolution > 1e5) fail("resolution: too fine for span (more than 2e5 orientations)");
+  if (o.margin < 0) fail("margin: must be >= 0");
+  if (o.serial_margin < 0) fail("serial_margin: must be >= 0");
+  if (o.smoothing < 0) fail("smoothing: must be >= 0");
+  const long count = static_cast<long>(pts.shape(0));
+  // The planner keeps one evaluated cell per point and grid orientation.
+  const double cells = static_cast<double>(count) * (2 * std::floor(o.span / o.resolution) + 1);
+  if (o.avoid && cells > 5e7)
+    fail("points: too many points for span / resolution (" + std::to_string(cells) +
+         " orientation cells, at most 5e7); use a coarser resolution or fewer points");
+  py::gil_scoped_release release;
+  return plan_path(r, pts.data(), count, o);
+}
+
+long grid_size(long n) {
+  if (n < 2 || n > 5000) fail("n: expected a grid size in [2, 5000], got " + std::to_string(n));
+  return n;
+}
+
+RRR3Workspace workspace_map(const RRR3& r, double phi, py::handle mode_obj, long n, double tol) {
+  const Mode mode = as_mode(mode_obj);
+  finite_option(phi, "phi");
+  grid_size(n);
+  positive_tol(tol);
+  py::gil_scoped_release release;
+  return workspace(r, phi, mode, n, tol);
+}
+
+py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mode_obj, long n, double tol) {
+  Array g = as_array(robots_obj, "robots");
+  if (g.ndim() != 2 || g.shape(1) != 4)
+    fail("robots: expected shape (K, 4) rows (base_radius, platform_radius, l1, l2), got " + shape_of(g));
+  std::vector<RRR3> robots;
+  for (py::ssize_t k = 0; k < g.shape(0); ++k) {
+    const double* row = g.data() + 4 * k;
+    try {
+      robots.emplace_back(row[0], row[1], row[2], row[3]);
+    } catch (const std::invalid_argument& e) {
+      fail("robots[" + std::to_string(k) + "]: " + e.what());
+    }
+  }
+  const Mode mode = as_mode(mode_obj);
+  finite_option(phi, "phi");
+  grid_size(n);
+  positive_tol(tol);
+  std::vector<double> areas;
+  {
+    py::gil_scoped_release release;
+    areas = region_areas(robots, phi, mode, n, tol);
+  }
+  return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
+}
+
+}  // namespace
+
+void bind_rrr3(py::module_& m) {
+  // LegUnreachable -> robokin.UnreachableError (a ValueError) with the leg as an attribute. The
+  // class is looked up when raised, so the import order of the package does not matter.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const LegUnreachable& e) {
+      py::object cls = py::module_::import("robokin.errors").attr("UnreachableError");
+      py::object exc = cls(e.what());
+      exc.attr("leg") = e.leg();
+      PyErr_SetObject(cls.ptr(), exc.ptr());
+    }
+  });
+
+  py::class_<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).")
+      .def_property_readonly("alpha", [](const RRR3Newton& r) { return vec3(r.alpha); })
+      .def_property_readonly("beta", [](const RRR3Newton& r) { return vec3(r.beta); })
+      .def_readonly("converged", &RRR3Newton::converged)
+      .def_readonly("iterations", &RRR3Newton::iterations)
+      .def_readonly("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
+      .def("__iter__", [](const RRR3Newton& r) { return py::iter(py::make_tuple(vec3(r.alpha), vec3(r.beta))); })
+      .def("__repr__", [](const RRR3Newton& r) {
+        return "RRR3Newton(converged=" + std::string(r.converged ? "True" : "False") +
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+      });
+
+  py::class_<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.")
+      .def_property_readonly("pose", [](const RRR3Fk& r) { return vec3(r.pose); })
+      .def_readonly("converged", &RRR3Fk::converged)
+      .def_readonly("iterations", &RRR3Fk::iterations)
+      .def_readonly("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
+      .def("__repr__", [](const RRR3Fk& r) {
+        return "RRR3Fk(converged=" + std::string(r.converged ? "True" : "False") +
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+      });
+
+  py::class_<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.")
+      .def_readonly("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
+      .def_readonly("det_a", &RRR3Singularity::det_a)
+      .def_readonly("det_b", &RRR3Singularity::det_b)
+      .def_readonly("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.")
+      .def_readonly("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.")
+      .def_readonly("distance", &RRR3Singularity::distance,
+                    "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.")
+      .def_property_readonly("leg", [](const RRR3Singularity& s) -> py::object {
+        return s.leg < 0 ? py::object(py::none()) : py::object(py::int_(s.leg));
+      }, "The stretched or folded leg of a serial singularity, else None.")
+      .def_property_readonly("lines", [](const RRR3Singularity& s) -> py::object {
+        return s.lines.empty() ? py::object(py::none()) : py::object(py::str(s.lines));
+      }, "For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.")
+      .def("__repr__", [](const RRR3Singularity& s) {
+        return "RRR3Singularity(kind='" + s.kind + "', det_a_norm=" + std::to_string(s.det_a_norm) +
+               ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
+      });
+
+  py::class_<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan: the poses to follow and what they give.")
+      .def_property_readonly("poses", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.poses)); },
+                             "(K, 3) poses (x, y, phi).")
+      .def_property_readonly("alpha", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.alpha)); },
+                             "(K, 3) actuated angles, NaN rows where unreachable.")
+      .def_property_readonly("det_a_norm", [](const RRR3Plan& p) { return to_numpy(p.det_a_norm); },
+                             "det A / platform_radius along the path.")
+      .def_property_readonly("det_b_norm", [](const RRR3Plan& p) { return to_numpy(p.det_b_norm); },
+                             "det B / l1^3 along the path.")
+      .def_property_readonly("distance", [](const RRR3Plan& p) { return to_numpy(p.distance); },
+                             "Distance to parallel singularities (inverse condition number of A) along the path.")
+      .def_readonly("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
+      .def_readonly("feasible", &RRR3Plan::feasible,
+                    "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
+      .def("__repr__", [](const RRR3Plan& p) {
+        return "RRR3Plan(points=" + std::to_string(p.poses.rows()) + ", feasible=" + (p.feasible ? "True" : "False") + ")";
+      });
+
+  py::class_<RRR3Workspace>(m, "RRR3Workspace", "Answer of RRR3.workspace: a constant-orientation map.")
+      .def_property_readonly("cells", [](const RRR3Workspace& w) {
+        py::array_t<std::uint8_t> out({w.n, w.n});
+        std::copy(w.cells.begin(), w.cells.end(), out.mutable_data());
+        return out;
+      }, "(n, n) codes, row j at y[j], column i at x[i]: 0 unreachable, 1 regular, 2 parallel, 3 serial.")
+      .def_property_readonly("x", [](const RRR3Workspace& w) {
+        return to_numpy(Eigen::VectorXd(w.x0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
+      }, "Cell centres along x (n,).")
+      .def_property_readonly("y", [](const RRR3Workspace& w) {
+        return to_numpy(Eigen::VectorXd(w.y0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
+      }, "Cell centres along y (n,).")
+      .def_property_readonly("extent", [](const RRR3Workspace& w) {
+        return py::make_tuple(w.x0, w.x0 + w.n * w.h, w.y0, w.y0 + w.n * w.h);
+      }, "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.")
+      .def_readonly("cell_size", &RRR3Workspace::h)
+      .def_readonly("reachable_area", &RRR3Workspace::reachable_area, "Area of the reachable cells (m^2).")
+      .def_readonly("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
+      .def_readonly("area", &RRR3Workspace::region_area,
+                    "Area of the largest singularity-free 4-connected region (m^2).")
+      .def("__repr__", [](const RRR3Workspace& w) {
+        return "RRR3Workspace(n=" + std::to_string(w.n) + ", area=" + std::to_string(w.region_area) + ")";
+      });
+
+  m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
+        py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("n") = 150, py::arg("tol") = 1e-3,
+        "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
+
+  py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
+      .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
+           py::arg("base_radius") = 0.13, py::arg("platform_radius") = 0.07, py::arg("l1") = 0.12,
+           py::arg("l2") = 0.12)
+      .def_property_readonly("base_radius", &RRR3::base_radius)
+      .def_property_readonly("platform_radius", &RRR3::platform_radius)
+      .def_property_readonly("l1", &RRR3::l1)
+      .def_property_readonly("l2", &RRR3::l2)
+      .def_property_readonly_static("modes", [](py::object) {
+        py::list modes;
+        for (int k = 0; k < 8; ++k) {
+          const Mode md = RRR3::mode_at(k);
+          modes.append(py::make_tuple(md[0], md[1], md[2]));
+        }
+        return py::tuple(modes);
+      }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.")
+      .def("ik", [](const RRR3& r, py::handle pose, py::handle mode) {
+        return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
+      .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
+      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
+      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = 50,
+           py::arg("tol") = 1e-12, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
+      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = 50, py::arg("tol") = 1e-12,
+           "One assembly mode by Newton from a guess pose.")
+      .def("fk_all", &fk_all, py::arg("alpha"), "(k, 3) every assembly mode, k <= 6, sorted by phi.")
+      .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
+      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
+      .def("singularity", [](const RRR3& r, py::handle pose, py::handle mode, double tol) {
+        return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = 1e-3,
+           "Classification with tol on the normalised determinants.")
+      .def("workspace", &workspace_map, py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("n") = 200, py::arg("tol") = 1e-3,
+           "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
+      .def("plan", &plan, py::arg("points"), py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("avoid") = true, py::arg("max_step") = 0.01, py::arg("margin") = 0.05,
+           py::arg("serial_margin") = 0.02, py::arg("span") = 1.0, py::arg("resolution") = 0.005,
+           py::arg("smoothing") = 10.0,
+           "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.")
+      .def("__repr__", [](const RRR3& r) {
+        return "RRR3(base_radius=" + std::to_string(r.base_radius()) + ", platform_radius=" +
+               std::to_string(r.platform_radius()) + ", l1=" + std::to_string(r.l1()) + ", l2=" +
+               std::to_string(r.l2()) + ")";
+      });
+}
+
+}  // namespace robokin::bind

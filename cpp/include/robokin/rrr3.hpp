@@ -1,0 +1,116 @@
+// The planar 3-RRR parallel robot of seed 002: inverse and forward models, the seed's Jacobians
+// A and B, singularities.
+//
+// Geometry (DESIGN.md): base joints O_i = R_b u(t_i), platform joints B_i = E + R_e R(phi) u(t_i),
+// t_i = -90 deg + 120 deg i, u(a) = (cos a, sin a). Leg i is O_i -(l1)- A_i -(l2)- B_i with
+// A_i = O_i + l1 u(alpha_i) and beta_i the elbow angle from link 1 to link 2. A working mode is
+// (m_0, m_1, m_2), m_i = sign(beta_i) = +-1. A pose is (x_E, y_E, phi).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace robokin {
+
+using Pose = Eigen::Vector3d;  // (x, y, phi)
+using Mode = std::array<int, 3>;
+
+// A pose a leg cannot reach (|O_i B_i| outside [|l1 - l2|, l1 + l2]).
+class LegUnreachable : public std::domain_error {
+ public:
+  LegUnreachable(int leg, const std::string& what) : std::domain_error(what), leg_(leg) {}
+  int leg() const { return leg_; }
+
+ private:
+  int leg_;
+};
+
+struct RRR3Newton {  // ik_newton's answer
+  Eigen::Vector3d alpha, beta;
+  bool converged = false;
+  int iterations = 0;
+  double error = 0;  // largest loop-closure residual |O_i + l1 u(a) + l2 u(a + b) - B_i| (m)
+};
+
+struct RRR3Fk {  // fk's answer
+  Pose pose;
+  bool converged = false;
+  int iterations = 0;
+  double error = 0;  // largest | |A_i B_i| - l2 | (m)
+};
+
+// The seed's singularity classification. Determinants are also given normalised so that one
+// tolerance means the same for any robot size: det_a_norm = det A / R_e (A's third column is a
+// length; R_e is the platform's size), det_b_norm = det B / l1^3 (e_i = l1 sin(beta_i), so
+// det_b_norm = prod sin(beta_i) up to sign).
+struct RRR3Singularity {
+  std::string kind = "none";  // "none" | "parallel" | "serial"
+  double det_a = 0, det_b = 0, det_a_norm = 0, det_b_norm = 0;
+  double distance = 0;  // inverse condition number of A with its third column divided by R_e, in [0, 1]
+  int leg = -1;         // the stretched or folded leg of a serial singularity
+  std::string lines;    // parallel singularity: "parallel" or "concurrent" lines A_i B_i
+};
+
+class RRR3 {
+ public:
+  // Throws std::invalid_argument naming the length when one is not positive and finite.
+  RRR3(double base_radius, double platform_radius, double l1, double l2);
+
+  double base_radius() const { return rb_; }
+  double platform_radius() const { return re_; }
+  double l1() const { return l1_; }
+  double l2() const { return l2_; }
+
+  // The 8 working modes in the order of ik_all's rows: (+,+,+), (+,+,-), (+,-,+), (+,-,-),
+  // (-,+,+), ... (itertools.product((1, -1), repeat=3)); mode k has m_i = -1 where bit (2 - i) of k is set.
+  static Mode mode_at(int k);
+
+  Eigen::Vector2d base_joint(int i) const { return o_[i]; }
+  Eigen::Vector2d platform_joint(const Pose& pose, int i) const;  // B_i in the base frame
+
+  // Analytic inverse model. Writes alpha (3,), wrapped to (-pi, pi]; returns -1 when every leg
+  // reaches, else the first leg that cannot (alpha is then NaN from that leg on).
+  int ik(const Pose& pose, const Mode& mode, double* alpha) const;
+  // ik that throws LegUnreachable naming the leg.
+  Eigen::Vector3d ik_or_throw(const Pose& pose, const Mode& mode) const;
+  // count poses (count x 3, row-major) -> alpha rows, NaN rows where a leg cannot reach. Uses
+  // every core; call without the GIL.
+  void ik_batch(const double* poses, long count, const Mode& mode, double* out) const;
+
+  // The seed's numerical inverse model: Newton-Raphson on the 6 loop-closure equations
+  // O_i + l1 u(alpha_i) + l2 u(alpha_i + beta_i) - B_i = 0 in (alpha_i, beta_i) from guess.
+  RRR3Newton ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
+                       int max_iter, double tol) const;
+
+  // Forward model by Newton on |A_i B_i|^2 = l2^2 in (x, y, phi) from a guess pose.
+  RRR3Fk fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const;
+  // Every assembly mode of alpha (at most 6), sorted by phi in [-pi, pi). Each closes the loops
+  // to 1e-10 m. See rrr3_fk.cpp for the method.
+  std::vector<Pose> fk_all(const Eigen::Vector3d& alpha) const;
+
+  // Elbows A_i for the actuated angles (a 3 x 2 matrix, one row per leg).
+  Eigen::Matrix<double, 3, 2> elbows(const Eigen::Vector3d& alpha) const;
+
+  // The seed's A (rows [cos g_i, sin g_i, d_i]) and B = diag(e_i) with A v = B alpha_dot, v
+  // (v_x, v_y, w) in the effector frame. Throws LegUnreachable.
+  void jacobians(const Pose& pose, const Mode& mode, Eigen::Matrix3d& A, Eigen::Matrix3d& B) const;
+  // A and B from the pose and the elbows (no inverse model).
+  void jacobians_at(const Pose& pose, const Eigen::Matrix<double, 3, 2>& elbows, Eigen::Matrix3d& A,
+                    Eigen::Matrix3d& B) const;
+
+  // Classification with tolerance tol on the normalised determinants. Throws LegUnreachable.
+  RRR3Singularity singularity(const Pose& pose, const Mode& mode, double tol) const;
+  // The inverse condition number of A with its third column divided by R_e (0 at a parallel singularity).
+  double distance(const Eigen::Matrix3d& A) const;
+
+ private:
+  double rb_, re_, l1_, l2_;
+  std::array<Eigen::Vector2d, 3> o_;  // base joints O_i
+  std::array<Eigen::Vector2d, 3> b_;  // platform joints in the effector frame, R_e u(t_i)
+};
+
+}  // namespace robokin

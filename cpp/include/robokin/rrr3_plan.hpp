@@ -1,0 +1,37 @@
+// 3-RRR path planning with parallel-singularity avoidance (seed 002, section 2.2.3): the
+// orientation leaves its nominal value only where the path comes near a parallel singularity.
+#pragma once
+
+#include "robokin/rrr3.hpp"
+
+namespace robokin {
+
+struct RRR3PlanOptions {
+  double phi = 0;            // nominal orientation (rad)
+  Mode mode{1, 1, 1};        // the one working mode used along the whole path
+  bool avoid = true;         // false: every pose at the nominal orientation
+  double max_step = 0.01;    // largest orientation change between consecutive path points (rad)
+  double margin = 0.05;      // wanted distance to parallel singularities (RRR3::distance)
+  double serial_margin = 0.02;  // smallest |det B| / l1^3 allowed (never near a serial singularity)
+  double span = 1.0;         // largest departure from the nominal orientation (rad)
+  double resolution = 0.005;  // orientation grid step (rad), at most max_step
+  double smoothing = 10.0;   // weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2
+};
+
+struct RRR3Plan {
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> poses, alpha;  // NaN alpha where unreachable
+  Eigen::VectorXd det_a_norm, det_b_norm, distance;  // along the path (NaN where unreachable)
+  int sign = 0;           // the sign of det A kept along the path (0 when none could be chosen)
+  bool feasible = false;  // every pose reachable, clear of serial singularities, distance >= margin,
+                          // det A of one sign and orientation steps <= max_step
+};
+
+// The pose sequence for count points (count x 2, row-major). With avoidance the orientation
+// sequence minimises sum (phi_k - phi)^2 + smoothing (phi_k - phi_{k-1})^2 over a grid of
+// orientations (dynamic programming, so the answer is global and does not chatter), subject to:
+// reachable in the mode, |det B| / l1^3 >= serial_margin, det A of the sign it has at the first
+// point, |phi_k - phi_{k-1}| <= max_step. A distance to parallel singularities below margin is
+// penalised heavily rather than forbidden, so a path always comes back; `feasible` tells.
+RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& options);
+
+}  // namespace robokin

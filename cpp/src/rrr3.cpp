@@ -1,0 +1,210 @@
+// 3-RRR: geometry, analytic and numerical inverse models, the seed's Jacobians, singularities.
+#include "robokin/rrr3.hpp"
+
+#include "robokin/parallel.hpp"
+
+#include "rrr3_leg.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace robokin {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double wrap(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+void check_length(double v, const char* name) {
+  if (!(std::isfinite(v) && v > 0))
+    throw std::invalid_argument(std::string(name) + ": must be a positive finite length, got " + std::to_string(v));
+}
+
+}  // namespace
+
+RRR3::RRR3(double base_radius, double platform_radius, double l1, double l2)
+    : rb_(base_radius), re_(platform_radius), l1_(l1), l2_(l2) {
+  check_length(base_radius, "base_radius");
+  check_length(platform_radius, "platform_radius");
+  check_length(l1, "l1");
+  check_length(l2, "l2");
+  for (int i = 0; i < 3; ++i) {
+    const double t = -M_PI / 2 + 2 * M_PI / 3 * i;
+    o_[i] = rb_ * Eigen::Vector2d(std::cos(t), std::sin(t));
+    b_[i] = re_ * Eigen::Vector2d(std::cos(t), std::sin(t));
+  }
+}
+
+Mode RRR3::mode_at(int k) {
+  return {(k & 4) ? -1 : 1, (k & 2) ? -1 : 1, (k & 1) ? -1 : 1};
+}
+
+Eigen::Vector2d RRR3::platform_joint(const Pose& pose, int i) const {
+  const double c = std::cos(pose(2)), s = std::sin(pose(2));
+  return {pose(0) + c * b_[i].x() - s * b_[i].y(), pose(1) + s * b_[i].x() + c * b_[i].y()};
+}
+
+int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
+  double c, s;
+  if (simd::sincos_in_range(pose(2))) {
+    simd::sincos(pose(2), s, c);
+  } else {
+    c = std::cos(pose(2)), s = std::sin(pose(2));
+  }
+  for (int i = 0; i < 3; ++i) {
+    alpha[i] = leg_alpha(pose(0), pose(1), c, s, o_[i].x(), o_[i].y(), b_[i].x(), b_[i].y(), mode[i], l1_, l2_);
+    if (std::isnan(alpha[i])) {
+      for (int j = i; j < 3; ++j) alpha[j] = kNaN;
+      return i;
+    }
+  }
+  return -1;
+}
+
+Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
+  Eigen::Vector3d alpha;
+  const int leg = ik(pose, mode, alpha.data());
+  if (leg >= 0) {
+    const double r = (platform_joint(pose, leg) - o_[leg]).norm();
+    throw LegUnreachable(leg, "leg " + std::to_string(leg) + " cannot reach: |O_" + std::to_string(leg) + "B_" +
+                                  std::to_string(leg) + "| = " + std::to_string(r) + " m is outside [" +
+                                  std::to_string(std::abs(l1_ - l2_)) + ", " + std::to_string(l1_ + l2_) + "]");
+  }
+  return alpha;
+}
+
+RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
+                           int max_iter, double tol) const {
+  RRR3Newton res;
+  res.alpha = alpha0;
+  res.beta = beta0;
+  res.converged = true;
+  // The 6 x 6 Jacobian of the loop equations is block diagonal (leg i involves only alpha_i and
+  // beta_i), so the Newton step of the whole system is the three 2 x 2 steps.
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d target = platform_joint(pose, i);
+    double& a = res.alpha(i);
+    double& b = res.beta(i);
+    double err = kNaN;
+    int it = 0;
+    for (;; ++it) {
+      const double c1 = std::cos(a), s1 = std::sin(a), c12 = std::cos(a + b), s12 = std::sin(a + b);
+      const Eigen::Vector2d f = o_[i] + Eigen::Vector2d(l1_ * c1 + l2_ * c12, l1_ * s1 + l2_ * s12) - target;
+      err = f.norm();
+      if (err < tol || it >= max_iter) break;
+      Eigen::Matrix2d J;
+      J << -l1_ * s1 - l2_ * s12, -l2_ * s12, l1_ * c1 + l2_ * c12, l2_ * c12;
+      const double det = J.determinant();
+      if (!(std::abs(det) > 1e-14 * l1_ * l2_)) break;  // stretched or folded leg: no Newton step
+      const Eigen::Vector2d step = J.inverse() * f;
+      a -= step(0);
+      b -= step(1);
+    }
+    a = wrap(a);
+    b = wrap(b);
+    res.iterations = std::max(res.iterations, it);
+    if (!(err < tol)) res.converged = false;
+    res.error = std::max(res.error, err);
+  }
+  return res;
+}
+
+RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const {
+  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
+  RRR3Fk res;
+  Pose x = guess;
+  for (int it = 0;; ++it) {
+    Eigen::Vector3d f;
+    Eigen::Matrix3d J;
+    double err = 0;
+    const double c = std::cos(x(2)), s = std::sin(x(2));
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d rb(c * b_[i].x() - s * b_[i].y(), s * b_[i].x() + c * b_[i].y());
+      const Eigen::Vector2d ab = x.head<2>() + rb - A.row(i).transpose();
+      const double len = ab.norm();
+      err = std::max(err, std::abs(len - l2_));
+      // (|AB|^2 - l2^2) / (2 l2): a length error, well scaled near the solution.
+      f(i) = (ab.squaredNorm() - l2_ * l2_) / (2 * l2_);
+      J.row(i) << ab.x() / l2_, ab.y() / l2_, (ab.y() * rb.x() - ab.x() * rb.y()) / l2_;
+    }
+    res.iterations = it;
+    res.error = err;
+    if (!std::isfinite(err)) break;
+    if (err < tol) {
+      res.converged = true;
+      break;
+    }
+    if (it >= max_iter) break;
+    Eigen::FullPivLU<Eigen::Matrix3d> lu(J);
+    if (lu.rank() < 3) break;  // parallel singularity: Newton cannot continue
+    Eigen::Vector3d step = lu.solve(f);
+    // Keep each step local so Newton stays in the assembly mode it started in.
+    const double scale = std::max({1.0, std::abs(step(2)) / 0.3, step.head<2>().norm() / (0.3 * l2_)});
+    x -= step / scale;
+  }
+  x(2) = wrap(x(2));
+  res.pose = x;
+  return res;
+}
+
+Eigen::Matrix<double, 3, 2> RRR3::elbows(const Eigen::Vector3d& alpha) const {
+  Eigen::Matrix<double, 3, 2> A;
+  for (int i = 0; i < 3; ++i) A.row(i) = (o_[i] + l1_ * Eigen::Vector2d(std::cos(alpha(i)), std::sin(alpha(i)))).transpose();
+  return A;
+}
+
+void RRR3::jacobians_at(const Pose& pose, const Eigen::Matrix<double, 3, 2>& elbows, Eigen::Matrix3d& A,
+                        Eigen::Matrix3d& B) const {
+  B.setZero();
+  const Eigen::Vector2d e = pose.head<2>();
+  const double c = std::cos(pose(2)), s = std::sin(pose(2));
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d a = elbows.row(i).transpose();
+    const Eigen::Vector2d ab = platform_joint(pose, i) - a;
+    const double n = ab.norm();
+    // (cos g_i, sin g_i) with g_i = atan2(A_iB_i) - phi: the unit A_iB_i seen in the effector frame.
+    A.row(i) << (c * ab.x() + s * ab.y()) / n, (c * ab.y() - s * ab.x()) / n, cross(ab, e - a) / n;
+    B(i, i) = cross(ab, o_[i] - a) / n;
+  }
+}
+
+void RRR3::jacobians(const Pose& pose, const Mode& mode, Eigen::Matrix3d& A, Eigen::Matrix3d& B) const {
+  jacobians_at(pose, elbows(ik_or_throw(pose, mode)), A, B);
+}
+
+double RRR3::distance(const Eigen::Matrix3d& A) const {
+  Eigen::Matrix3d As = A;
+  As.col(2) /= re_;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(As.transpose() * As, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d l = eig.eigenvalues().cwiseMax(0.0);  // ascending
+  return l(2) > 0 ? std::sqrt(l(0) / l(2)) : 0.0;
+}
+
+RRR3Singularity RRR3::singularity(const Pose& pose, const Mode& mode, double tol) const {
+  Eigen::Matrix3d A, B;
+  jacobians(pose, mode, A, B);
+  RRR3Singularity s;
+  s.det_a = A.determinant();
+  s.det_b = B.determinant();
+  s.det_a_norm = s.det_a / re_;
+  s.det_b_norm = s.det_b / (l1_ * l1_ * l1_);
+  s.distance = distance(A);
+  if (std::abs(s.det_b_norm) < tol) {
+    s.kind = "serial";
+    B.diagonal().cwiseAbs().minCoeff(&s.leg);
+  } else if (std::abs(s.det_a_norm) < tol) {
+    s.kind = "parallel";
+    // Lines A_iB_i parallel: the direction rows (cos g_i, sin g_i) are pairwise collinear.
+    double worst = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j)
+        worst = std::max(worst, std::abs(A(i, 0) * A(j, 1) - A(i, 1) * A(j, 0)));
+    s.lines = worst < std::sqrt(tol) ? "parallel" : "concurrent";
+  }
+  return s;
+}
+
+}  // namespace robokin

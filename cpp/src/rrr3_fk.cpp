@@ -1,0 +1,199 @@
+// 3-RRR forward model: every assembly mode of the actuated angles.
+//
+// With the elbows A_i known, leg i closes when |E + c_i(phi)|^2 = l2^2, c_i = R(phi) b_i - A_i.
+// Subtracting leg 0's equation from legs 1 and 2 leaves a linear system M(phi) E = r(phi), solved
+// by Cramer's rule E = N / D (D = det M, N = adj(M) r). Leg 0's equation times D^2,
+//   F(phi) = |N + D c_0|^2 - D^2 l2^2,
+// has no poles and is a trigonometric polynomial of degree 6 in phi (c_i, M are of degree 1,
+// D and N of degree 2). Its 13 coefficients come exactly from 16 samples (a DFT); a fine scan of
+// the polynomial brackets every sign change, and every local minimum of |F| between samples is
+// refined too, so that a pair of close roots or a double root is not missed. Each root is
+// polished by Newton on the three loop equations and kept only if it closes them to 1e-10 m.
+#include "robokin/rrr3.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace robokin {
+namespace {
+
+constexpr int kDegree = 6;
+constexpr int kFit = 16;    // samples for the exact coefficients (> 2 * kDegree + 1)
+constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by the dip test
+
+struct TrigPoly {
+  double a[kDegree + 1];  // F = a_0 + sum_k a_k cos(k phi) + b_k sin(k phi)
+  double b[kDegree + 1];
+
+  // F, F' and F'' at phi (angle addition instead of 2 k transcendental calls).
+  void eval(double phi, double& f, double& df, double& ddf) const {
+    const double c1 = std::cos(phi), s1 = std::sin(phi);
+    double c = 1, s = 0;
+    f = a[0];
+    df = ddf = 0;
+    for (int k = 1; k <= kDegree; ++k) {
+      const double cn = c * c1 - s * s1, sn = s * c1 + c * s1;
+      c = cn, s = sn;
+      f += a[k] * c + b[k] * s;
+      df += k * (b[k] * c - a[k] * s);
+      ddf -= k * k * (a[k] * c + b[k] * s);
+    }
+  }
+  double value(double phi) const {
+    double f, df, ddf;
+    eval(phi, f, df, ddf);
+    return f;
+  }
+};
+
+struct Tables {
+  double fit_phi[kFit], fit_cos[kFit][kDegree + 1], fit_sin[kFit][kDegree + 1];
+  double scan_phi[kScan + 1], scan_cos[kScan][kDegree + 1], scan_sin[kScan][kDegree + 1];
+  Tables() {
+    for (int j = 0; j < kFit; ++j) {
+      fit_phi[j] = -M_PI + 2 * M_PI * j / kFit;
+      for (int k = 0; k <= kDegree; ++k) fit_cos[j][k] = std::cos(k * fit_phi[j]), fit_sin[j][k] = std::sin(k * fit_phi[j]);
+    }
+    for (int j = 0; j <= kScan; ++j) scan_phi[j] = -M_PI + 2 * M_PI * j / kScan;
+    for (int j = 0; j < kScan; ++j)
+      for (int k = 0; k <= kDegree; ++k)
+        scan_cos[j][k] = std::cos(k * scan_phi[j]), scan_sin[j][k] = std::sin(k * scan_phi[j]);
+  }
+};
+
+const Tables& tables() {
+  static const Tables t;
+  return t;
+}
+
+// The elimination at one phi: E = N / D and the residual F.
+struct Elimination {
+  const Eigen::Matrix<double, 3, 2>& A;
+  const Eigen::Vector2d* b;  // platform joints in the effector frame
+  double l2;
+
+  double F(double phi, Eigen::Vector2d* N = nullptr, double* D = nullptr) const {
+    const double c = std::cos(phi), s = std::sin(phi);
+    Eigen::Vector2d ci[3];
+    for (int i = 0; i < 3; ++i)
+      ci[i] = Eigen::Vector2d(c * b[i].x() - s * b[i].y(), s * b[i].x() + c * b[i].y()) - A.row(i).transpose();
+    Eigen::Matrix2d M;
+    M.row(0) = 2 * (ci[1] - ci[0]).transpose();
+    M.row(1) = 2 * (ci[2] - ci[0]).transpose();
+    const Eigen::Vector2d r(ci[0].squaredNorm() - ci[1].squaredNorm(), ci[0].squaredNorm() - ci[2].squaredNorm());
+    const double det = M.determinant();
+    const Eigen::Vector2d n(M(1, 1) * r(0) - M(0, 1) * r(1), -M(1, 0) * r(0) + M(0, 0) * r(1));
+    if (N) *N = n;
+    if (D) *D = det;
+    return (n + det * ci[0]).squaredNorm() - det * det * l2 * l2;
+  }
+};
+
+// A root of p in [lo, hi] where p(lo), p(hi) have opposite signs: Newton kept inside the bracket.
+double refine(const TrigPoly& p, double lo, double hi) {
+  double flo = p.value(lo);
+  double x = 0.5 * (lo + hi);
+  for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
+    double f, df, ddf;
+    p.eval(x, f, df, ddf);
+    if (f == 0) return x;
+    if ((f < 0) == (flo < 0)) lo = x, flo = f;
+    else hi = x;
+    const double nx = df != 0 ? x - f / df : 0.5 * (lo + hi);
+    if (!(nx > lo && nx < hi)) {
+      x = 0.5 * (lo + hi);
+    } else {
+      if (std::abs(nx - x) < 1e-16) return nx;
+      x = nx;
+    }
+  }
+  return x;
+}
+
+// The extremum of p in [lo, hi] where p'(lo), p'(hi) have opposite signs.
+double extremum(const TrigPoly& p, double lo, double hi) {
+  TrigPoly d;  // p' as a trigonometric polynomial
+  d.a[0] = d.b[0] = 0;
+  for (int k = 1; k <= kDegree; ++k) d.a[k] = k * p.b[k], d.b[k] = -k * p.a[k];
+  return refine(d, lo, hi);
+}
+
+}  // namespace
+
+std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
+  const Tables& t = tables();
+  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
+  const Elimination elim{A, b_.data(), l2_};
+
+  // Exact coefficients of F from kFit samples.
+  double samples[kFit];
+  for (int j = 0; j < kFit; ++j) samples[j] = elim.F(t.fit_phi[j]);
+  TrigPoly p;
+  double scale = 0;
+  for (int k = 0; k <= kDegree; ++k) {
+    double sa = 0, sb = 0;
+    for (int j = 0; j < kFit; ++j) sa += samples[j] * t.fit_cos[j][k], sb += samples[j] * t.fit_sin[j][k];
+    p.a[k] = (k == 0 ? 1.0 : 2.0) * sa / kFit;
+    p.b[k] = k == 0 ? 0.0 : 2.0 * sb / kFit;
+    scale = std::max({scale, std::abs(p.a[k]), std::abs(p.b[k])});
+  }
+  std::vector<Pose> out;
+  if (!(scale > 0) || !std::isfinite(scale)) return out;
+  for (int k = 0; k <= kDegree; ++k) p.a[k] /= scale, p.b[k] /= scale;
+
+  double f[kScan];
+  for (int j = 0; j < kScan; ++j) {
+    double v = p.a[0];
+    for (int k = 1; k <= kDegree; ++k) v += p.a[k] * t.scan_cos[j][k] + p.b[k] * t.scan_sin[j][k];
+    f[j] = v;
+  }
+
+  std::vector<double> roots;
+  for (int j = 0; j < kScan; ++j) {
+    const int prev = (j + kScan - 1) % kScan, next = (j + 1) % kScan;
+    const double lo = t.scan_phi[j], hi = t.scan_phi[j + 1];  // hi = pi for the last interval
+    if (f[j] == 0) {
+      roots.push_back(lo);
+    } else if ((f[j] < 0) != (f[next] < 0) && f[next] != 0) {
+      roots.push_back(refine(p, lo, hi));
+    } else if ((f[prev] < 0) == (f[j] < 0) && (f[next] < 0) == (f[j] < 0) && std::abs(f[j]) < std::abs(f[prev]) &&
+               std::abs(f[j]) <= std::abs(f[next])) {
+      // |F| dips between samples without a sign change: look at the bottom of the dip.
+      const double a = lo - 2 * M_PI / kScan, b = hi;
+      double fa, da, dda, fb, db, ddb;
+      p.eval(a, fa, da, dda);
+      p.eval(b, fb, db, ddb);
+      if ((da < 0) == (db < 0)) continue;
+      const double m = extremum(p, a, b);
+      const double fm = p.value(m);
+      if ((fm < 0) != (f[j] < 0) && fm != 0) {
+        roots.push_back(refine(p, a, m));
+        roots.push_back(refine(p, m, b));
+      } else if (std::abs(fm) < 1e-13) {
+        roots.push_back(m);  // a double root (tangency): the closure test below decides
+      }
+    }
+  }
+
+  for (double phi : roots) {
+    Eigen::Vector2d N;
+    double D;
+    elim.F(phi, &N, &D);
+    const Pose guess(N.x() / D, N.y() / D, phi);
+    if (!guess.allFinite()) continue;
+    const RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
+    if (!(polished.error < 1e-10)) continue;
+    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-6) continue;  // slid to another root
+    Pose q = polished.pose;
+    if (q(2) >= M_PI) q(2) -= 2 * M_PI;
+    bool duplicate = false;
+    for (const Pose& o : out)
+      duplicate = duplicate || ((o.head<2>() - q.head<2>()).norm() < 1e-9 &&
+                                std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-9);
+    if (!duplicate) out.push_back(q);
+  }
+  std::sort(out.begin(), out.end(), [](const Pose& a, const Pose& b) { return a(2) < b(2); });
+  return out;
+}
+
+}  // namespace robokin

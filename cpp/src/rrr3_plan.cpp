@@ -1,0 +1,155 @@
+// 3-RRR path planning with parallel-singularity avoidance: dynamic programming over a grid of
+// orientations (see rrr3_plan.hpp).
+#include "robokin/rrr3_plan.hpp"
+
+#include "robokin/parallel.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace robokin {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kForbidden = 1e12;  // cost of an unreachable, serial or wrong-sign orientation
+constexpr double kShortfall = 1e8;   // weight of (margin - distance)^2 below the margin: nearly a constraint
+
+struct Cell {
+  bool reachable = false;
+  double det_a = kNaN, det_b = kNaN, distance = kNaN;
+  Eigen::Vector3d alpha = Eigen::Vector3d::Constant(kNaN);
+};
+
+Cell evaluate(const RRR3& robot, const Pose& pose, const Mode& mode) {
+  Cell c;
+  if (robot.ik(pose, mode, c.alpha.data()) >= 0) {
+    c.alpha.setConstant(kNaN);
+    return c;
+  }
+  Eigen::Matrix3d A, B;
+  robot.jacobians_at(pose, robot.elbows(c.alpha), A, B);
+  c.reachable = true;
+  c.det_a = A.determinant() / robot.platform_radius();
+  c.det_b = B.determinant() / std::pow(robot.l1(), 3);
+  c.distance = robot.distance(A);
+  return c;
+}
+
+int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+}  // namespace
+
+RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& o) {
+  if (!(o.max_step > 0) || !(o.resolution > 0) || o.resolution > o.max_step)
+    throw std::invalid_argument("resolution: must be positive and at most max_step");
+  if (!(o.span >= 0) || !(o.margin >= 0) || !(o.serial_margin >= 0) || !(o.smoothing >= 0))
+    throw std::invalid_argument("span, margin, serial_margin and smoothing must be >= 0");
+  RRR3Plan plan;
+  plan.poses.resize(count, 3);
+  for (long k = 0; k < count; ++k) plan.poses.row(k) << points[2 * k], points[2 * k + 1], o.phi;
+
+  if (o.avoid && count > 0) {
+    const long half = static_cast<long>(std::floor(o.span / o.resolution + 1e-9));
+    const long m = 2 * half + 1;  // orientation grid, the nominal one in the middle
+    const long w = static_cast<long>(std::floor(o.max_step / o.resolution + 1e-9));
+    auto phi_at = [&](long j) { return o.phi + (j - half) * o.resolution; };
+
+    std::vector<Cell> cells(count * m);
+    parallel_for(count * m, 2048, [&](long begin, long end) {
+      for (long c = begin; c < end; ++c)
+        cells[c] = evaluate(robot, Pose(points[2 * (c / m)], points[2 * (c / m) + 1], phi_at(c % m)), o.mode);
+    });
+
+    // Keep the sign of det A at the first point: at the nominal orientation when it is usable,
+    // else where the first point is farthest from a parallel singularity.
+    const Cell& nominal = cells[half];
+    if (nominal.reachable && std::abs(nominal.det_b) >= o.serial_margin) plan.sign = sign_of(nominal.det_a);
+    if (plan.sign == 0) {
+      double best = -1;
+      for (long j = 0; j < m; ++j)
+        if (cells[j].reachable && std::abs(cells[j].det_b) >= o.serial_margin && cells[j].distance > best)
+          best = cells[j].distance, plan.sign = sign_of(cells[j].det_a);
+    }
+
+    auto cost = [&](long k, long j) {
+      const Cell& c = cells[k * m + j];
+      if (!c.reachable || std::abs(c.det_b) < o.serial_margin || sign_of(c.det_a) != plan.sign) return kForbidden;
+      const double dev = phi_at(j) - o.phi, lack = std::max(0.0, o.margin - c.distance);
+      return dev * dev + kShortfall * lack * lack;
+    };
+    std::vector<double> prev(m), cur(m);
+    std::vector<int> from(count * m, 0);
+    for (long j = 0; j < m; ++j) prev[j] = cost(0, j);
+    for (long k = 1; k < count; ++k) {
+      for (long j = 0; j < m; ++j) {
+        double best = std::numeric_limits<double>::infinity();
+        for (long d = -w; d <= w; ++d) {
+          const long i = j + d;
+          if (i < 0 || i >= m) continue;
+          const double step = d * o.resolution;
+          // Ties go to the smallest step, so flat stretches do not wander.
+          const double v = prev[i] + o.smoothing * step * step;
+          if (v < best || (v == best && std::abs(d) < std::abs(from[k * m + j] - j))) {
+            best = v;
+            from[k * m + j] = static_cast<int>(i);
+          }
+        }
+        cur[j] = best + cost(k, j);
+      }
+      std::swap(prev, cur);
+    }
+    long j = 0;
+    for (long i = 1; i < m; ++i)
+      if (prev[i] < prev[j] || (prev[i] == prev[j] && std::abs(i - half) < std::abs(j - half))) j = i;
+    std::vector<long> path(count);
+    for (long k = count - 1; k >= 0; --k) {
+      path[k] = j;
+      if (k > 0) j = from[k * m + j];
+    }
+    // Where the margin's boundary wiggles, the optimum follows it up and down: fill every dip of
+    // an excursion away from the nominal orientation (ramp, plateau, ramp back) when the filled
+    // orientations are as good. The fill keeps the step bound.
+    for (long k0 = 0; k0 < count;) {
+      const int side = path[k0] > half ? 1 : (path[k0] < half ? -1 : 0);
+      long k1 = k0 + 1;
+      while (k1 < count && (path[k1] > half ? 1 : (path[k1] < half ? -1 : 0)) == side && side != 0) ++k1;
+      if (side != 0) {
+        std::vector<long> fill(path.begin() + k0, path.begin() + k1), suffix(fill);
+        for (size_t i = 1; i < fill.size(); ++i) fill[i] = side > 0 ? std::max(fill[i], fill[i - 1]) : std::min(fill[i], fill[i - 1]);
+        for (size_t i = suffix.size() - 1; i-- > 0;)
+          suffix[i] = side > 0 ? std::max(suffix[i], suffix[i + 1]) : std::min(suffix[i], suffix[i + 1]);
+        bool better = true;
+        for (size_t i = 0; i < fill.size() && better; ++i) {
+          fill[i] = side > 0 ? std::min(fill[i], suffix[i]) : std::max(fill[i], suffix[i]);
+          const long k = k0 + static_cast<long>(i);
+          better = cost(k, fill[i]) < kForbidden &&
+                   cells[k * m + fill[i]].distance >= std::min(o.margin, cells[k * m + path[k]].distance);
+        }
+        if (better) std::copy(fill.begin(), fill.end(), path.begin() + k0);
+      }
+      k0 = k1;
+    }
+    for (long k = 0; k < count; ++k) plan.poses(k, 2) = phi_at(path[k]);
+  }
+
+  plan.alpha.resize(count, 3);
+  plan.det_a_norm.resize(count);
+  plan.det_b_norm.resize(count);
+  plan.distance.resize(count);
+  plan.feasible = count > 0;
+  for (long k = 0; k < count; ++k) {
+    const Cell c = evaluate(robot, plan.poses.row(k).transpose(), o.mode);
+    plan.alpha.row(k) = c.alpha.transpose();
+    plan.det_a_norm(k) = c.det_a;
+    plan.det_b_norm(k) = c.det_b;
+    plan.distance(k) = c.distance;
+    if (k == 0 && plan.sign == 0) plan.sign = sign_of(c.det_a);
+    const bool step_ok = k == 0 || std::abs(plan.poses(k, 2) - plan.poses(k - 1, 2)) <= o.max_step + 1e-12;
+    plan.feasible = plan.feasible && c.reachable && std::abs(c.det_b) >= o.serial_margin &&
+                    sign_of(c.det_a) == plan.sign && c.distance >= o.margin && step_ok;
+  }
+  return plan;
+}
+
+}  // namespace robokin

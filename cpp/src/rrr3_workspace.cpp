@@ -1,0 +1,130 @@
+// 3-RRR workspace maps (see rrr3_workspace.hpp).
+#include "robokin/rrr3_workspace.hpp"
+
+#include "robokin/parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace robokin {
+namespace {
+
+// det A / R_e and det B / l1^3 at one pose, or false when a leg cannot reach. Specialised for the
+// map: no angles, the elbow comes from rotating the unit O_iB_i (as in RRR3::ik), and the
+// direction columns of A are taken in the base frame (a rotation of them keeps det A).
+bool dets(const Eigen::Vector2d o[3], const Eigen::Vector2d bw[3], double ex, double ey, const Mode& mode,
+          double l1, double l2, double re, double& det_a, double& det_b) {
+  double rows[3][3], e[3];
+  const double lo = std::abs(l1 - l2), hi = l1 + l2;
+  for (int i = 0; i < 3; ++i) {
+    const double bx = ex + bw[i].x(), by = ey + bw[i].y();
+    const double dx = bx - o[i].x(), dy = by - o[i].y();
+    const double r = std::sqrt(dx * dx + dy * dy);
+    if (!(r >= lo && r <= hi) || r == 0) return false;
+    const double ct = std::min(1.0, std::max(-1.0, (l1 * l1 + r * r - l2 * l2) / (2 * l1 * r)));
+    const double st = mode[i] * std::sqrt(1 - ct * ct);
+    const double ax = o[i].x() + l1 * (ct * dx + st * dy) / r, ay = o[i].y() + l1 * (ct * dy - st * dx) / r;
+    const double abx = bx - ax, aby = by - ay;
+    rows[i][0] = abx / l2;
+    rows[i][1] = aby / l2;
+    rows[i][2] = (abx * (ey - ay) - aby * (ex - ax)) / l2;
+    e[i] = (abx * (o[i].y() - ay) - aby * (o[i].x() - ax)) / l2;
+  }
+  det_a = (rows[0][0] * (rows[1][1] * rows[2][2] - rows[1][2] * rows[2][1]) -
+           rows[0][1] * (rows[1][0] * rows[2][2] - rows[1][2] * rows[2][0]) +
+           rows[0][2] * (rows[1][0] * rows[2][1] - rows[1][1] * rows[2][0])) / re;
+  det_b = e[0] * e[1] * e[2] / (l1 * l1 * l1);
+  return true;
+}
+
+}  // namespace
+
+RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol) {
+  RRR3Workspace w;
+  w.n = n;
+  const double reach = robot.l1() + robot.l2();
+  Eigen::Vector2d o[3], bw[3];
+  double xl = -1e300, xh = 1e300, yl = -1e300, yh = 1e300;
+  for (int i = 0; i < 3; ++i) {
+    o[i] = robot.base_joint(i);
+    bw[i] = robot.platform_joint(Pose(0, 0, phi), i);  // R(phi) b_i
+    const Eigen::Vector2d c = o[i] - bw[i];
+    xl = std::max(xl, c.x() - reach), xh = std::min(xh, c.x() + reach);
+    yl = std::max(yl, c.y() - reach), yh = std::min(yh, c.y() + reach);
+  }
+  w.cells.assign(n * n, 0);
+  if (n <= 0 || xl >= xh || yl >= yh) return w;
+  const double half = 0.5 * std::max(xh - xl, yh - yl) * 1.02;  // a rim of unreachable cells
+  w.h = 2 * half / n;
+  w.x0 = 0.5 * (xl + xh) - half;
+  w.y0 = 0.5 * (yl + yh) - half;
+
+  std::vector<double> det_a(n * n, 0.0);
+  const double l1 = robot.l1(), l2 = robot.l2(), re = robot.platform_radius();
+  parallel_for(n, 16, [&](long j0, long j1) {
+    for (long j = j0; j < j1; ++j) {
+      const double y = w.y0 + (j + 0.5) * w.h;
+      for (long i = 0; i < n; ++i) {
+        double da, db;
+        if (!dets(o, bw, w.x0 + (i + 0.5) * w.h, y, mode, l1, l2, re, da, db)) continue;
+        det_a[j * n + i] = da;
+        w.cells[j * n + i] = static_cast<std::uint8_t>(
+            std::abs(db) < tol ? WorkspaceCell::Serial : std::abs(da) < tol ? WorkspaceCell::Parallel : WorkspaceCell::Regular);
+      }
+    }
+  });
+  // A sign change of det A between two reachable neighbours: mark the cell of smaller |det A|.
+  auto reachable = [&](long c) { return w.cells[c] != static_cast<std::uint8_t>(WorkspaceCell::Unreachable); };
+  std::vector<long> crossing;
+  for (long j = 0; j < n; ++j)
+    for (long i = 0; i < n; ++i) {
+      const long c = j * n + i;
+      if (!reachable(c)) continue;
+      for (long nb : {i + 1 < n ? c + 1 : -1L, j + 1 < n ? c + n : -1L}) {
+        if (nb < 0 || !reachable(nb) || (det_a[c] < 0) == (det_a[nb] < 0)) continue;
+        crossing.push_back(std::abs(det_a[c]) <= std::abs(det_a[nb]) ? c : nb);
+      }
+    }
+  for (long c : crossing)
+    if (w.cells[c] == static_cast<std::uint8_t>(WorkspaceCell::Regular)) w.cells[c] = static_cast<std::uint8_t>(WorkspaceCell::Parallel);
+
+  const double cell = w.h * w.h;
+  long reachable_count = 0, regular_count = 0, best = 0;
+  std::vector<char> seen(n * n, 0);
+  std::vector<long> stack;
+  for (long c = 0; c < n * n; ++c) {
+    reachable_count += reachable(c);
+    if (w.cells[c] != static_cast<std::uint8_t>(WorkspaceCell::Regular)) continue;
+    ++regular_count;
+    if (seen[c]) continue;
+    long size = 0;
+    stack.assign(1, c);
+    seen[c] = 1;
+    while (!stack.empty()) {  // flood fill of one singularity-free region
+      const long k = stack.back();
+      stack.pop_back();
+      ++size;
+      const long i = k % n, j = k / n;
+      for (long nb : {i > 0 ? k - 1 : -1L, i + 1 < n ? k + 1 : -1L, j > 0 ? k - n : -1L, j + 1 < n ? k + n : -1L})
+        if (nb >= 0 && !seen[nb] && w.cells[nb] == static_cast<std::uint8_t>(WorkspaceCell::Regular)) {
+          seen[nb] = 1;
+          stack.push_back(nb);
+        }
+    }
+    best = std::max(best, size);
+  }
+  w.reachable_area = reachable_count * cell;
+  w.regular_area = regular_count * cell;
+  w.region_area = best * cell;
+  return w;
+}
+
+std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
+                                 long n, double tol) {
+  std::vector<double> out;
+  out.reserve(robots.size());
+  for (const RRR3& r : robots) out.push_back(workspace(r, phi, mode, n, tol).region_area);
+  return out;
+}
+
+}  // namespace robokin

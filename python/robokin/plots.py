@@ -1,0 +1,110 @@
+"""Figures for serial chains (matplotlib, the ``[plot]`` extra). Figures are returned, not shown."""
+
+from __future__ import annotations
+
+from typing import Dict, Optional
+
+import numpy as np
+
+from . import robots
+from ._core import Chain, TrackResult
+
+
+def _new_figure(**kwargs):
+    """A Figure outside pyplot's global state (no display needed; save it with fig.savefig)."""
+    try:
+        from matplotlib.figure import Figure
+        from mpl_toolkits import mplot3d  # noqa: F401  (registers the 3-D projection)
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ImportError("robokin.plots needs matplotlib: pip install 'robokin[plot]'") from exc
+    return Figure(**kwargs)
+
+
+def joint_limit_cost(chain: Chain, q) -> np.ndarray:
+    """Seed 000's joint-limit cost ``z = 1/2 |W (qbar - q)|^2``, ``W = diag(1 / (q_max - q_min))``
+    (0 for an unlimited joint), for q of shape (dof,) or (N, dof)."""
+    lower, upper = chain.limits
+    finite = np.isfinite(lower) & np.isfinite(upper)
+    w = np.where(finite, 1.0 / np.where(finite, upper - lower, 1.0), 0.0)
+    qbar = np.where(finite, 0.5 * (lower + upper), 0.0)
+    return 0.5 * np.sum((w * (qbar - np.asarray(q))) ** 2, axis=-1)
+
+
+def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> None:
+    """Draws a planar chain's links in the xy plane: a polyline through its frames' origins."""
+    origins = chain.frames(q)[:, :2, 3]
+    ax.plot(origins[:, 0], origins[:, 1], "-", color=color, alpha=alpha, lw=lw, solid_capstyle="round")
+    ax.plot(origins[:-1, 0], origins[:-1, 1], "o", color=color, alpha=alpha, ms=3)
+
+
+def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_samples: int = 60,
+                    snapshots: int = 8, title: Optional[str] = None):
+    """Seed 000's Figure 2 for the RPR arm following a straight line.
+
+    (a) the self-motion surface of the path's points inside the joint-limit box with every joint
+    path drawn on it; (b) the joint-limit cost z along the path; then the robot's motion for each
+    track.
+
+    Args:
+        points: (K, 2) path points.
+        tracks: label -> TrackResult of the same path (e.g. minimum norm, null space).
+        surface_samples: Path points whose self-motion curves draw the surface.
+        snapshots: Robot poses drawn per track.
+        title: Figure title.
+
+    Returns:
+        The matplotlib Figure.
+    """
+    chain = robots.rpr()
+    lower, upper = chain.limits
+    colors = ["tab:green", "tab:blue", "tab:red", "tab:purple"]
+    fig = _new_figure(figsize=(13, 10), layout="constrained")
+    grid = fig.add_gridspec(2, 2)
+
+    ax = fig.add_subplot(grid[0, 0], projection="3d")
+    for k in np.linspace(0, len(points) - 1, surface_samples).astype(int):
+        for branch in robots.rpr_self_motion(points[k], num=181):
+            ax.plot(*branch.T, color="0.6", lw=0.6, alpha=0.7)
+    corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+    box = lower + corners * (upper - lower)
+    for i in range(8):
+        for j in range(i + 1, 8):
+            if np.sum(corners[i] != corners[j]) == 1:
+                ax.plot(*np.stack([box[i], box[j]]).T, color="k", lw=0.5, alpha=0.4)
+    for (label, tr), color in zip(tracks.items(), colors):
+        ax.plot(*tr.q.T, color=color, lw=2.5, label=label)
+    ax.scatter(*tracks[next(iter(tracks))].q[0], color="k", s=30)
+    ax.set_xlabel("t1 (rad)")
+    ax.set_ylabel("t2 (m)")
+    ax.set_zlabel("t3 (rad)")
+    ax.set_title("(a) self-motion surface in the joint-limit box")
+    ax.legend(loc="upper left")
+
+    ax = fig.add_subplot(grid[0, 1])
+    s = np.r_[0, np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))]
+    for (label, tr), color in zip(tracks.items(), colors):
+        z = joint_limit_cost(chain, tr.q)
+        ax.plot(s, z, color=color, label=f"{label}: mean z = {z.mean():.4f}")
+    ax.set_xlabel("distance along the line (m)")
+    ax.set_ylabel("joint-limit cost z")
+    ax.set_title("(b) joint-limit cost along the path")
+    ax.grid(alpha=0.3)
+    ax.legend()
+
+    for index, ((label, tr), color) in enumerate(zip(tracks.items(), colors)):
+        ax = fig.add_subplot(grid[1, index % 2])
+        ax.plot(points[:, 0], points[:, 1], "k--", lw=1)
+        for j, k in enumerate(np.linspace(0, len(points) - 1, snapshots).astype(int)):
+            draw_planar_chain(ax, chain, tr.q[k], color=color, alpha=0.25 + 0.75 * j / max(1, snapshots - 1))
+        ax.annotate("1", points[0], xytext=(6, 6), textcoords="offset points", fontsize=13, weight="bold")
+        ax.annotate("2", points[-1], xytext=(6, 6), textcoords="offset points", fontsize=13, weight="bold")
+        ax.set_aspect("equal")
+        ax.grid(alpha=0.3)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_title(f"({'cd'[index % 2]}) robot motion, {label}")
+        if index == 1:
+            break
+    if title:
+        fig.suptitle(title)
+    return fig

@@ -1,0 +1,178 @@
+"""The specialised evaluation paths (single fk / jacobian, batch fk, the binding's fast path for
+float64 C-contiguous arrays) against KDL's solvers, and the binding's argument checks on every
+input route. Nothing here times anything: speed is measured in benchmarks/."""
+
+import math
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+CHAINS = {
+    "rpr": rk.robots.rpr,
+    "ur5": rk.robots.ur5,
+    "puma560": rk.robots.puma560,
+    "prr": rk.robots.prr,
+    "planar_3r": rk.robots.planar_3r,
+    "rp": rk.robots.rp,
+}
+
+
+def random_q(chain, rng, size=None):
+    lower, upper = chain.limits
+    lo = np.where(np.isfinite(lower), lower, -math.pi)
+    hi = np.where(np.isfinite(upper), upper, math.pi)
+    return rng.uniform(lo, hi, size=None if size is None else (size, chain.dof))
+
+
+@pytest.mark.parametrize("name", sorted(CHAINS))
+def test_single_fk_and_jacobian_equal_kdl(name):
+    chain, rng = CHAINS[name](), np.random.default_rng(1)
+    for _ in range(50):
+        q = random_q(chain, rng)
+        np.testing.assert_allclose(chain.fk(q), chain._fk_kdl(q), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(chain.jacobian(q), chain._jacobian_kdl(q), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", sorted(CHAINS))
+def test_batch_fk_equals_kdl_and_single(name):
+    chain, rng = CHAINS[name](), np.random.default_rng(2)
+    Q = random_q(chain, rng, 257)  # not a multiple of any block size
+    batch = chain.fk(Q)
+    assert batch.shape == (257, 4, 4)
+    for k in range(len(Q)):
+        np.testing.assert_allclose(batch[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-12)
+        np.testing.assert_array_equal(batch[k], chain.fk(Q[k]))
+
+
+def test_large_joint_values_equal_kdl():
+    chain, rng = rk.robots.ur5(), np.random.default_rng(3)
+    for scale in (10.0, 1e3, 1e6):
+        q = rng.uniform(-scale, scale, 6)
+        np.testing.assert_allclose(chain.fk(q), chain._fk_kdl(q), rtol=0, atol=1e-9)
+        np.testing.assert_allclose(chain.fk(q[None])[0], chain._fk_kdl(q), rtol=0, atol=1e-9)
+
+
+def test_batch_blocks_equal_single_calls_at_any_joint_value():
+    chain, rng = rk.robots.ur5(), np.random.default_rng(6)
+    Q = rng.uniform(-1.0, 1.0, (200, 6)) * 10.0 ** rng.integers(-3, 8, (200, 6))  # beyond 1e5: std::sin
+    batch = chain.fk(Q)
+    for k in range(len(Q)):
+        np.testing.assert_array_equal(batch[k], chain.fk(Q[k]))
+        np.testing.assert_allclose(batch[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-9)
+
+
+def test_every_input_route_gives_the_same_result():
+    chain = rk.robots.ur5()
+    q = np.random.default_rng(4).uniform(-3, 3, 6)
+    expected, jac = chain.fk(q), chain.jacobian(q)
+    routes = [q.tolist(), tuple(q), q.astype(">f8"), np.asfortranarray(q), np.repeat(q, 2)[::2],
+              q.astype(np.longdouble)]
+    for route in routes:
+        np.testing.assert_array_equal(chain.fk(route), expected)
+        np.testing.assert_array_equal(chain.jacobian(route), jac)
+    np.testing.assert_array_equal(chain.fk(np.zeros(6, dtype=np.int64)), chain.fk(np.zeros(6)))
+
+
+def test_results_are_fresh_arrays():
+    chain = rk.robots.ur5()
+    q = np.zeros(6)
+    a, b = chain.fk(q), chain.fk(q)
+    assert a is not b and not np.shares_memory(a, b)
+    a[0, 0] = 42.0
+    assert chain.fk(q)[0, 0] != 42.0
+    assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
+
+
+@pytest.mark.parametrize("method", ["fk", "jacobian"])
+@pytest.mark.parametrize(
+    "bad",
+    [np.zeros(5), np.zeros((2, 5)), np.zeros((2, 2, 6)), np.array([0, 0, 0, 0, 0, np.nan]),
+     np.array([0, 0, 0, 0, np.inf, 0]), np.zeros(6, dtype=complex), None, "abcdef", np.zeros(0)],
+)
+def test_bad_q_raises_value_error_naming_q(method, bad):
+    chain = rk.robots.ur5()
+    with pytest.raises(ValueError, match="q"):
+        getattr(chain, method)(bad)
+
+
+def test_nan_in_batch_is_rejected():
+    chain = rk.robots.rpr()
+    Q = np.zeros((1000, 3))
+    Q[777, 1] = np.nan
+    with pytest.raises(ValueError, match="q"):
+        chain.fk(Q)
+
+
+# --------------------------------------------------------------------------- the Reach loop
+L1, L3 = rk.robots.RPR_L1, rk.robots.RPR_L3
+
+
+def _reach_literal(p_target, theta, lower, upper):
+    """Seed 000, Algorithm 1, line by line, with eqs. (1) and (9)."""
+    n, delta, d, dt = 25, 1e-5, 0.75, 0.025
+
+    def fk(t):
+        return np.array([(L1 + t[1]) * np.cos(t[0]) + L3 * np.cos(t[0] + t[2]),
+                         (L1 + t[1]) * np.sin(t[0]) + L3 * np.sin(t[0] + t[2])])
+
+    def jac(t):
+        s1, c1, s13, c13 = np.sin(t[0]), np.cos(t[0]), np.sin(t[0] + t[2]), np.cos(t[0] + t[2])
+        return np.array([[-(L1 + t[1]) * s1 - L3 * s13, c1, -L3 * s13],
+                         [(L1 + t[1]) * c1 + L3 * c13, s1, L3 * c13]])
+
+    p = fk(theta)
+    while True:
+        J = jac(theta)
+        theta = np.clip(theta + dt * (J.T @ np.linalg.inv(J @ J.T) @ (d * (p_target - p) / dt)), lower, upper)
+        p = fk(theta)
+        n -= 1
+        if n == 0 or np.linalg.norm(p_target - p) < delta:
+            return theta, 25 - n
+
+
+def test_track_equals_the_literal_seed_algorithm_point_by_point():
+    chain = rk.robots.rpr()
+    lower, upper = chain.limits
+    q0 = np.array([math.pi / 2, 0.5, math.pi / 2])
+    points = rk.paths.line(chain.fk(q0)[:2, 3], (1.5, 1.0), 0.002)
+    tr = rk.track(chain, points, q0)
+    q = q0
+    for k, p in enumerate(points):
+        q, iterations = _reach_literal(p, q, lower, upper)
+        np.testing.assert_allclose(tr.q[k], q, rtol=0, atol=1e-9)
+        assert tr.iterations[k] == iterations
+    assert tr.converged.all()
+
+
+def test_reach_and_track_agree_on_every_task():
+    rng = np.random.default_rng(5)
+    cases = [(rk.robots.ur5(), "pose"), (rk.robots.ur5(), "position"), (rk.robots.puma560(), "pose"),
+             (rk.robots.planar_3r(), "xyphi"), (rk.robots.rpr(), "xy"), (rk.robots.prr(), "position"),
+             (rk.robots.rp(), "xy"),  # 2 joints, 7 joints: the loop's dynamic-size build
+             (rk.Chain.from_dh([(0.3, math.pi / 2 * (i % 2), 0.1, 0.0, "R") for i in range(7)]), "pose")]
+    for chain, task in cases:
+        q0 = random_q(chain, rng) * 0.5
+        q1 = q0 + rng.uniform(-0.02, 0.02, chain.dof)
+        T = chain._fk_kdl(q1)
+        target = {"pose": T, "position": T[:3, 3], "xy": T[:2, 3],
+                  "xyphi": np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])}[task]
+        res = rk.reach(chain, target, q0, task=task, saturate=False)
+        assert res.converged, (chain, task, res)
+        tr = rk.track(chain, np.asarray(target)[None], q0, task=task, saturate=False)
+        np.testing.assert_array_equal(tr.q[0], res.q)
+        assert tr.iterations[0] == res.iterations and tr.error[0] == res.error
+
+
+def test_track_with_nullspace_and_damping_stays_within_tolerance():
+    chain = rk.robots.rpr()
+    lower, upper = chain.limits
+    q0 = np.array([math.pi / 2, 0.5, math.pi / 2])
+    points = rk.paths.line(chain.fk(q0)[:2, 3], (1.5, 1.0), 0.005)
+    for options in ({"nullspace": "joint_limits"}, {"damping": 1e-3}, {"nullspace": np.array([0.5, 0.0, 0.2])}):
+        tr = rk.track(chain, points, q0, **options)
+        assert tr.converged.all(), options
+        assert np.all(tr.q >= lower - 1e-15) and np.all(tr.q <= upper + 1e-15)
+        for k in range(0, len(points), 97):
+            np.testing.assert_allclose(chain._fk_kdl(tr.q[k])[:2, 3], points[k], rtol=0, atol=1e-5)

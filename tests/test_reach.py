@@ -1,0 +1,218 @@
+"""The Reach loop (seed 000, Algorithm 1), path tracking, null-space joint-limit avoidance and the
+RPR's self-motion set, against the seed's algorithm written literally in numpy."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+L1, L3 = 1.5, 1.0
+Q_MIN = np.array([0.0, 0.0, 0.0])
+Q_MAX = np.array([math.pi / 2, 1.5, math.pi])
+
+
+def forward_kinematic(t):
+    """Seed 000, eq. (1)."""
+    return np.array([(L1 + t[1]) * np.cos(t[0]) + L3 * np.cos(t[0] + t[2]), (L1 + t[1]) * np.sin(t[0]) + L3 * np.sin(t[0] + t[2])])
+
+
+def jacobian(t):
+    """Seed 000, eq. (9)."""
+    s1, c1, s13, c13 = np.sin(t[0]), np.cos(t[0]), np.sin(t[0] + t[2]), np.cos(t[0] + t[2])
+    return np.array([[-(L1 + t[1]) * s1 - L3 * s13, c1, -L3 * s13], [(L1 + t[1]) * c1 + L3 * c13, s1, L3 * c13]])
+
+
+def seed_reach(p_target, theta):
+    """Algorithm 1 of seed 000, line by line."""
+    n, delta = 25, 1e-5
+    d, dt = 0.75, 0.025
+    p = forward_kinematic(theta)
+    iterations = 0
+    while True:
+        dp = d * (p_target - p) / dt
+        J = jacobian(theta)
+        dq_m = J.T @ np.linalg.inv(J @ J.T) @ dp
+        theta = np.clip(theta + dt * dq_m, Q_MIN, Q_MAX)
+        p = forward_kinematic(theta)
+        n -= 1
+        iterations += 1
+        if n == 0 or np.linalg.norm(p_target - p) < delta:
+            return theta, iterations
+
+
+def joint_limit_cost(Q):
+    """Seed 000, eq. (6)-(7): z = 1/2 |W (qbar - q)|^2."""
+    qbar, w = (Q_MAX + Q_MIN) / 2, 1 / (Q_MAX - Q_MIN)
+    return 0.5 * np.sum((w * (qbar - Q)) ** 2, axis=-1)
+
+
+# Figure 2: from point 1 on the workspace boundary (t1 = pi/2) to point 2.
+Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
+P1, P2 = forward_kinematic(Q1), np.array([1.5, 1.0])
+
+
+def test_reach_equals_the_literal_seed_algorithm(rng):
+    chain = rk.robots.rpr()
+    for _ in range(200):
+        q = rng.uniform(Q_MIN, Q_MAX)
+        target = forward_kinematic(q) + rng.normal(scale=0.01, size=2)
+        expected, iterations = seed_reach(target, q)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", rk.PrecisionWarning)
+            r = rk.reach(chain, target, q)
+        np.testing.assert_allclose(r.q, expected, atol=1e-9)
+        assert r.iterations == iterations
+        assert r.converged == (np.linalg.norm(target - forward_kinematic(r.q)) < 1e-5)
+        assert r.error == pytest.approx(np.linalg.norm(target - forward_kinematic(r.q)), abs=1e-12)
+
+
+def test_track_a_2000_point_line_within_tolerance_and_limits():
+    chain = rk.robots.rpr()
+    points = P1 + np.linspace(0, 1, 2000)[:, None] * (P2 - P1)
+    for nullspace in (None, "joint_limits"):
+        tr = rk.track(chain, points, Q1, nullspace=nullspace)
+        assert tr.q.shape == (2000, 3) and tr.converged.all()
+        reached = np.array([forward_kinematic(q) for q in tr.q])
+        assert np.max(np.linalg.norm(reached - points, axis=1)) < 1e-5
+        assert np.all(tr.q >= Q_MIN) and np.all(tr.q <= Q_MAX)
+
+
+def test_nullspace_lowers_the_joint_limit_cost_at_the_same_accuracy():
+    chain = rk.robots.rpr()
+    points = P1 + np.linspace(0, 1, 2000)[:, None] * (P2 - P1)
+    plain = rk.track(chain, points, Q1)
+    avoid = rk.track(chain, points, Q1, nullspace="joint_limits")
+    assert avoid.converged.all() and plain.converged.all()
+    assert joint_limit_cost(avoid.q).mean() < 0.95 * joint_limit_cost(plain.q).mean()
+    assert avoid.error.max() < 1e-5
+    # Stronger gains avoid more; zero gains are the plain minimum-norm path.
+    strong = rk.track(chain, points, Q1, nullspace=5 / (Q_MAX - Q_MIN))
+    assert strong.converged.all()
+    assert joint_limit_cost(strong.q).mean() < joint_limit_cost(avoid.q).mean()
+    np.testing.assert_array_equal(rk.track(chain, points, Q1, nullspace=np.zeros(3)).q, plain.q)
+
+
+def test_track_equals_reach_point_by_point(rng):
+    chain = rk.robots.planar_3r(0.5, 0.4, 0.3)
+    q = np.array([0.3, 0.6, -0.4])
+    points = rk.paths.circle(50, radius=0.05, center=chain.fk(q)[:2, 3] - (0.05, 0))
+    tr = rk.track(chain, points, q)
+    for k, p in enumerate(points):
+        r = rk.reach(chain, p, q)
+        np.testing.assert_array_equal(r.q, tr.q[k])
+        assert (r.iterations, r.converged, r.error) == (tr.iterations[k], tr.converged[k], tr.error[k])
+        q = r.q
+
+
+@pytest.mark.parametrize("task", ["pose", "position", "xyphi"])
+def test_reach_other_tasks(task, rng):
+    chain = rk.robots.ur5() if task != "xyphi" else rk.robots.planar_3r(0.5, 0.4, 0.3)
+    q = rng.uniform(-1, 1, chain.dof)
+    goal_q = q + rng.normal(scale=0.02, size=chain.dof)
+    T = chain.fk(goal_q)
+    target = {"pose": T, "position": T[:3, 3], "xyphi": [T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])]}[task]
+    r = rk.reach(chain, target, q, task=task, max_iter=100, tol=1e-10)
+    assert r.converged
+    reached = chain.fk(r.q)
+    np.testing.assert_allclose(reached[:3, 3] if task != "xyphi" else reached[:2, 3], np.asarray(target if task != "pose" else T[:3, 3])[: 3 if task != "xyphi" else 2], atol=1e-9)
+    if task in ("pose", "xyphi"):
+        np.testing.assert_allclose(reached[:2, :2] if task == "xyphi" else reached[:3, :3], T[:2, :2] if task == "xyphi" else T[:3, :3], atol=1e-9)
+
+
+def test_planar_angle_error_is_wrapped():
+    chain = rk.robots.planar_3r(0.5, 0.4, 0.3)
+    q = np.array([0.3, 0.8, math.pi - 1.1 - 0.01])  # tool angle pi - 0.01, elbow bent
+    T = chain.fk(q + [0, 0, 0.02])  # the tool angle crosses +pi
+    r = rk.reach(chain, [T[0, 3], T[1, 3], -math.pi + 0.01], q, task="xyphi", max_iter=50, tol=1e-10)
+    assert r.converged
+    np.testing.assert_allclose(r.q, q + [0, 0, 0.02], atol=1e-9)
+
+
+def test_precision_not_reached_warns():
+    chain = rk.robots.rpr()
+    with pytest.warns(rk.PrecisionWarning, match="precision not reached"):
+        r = rk.reach(chain, [0.5, 0.5], Q1, max_iter=2)
+    assert not r.converged and r.iterations == 2 and r.error > 1e-5
+    # Out of reach: saturation holds the joints at their limits and the loop says so.
+    with pytest.warns(rk.PrecisionWarning):
+        r = rk.reach(chain, [10.0, 10.0], Q1)
+    assert not r.converged and np.all(r.q <= Q_MAX) and np.all(r.q >= Q_MIN)
+    with pytest.warns(rk.PrecisionWarning, match="on 1 of 2 path points"):
+        rk.track(chain, [P1, [10.0, 10.0]], Q1)
+
+
+def test_damping_near_a_singularity():
+    chain = rk.robots.planar_3r(1.0, 1.0, 1.0)
+    q = np.array([0.0, 1e-9, 0.0])  # stretched: J J^T is singular in xy
+    target = [2.9, 0.05]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rk.PrecisionWarning)
+        plain = rk.reach(chain, target, q, max_iter=200)
+    damped = rk.reach(chain, target, q, max_iter=200, damping=0.05)
+    assert damped.converged and np.all(np.isfinite(plain.q))
+
+
+def test_saturate_false_lets_joints_leave_their_limits():
+    chain = rk.robots.rpr()
+    target = forward_kinematic(Q1) + [0.0, 0.05]  # pushes t1 past pi/2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rk.PrecisionWarning)
+        free = rk.reach(chain, target, Q1, saturate=False)
+    assert free.converged
+
+
+def test_rpr_self_motion_closed_form(rng):
+    for _ in range(20):
+        p = forward_kinematic(rng.uniform(Q_MIN, Q_MAX))
+        S = rk.robots.rpr_self_motion(p, num=361)
+        assert S.shape == (2, 361, 3)
+        valid = S[np.isfinite(S[..., 0])]
+        assert len(valid) > 0
+        for q in valid:
+            np.testing.assert_allclose(forward_kinematic(q), p, atol=1e-12)
+        assert np.all(valid >= Q_MIN - 1e-12) and np.all(valid <= Q_MAX + 1e-12)
+    # Point 1 of Figure 2 lies on the workspace boundary: only t1 = pi/2 reaches it.
+    S = rk.robots.rpr_self_motion(P1, t1=np.linspace(0, math.pi / 2, 1001))
+    t1_ok = S[..., 0][np.isfinite(S[..., 0])]
+    assert t1_ok.min() > math.pi / 2 - 0.05
+    np.testing.assert_allclose(S[1, -1], Q1, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(task="joint"), "task: expected one of"),
+        (dict(tol=-1), "tol: must be a positive finite number"),
+        (dict(gain=np.nan), "gain: must be a positive finite number"),
+        (dict(dt=0), "dt: must be a positive finite number"),
+        (dict(max_iter=0), "max_iter: must be at least 1"),
+        (dict(damping=-0.1), "damping: must be a finite number >= 0"),
+        (dict(nullspace="limits"), "nullspace: expected None, 'joint_limits' or an array of gains"),
+        (dict(nullspace=[1.0, 2.0]), r"nullspace: expected shape \(3,\)"),
+        (dict(nullspace=[1.0, np.nan, 2.0]), "nullspace: contains NaN or inf"),
+    ],
+)
+def test_reach_rejects_bad_options(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        rk.reach(rk.robots.rpr(), P1, Q1, **kwargs)
+
+
+def test_reach_rejects_bad_targets_and_joints():
+    chain = rk.robots.rpr()
+    with pytest.raises(ValueError, match=r"target: expected shape \(2,\)"):
+        rk.reach(chain, [1.0, 2.0, 3.0], Q1)
+    with pytest.raises(ValueError, match="target: expected a \\(4, 4\\) homogeneous matrix"):
+        rk.reach(chain, [1.0, 2.0], Q1, task="pose")
+    with pytest.raises(ValueError, match="q: contains NaN or inf"):
+        rk.reach(chain, P1, [np.nan, 0, 0])
+    with pytest.raises(ValueError, match=r"points: expected shape \(K, 2\)"):
+        rk.track(chain, np.zeros((4, 3)), Q1)
+    with pytest.raises(ValueError, match="points: contains NaN or inf"):
+        rk.track(chain, [[0, np.inf]], Q1)
+    with pytest.raises(ValueError, match="nullspace: joint 0 has no finite limits"):
+        rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], nullspace=[1, 0, 0])
+    empty = rk.track(chain, np.zeros((0, 2)), Q1)
+    assert empty.q.shape == (0, 3)

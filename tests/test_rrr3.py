@@ -1,0 +1,353 @@
+"""The 3-RRR models against independent truth: the legs' forward chains, finite differences, the
+seed's formulas and an independent dense search, all written here in numpy."""
+
+import math
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+from rrr3_truth import T, U, base, cross, elbows, platform, random_poses, rot, seed_jacobians, u
+
+
+@pytest.fixture
+def robot():
+    return rk.RRR3()
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(3)
+
+
+# --- inverse models -------------------------------------------------------------------------------
+
+
+def test_modes_are_the_eight_sign_triples(robot):
+    modes = rk.RRR3.modes
+    assert len(modes) == 8 and len(set(modes)) == 8
+    assert modes[0] == (1, 1, 1)
+    assert all(set(m) <= {1, -1} and len(m) == 3 for m in modes)
+
+
+def test_ik_leg_chains_reach_the_platform_in_every_mode(robot, rng):
+    count = 0
+    for _ in range(60):
+        pose = np.array([*rng.uniform(-0.08, 0.08, 2), rng.uniform(-1, 1)])
+        all_rows = robot.ik_all(pose)
+        for k, mode in enumerate(robot.modes):
+            try:
+                alpha = robot.ik(pose, mode)
+            except rk.UnreachableError:
+                assert np.isnan(all_rows[k]).all()
+                continue
+            np.testing.assert_array_equal(all_rows[k], alpha)
+            a, b, o = elbows(robot, alpha), platform(robot, pose), base(robot)
+            np.testing.assert_allclose(np.linalg.norm(b - a, axis=1), robot.l2, atol=1e-12)
+            # Elbow sign: link 2 turns counter-clockwise from link 1 when m_i = +1.
+            assert np.all(np.sign(cross(a - o, b - a)) == np.array(mode))
+            count += 1
+    assert count > 200
+
+
+def test_ik_matches_design_formula(robot, rng):
+    """DESIGN.md: alpha_i = atan2(B_i - O_i) - m_i acos((l1^2 + |OB|^2 - l2^2) / (2 l1 |OB|))."""
+    for pose in random_poses(robot, rng, 20):
+        for mode in robot.modes:
+            d = platform(robot, pose) - base(robot)
+            r = np.linalg.norm(d, axis=1)
+            expected = np.arctan2(d[:, 1], d[:, 0]) - np.array(mode) * np.arccos(
+                (robot.l1**2 + r**2 - robot.l2**2) / (2 * robot.l1 * r))
+            diff = np.angle(np.exp(1j * (robot.ik(pose, mode) - expected)))
+            np.testing.assert_allclose(diff, 0, atol=1e-12)
+
+
+def test_ik_batch_equals_ik_row_by_row(robot, rng):
+    poses = np.column_stack((rng.uniform(-0.2, 0.2, (3000, 2)), rng.uniform(-np.pi, np.pi, 3000)))
+    for mode in [(1, 1, 1), (-1, 1, -1)]:
+        out = robot.ik_batch(poses, mode)
+        assert out.shape == (3000, 3)
+        unreachable = 0
+        for p, row in zip(poses, out):
+            try:
+                np.testing.assert_array_equal(row, robot.ik(p, mode))
+            except rk.UnreachableError:
+                assert np.isnan(row).all()
+                unreachable += 1
+        assert 100 < unreachable < 2900
+    assert robot.ik_batch(np.zeros((0, 3))).shape == (0, 3)
+
+
+def test_unreachable_names_the_leg(robot):
+    # Far below the base: leg 0 at O_0 = (0, -0.13) is the closest, legs 1 and 2 cannot reach.
+    with pytest.raises(rk.UnreachableError, match="leg 1") as info:
+        robot.ik([0.0, -0.3, 0.0])
+    assert isinstance(info.value, ValueError) and info.value.leg == 1
+    # Only leg 0 too far: the pose is pushed away from O_0 along +y.
+    pose = np.array([0.0, 0.185, 0.0])
+    assert np.linalg.norm(platform(robot, pose)[0] - base(robot)[0]) > 0.24
+    assert np.all(np.linalg.norm(platform(robot, pose)[1:] - base(robot)[1:], axis=1) < 0.24)
+    with pytest.raises(rk.UnreachableError, match="leg 0"):
+        robot.ik(pose)
+
+
+def test_ik_newton_converges_to_the_analytic_answer(robot, rng):
+    for pose in random_poses(robot, rng, 10):
+        for mode in [(1, 1, 1), (1, -1, -1), (-1, 1, -1)]:
+            alpha = robot.ik(pose, mode)
+            a, b = elbows(robot, alpha), platform(robot, pose)
+            link1 = a - base(robot)
+            beta = np.arctan2(cross(link1, b - a), np.sum(link1 * (b - a), axis=1))
+            guess = np.concatenate((alpha + rng.uniform(-0.1, 0.1, 3), beta + rng.uniform(-0.1, 0.1, 3)))
+            res = robot.ik_newton(pose, guess)
+            assert res.converged and res.error < 1e-12
+            got_alpha, got_beta = res
+            np.testing.assert_allclose(np.angle(np.exp(1j * (got_alpha - alpha))), 0, atol=1e-10)
+            np.testing.assert_allclose(np.angle(np.exp(1j * (got_beta - beta))), 0, atol=1e-10)
+            assert np.all(np.sign(got_beta) == np.array(mode))
+            # The full chain O + l1 u(alpha) + l2 u(alpha + beta) lands on B.
+            tip = base(robot) + robot.l1 * np.column_stack((np.cos(got_alpha), np.sin(got_alpha))) + robot.l2 * \
+                np.column_stack((np.cos(got_alpha + got_beta), np.sin(got_alpha + got_beta)))
+            np.testing.assert_allclose(tip, b, atol=1e-12)
+
+
+def test_ik_newton_reports_non_convergence(robot):
+    pose = np.array([0.01, 0.0, 0.1])
+    assert not robot.ik_newton(pose, np.zeros(6), max_iter=1).converged
+    res = robot.ik_newton([0.0, -0.3, 0.0], np.ones(6))  # unreachable: no root at all
+    assert not res.converged and res.error > 1e-3
+
+
+# --- forward models -------------------------------------------------------------------------------
+
+
+def closure(robot, alpha, pose):
+    return np.abs(np.linalg.norm(platform(robot, pose) - elbows(robot, alpha), axis=1) - robot.l2)
+
+
+def independent_fk_phis(robot, alpha, samples=100_000):
+    """Roots in phi found by another elimination: E on the intersection of the circles of legs 0 and 1
+    (two branches), then the sign of |A_2B_2| - l2 along a dense phi grid."""
+    a = elbows(robot, alpha)
+    phi = np.linspace(-np.pi, np.pi, samples, endpoint=False)
+    c, s = np.cos(phi), np.sin(phi)
+    bp = robot.platform_radius * U
+    rb = np.stack([np.column_stack((c * bp[i, 0] - s * bp[i, 1], s * bp[i, 0] + c * bp[i, 1])) for i in range(3)])
+    p0, p1 = a[0] - rb[0], a[1] - rb[1]  # E lies on circle(p0, l2) and circle(p1, l2)
+    d = p1 - p0
+    dist = np.linalg.norm(d, axis=1)
+    h2 = robot.l2**2 - (dist / 2) ** 2
+    valid = (h2 >= 0) & (dist > 0)
+    h = np.sqrt(np.where(valid, h2, 0.0))
+    mid = p0 + d / 2
+    perp = np.column_stack((-d[:, 1], d[:, 0])) / np.where(dist > 0, dist, 1)[:, None]
+    found = []
+    for sign in (1, -1):
+        e = mid + sign * h[:, None] * perp
+        g = np.linalg.norm(e + rb[2] - a[2], axis=1) - robot.l2
+        ok = valid & np.roll(valid, -1)
+        change = ok & (np.sign(g) != np.sign(np.roll(g, -1)))
+        found.extend(phi[change])
+    return np.array(found)
+
+
+def test_fk_all_contains_the_pose_and_closes_the_loops(robot, rng):
+    for mode in robot.modes:
+        for pose in random_poses(robot, rng, 4, mode):
+            alpha = robot.ik(pose, mode)
+            sols = robot.fk_all(alpha)
+            assert 1 <= len(sols) <= 6
+            assert np.min(np.linalg.norm(sols - pose, axis=1)) < 1e-9
+            for sol in sols:
+                assert np.max(closure(robot, alpha, sol)) < 1e-10
+                assert -np.pi <= sol[2] < np.pi
+
+
+def test_fk_all_misses_nothing_an_independent_search_finds(robot, rng):
+    total = 0
+    for trial in range(25):
+        alpha = rng.uniform(-np.pi, np.pi, 3)
+        sols = robot.fk_all(alpha)
+        for sol in sols:
+            assert np.max(closure(robot, alpha, sol)) < 1e-10
+        for phi in independent_fk_phis(robot, alpha):
+            total += 1
+            gap = np.abs(np.angle(np.exp(1j * (sols[:, 2] - phi)))) if len(sols) else np.array([np.inf])
+            assert gap.min() < 1e-3, f"alpha={alpha!r}: fk_all missed phi={phi}"
+    assert total > 10  # the random actuations did produce assembly modes
+
+
+def test_fk_all_finds_six_modes_on_a_known_case():
+    # Over random actuations the seed's robot shows several assembly modes at once.
+    robot = rk.RRR3(0.13, 0.07, 0.12, 0.12)
+    best = 0
+    rng = np.random.default_rng(0)
+    for _ in range(300):
+        alpha = rng.uniform(-np.pi, np.pi, 3)
+        sols = robot.fk_all(alpha)
+        best = max(best, len(sols))
+    assert best >= 4
+
+
+def test_fk_newton_from_a_guess(robot, rng):
+    for pose in random_poses(robot, rng, 10):
+        alpha = robot.ik(pose)
+        res = robot.fk(alpha, pose + np.array([0.003, -0.002, 0.03]))
+        assert res.converged
+        np.testing.assert_allclose(res.pose, pose, atol=1e-10)
+    assert not robot.fk(np.zeros(3), np.zeros(3), max_iter=0).converged
+
+
+# --- Jacobians ----------------------------------------------------------------------------------------
+
+
+def test_jacobians_match_the_seed_formulas(robot, rng):
+    for mode in [(1, 1, 1), (-1, 1, -1), (-1, -1, -1)]:
+        for pose in random_poses(robot, rng, 5, mode):
+            A, B = robot.jacobians(pose, mode)
+            A_ref, B_ref = seed_jacobians(robot, pose, robot.ik(pose, mode))
+            np.testing.assert_allclose(A, A_ref, atol=1e-12)
+            np.testing.assert_allclose(B, B_ref, atol=1e-12)
+
+
+def test_jacobians_against_finite_differences(robot, rng):
+    """A v = B alpha_dot with v = (v_x, v_y, w), the linear velocity in the effector frame."""
+    h = 1e-6
+    for mode in [(1, 1, 1), (1, -1, 1)]:
+        for pose in random_poses(robot, rng, 5, mode):
+            A, B = robot.jacobians(pose, mode)
+            twist = rng.normal(size=3) * np.array([0.05, 0.05, 0.5])  # base-frame velocity and w
+            alpha_dot = (robot.ik(pose + h * twist, mode) - robot.ik(pose - h * twist, mode)) / (2 * h)
+            v = np.concatenate((rot(pose[2]).T @ twist[:2], twist[2:]))
+            np.testing.assert_allclose(A @ v, B @ alpha_dot, atol=1e-7)
+
+
+# --- singularities --------------------------------------------------------------------------------
+
+
+def test_well_conditioned_poses_are_regular(robot):
+    s = robot.singularity([0.0, 0.0, 0.0])
+    assert s.kind == "none" and s.leg is None and s.lines is None
+    assert 0 < s.distance <= 1
+
+
+def test_stretched_leg_is_serial():
+    robot = rk.RRR3()
+    for leg in range(3):
+        # Leg `leg` fully stretched towards the centre; the platform orientation is free.
+        alpha = T[leg] + np.pi + 0.2
+        b = base(robot)[leg] + (robot.l1 + robot.l2) * u(alpha)
+        phi = 0.1
+        pose = np.array([*(b - rot(phi) @ (robot.platform_radius * U[leg])), phi])
+        s = robot.singularity(pose, (1, 1, 1))
+        assert s.kind == "serial" and s.leg == leg
+        assert abs(s.det_b) < 1e-9
+
+
+def concurrency_defect(robot, pose, mode):
+    """Distance from the intersection of lines A_0B_0, A_1B_1 to line A_2B_2 (0 when concurrent)."""
+    a, b = elbows(robot, robot.ik(pose, mode)), platform(robot, pose)
+    d = b - a
+    t = np.linalg.solve(np.column_stack((d[0], -d[1])), a[1] - a[0])
+    p = a[0] + t[0] * d[0]
+    return abs(cross(d[2], p - a[2])) / np.linalg.norm(d[2])
+
+
+def test_parallel_singularity_found_along_phi(robot):
+    # At (0.05, 0.03) in mode (1, 1, 1), det A changes sign along phi: bisect for the root.
+    x, y, mode = 0.05, 0.03, (1, 1, 1)
+    phis = np.linspace(-1.0, 1.0, 401)
+    dets = np.array([np.linalg.det(seed_jacobians(robot, np.array([x, y, p]), robot.ik([x, y, p], mode))[0])
+                     for p in phis])
+    k = np.nonzero(np.sign(dets[:-1]) != np.sign(dets[1:]))[0]
+    assert len(k) >= 1
+    lo, hi = phis[k[0]], phis[k[0] + 1]
+    f = lambda p: np.linalg.det(seed_jacobians(robot, np.array([x, y, p]), robot.ik([x, y, p], mode))[0])
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.sign(f(mid)) == np.sign(f(lo)) else (lo, mid)
+    pose = np.array([x, y, 0.5 * (lo + hi)])
+    s = robot.singularity(pose, mode)
+    assert s.kind == "parallel" and abs(s.det_a_norm) < 1e-9 and s.distance < 1e-6
+    assert s.lines == "concurrent" and concurrency_defect(robot, pose, mode) < 1e-9
+    # A little away from it the robot is regular again.
+    assert robot.singularity(pose + [0, 0, 0.1], mode).kind == "none"
+
+
+def test_normalised_determinants_do_not_depend_on_size(robot, rng):
+    big = rk.RRR3(13.0, 7.0, 12.0, 12.0)
+    for pose in random_poses(robot, rng, 5):
+        s, S = robot.singularity(pose), big.singularity(pose * [100, 100, 1])
+        assert S.det_a_norm == pytest.approx(s.det_a_norm, rel=1e-9)
+        assert S.det_b_norm == pytest.approx(s.det_b_norm, rel=1e-9)
+        assert S.distance == pytest.approx(s.distance, rel=1e-7)
+        assert S.kind == s.kind
+
+
+def test_points_for_drawing(robot):
+    pose = np.array([0.01, -0.02, 0.2])
+    pts = robot.points(pose, (1, -1, 1))
+    np.testing.assert_allclose(pts["O"], base(robot))
+    np.testing.assert_allclose(pts["B"], platform(robot, pose))
+    np.testing.assert_allclose(np.linalg.norm(pts["A"] - pts["O"], axis=1), robot.l1)
+    np.testing.assert_allclose(np.linalg.norm(pts["B"] - pts["A"], axis=1), robot.l2)
+
+
+# --- bad input -------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("args, name", [
+    ((0, 0.07, 0.12, 0.12), "base_radius"), ((0.13, -1, 0.12, 0.12), "platform_radius"),
+    ((0.13, 0.07, float("nan"), 0.12), "l1"), ((0.13, 0.07, 0.12, float("inf")), "l2"),
+])
+def test_invalid_geometry(args, name):
+    with pytest.raises(ValueError, match=name):
+        rk.RRR3(*args)
+
+
+def test_bad_input_raises_value_error(robot):
+    cases = [
+        (lambda: robot.ik([0, 0, float("nan")]), "pose"),
+        (lambda: robot.ik([0, 0]), "pose"),
+        (lambda: robot.ik("abc"), "pose"),
+        (lambda: robot.ik([0, 0, 0], (1, 0, 1)), "mode"),
+        (lambda: robot.ik([0, 0, 0], (1, 1)), "mode"),
+        (lambda: robot.ik([0, 0, 0], (1, 2, -1)), "mode"),
+        (lambda: robot.ik_batch(np.zeros((4, 2))), "poses"),
+        (lambda: robot.ik_batch(np.full((4, 3), np.inf)), "poses"),
+        (lambda: robot.ik_batch(np.zeros(3)), "poses"),
+        (lambda: robot.ik_all(None), "pose"),
+        (lambda: robot.fk_all([0, 0]), "alpha"),
+        (lambda: robot.fk_all([0, 0, float("nan")]), "alpha"),
+        (lambda: robot.fk([0, 0, 0], [0, 0]), "guess"),
+        (lambda: robot.ik_newton([0, 0, 0], np.zeros(5)), "guess"),
+        (lambda: robot.jacobians([0, 0, 0], (1, 1, 1, 1)), "mode"),
+        (lambda: robot.singularity([0, 0, 0], tol=-1), "tol"),
+        (lambda: robot.points(np.zeros((3, 3))), "pose"),
+    ]
+    for call, name in cases:
+        with pytest.raises(ValueError, match=name):
+            call()
+
+
+def test_degenerate_geometry_does_not_crash():
+    # Base and platform of the same size with l1 == l2: at the centre every leg is folded (r = 0).
+    robot = rk.RRR3(0.1, 0.1, 0.1, 0.1)
+    with pytest.raises(rk.UnreachableError):
+        robot.ik([0, 0, 0])
+    assert np.isnan(robot.ik_batch(np.zeros((2, 3)))).all()
+    robot.fk_all([0.0, 2.0, 4.0])  # any answer, but no crash
+
+
+def test_ik_is_periodic_in_phi_for_any_orientation(robot, rng):
+    """The fast sine/cosine and atan2 of the core hold for small and huge orientations alike."""
+    poses = np.array(random_poses(robot, rng, 5))
+    for turns in [1, -7, 1000, 20_000, 10**6]:
+        shifted = poses + [0, 0, 2 * np.pi * turns]
+        got = robot.ik_batch(shifted, (1, -1, 1))
+        want = robot.ik_batch(poses, (1, -1, 1))
+        tol = 1e-14 * max(1.0, 2 * np.pi * abs(turns))  # phi itself is rounded to that
+        np.testing.assert_allclose(np.angle(np.exp(1j * (got - want))), 0, atol=tol)
+        for p, row in zip(shifted, got):
+            np.testing.assert_array_equal(robot.ik(p, (1, -1, 1)), row)

@@ -1,0 +1,130 @@
+"""Singularity avoidance along the seed program's paths, checked with the seed's formulas here."""
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+from rrr3_truth import base, cross, elbows, platform, seed_jacobians
+
+MODE = (1, 1, 1)
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return rk.RRR3()
+
+
+@pytest.fixture(scope="module")
+def clover():
+    return rk.paths.clover(629)  # t advances by about 0.01 rad per step, as in the seed program
+
+
+def det_a_norm(robot, poses, mode=MODE):
+    """det A / R_e along a pose sequence, A from the seed's formulas and each leg's chain."""
+    return np.array([np.linalg.det(seed_jacobians(robot, p, robot.ik(p, mode))[0]) for p in poses]) / \
+        robot.platform_radius
+
+
+def det_b_norm(robot, poses, mode=MODE):
+    return np.array([np.linalg.det(seed_jacobians(robot, p, robot.ik(p, mode))[1]) for p in poses]) / robot.l1**3
+
+
+def excursions(phi, nominal):
+    """Maximal runs of indices where phi differs from nominal."""
+    away = np.abs(phi - nominal) > 1e-12
+    runs, k = [], 0
+    while k < len(phi):
+        if away[k]:
+            j = k
+            while j < len(phi) and away[j]:
+                j += 1
+            runs.append((k, j))
+            k = j
+        else:
+            k += 1
+    return runs
+
+
+def test_the_clover_crosses_parallel_singularities_without_avoidance(robot, clover):
+    plan = robot.plan(clover, phi=0.0, mode=MODE, avoid=False)
+    np.testing.assert_array_equal(plan.poses[:, 2], 0.0)
+    d = det_a_norm(robot, plan.poses)
+    np.testing.assert_allclose(plan.det_a_norm, d, atol=1e-12)
+    assert np.sum(np.sign(d[1:]) != np.sign(d[:-1])) >= 4
+    assert np.min(np.abs(d)) < 0.01
+    assert not plan.feasible
+
+
+def test_avoidance_keeps_det_a_away_from_zero_with_one_sign(robot, clover):
+    plan = robot.plan(clover, phi=0.0, mode=MODE, max_step=0.01, margin=0.05)
+    assert plan.feasible
+    np.testing.assert_allclose(plan.poses[:, :2], clover, atol=0)
+    d = det_a_norm(robot, plan.poses)
+    assert np.all(np.sign(d) == plan.sign)
+    assert np.min(np.abs(d)) > 0.1  # against < 0.01 without avoidance
+    assert np.min(plan.distance) >= 0.05
+
+
+def test_avoidance_is_smooth_and_returns_to_nominal(robot, clover):
+    plan = robot.plan(clover, phi=0.0, mode=MODE, max_step=0.01)
+    phi = plan.poses[:, 2]
+    assert np.max(np.abs(np.diff(phi))) <= 0.01 + 1e-12
+    assert np.mean(phi == 0.0) > 0.4  # most of the path at the nominal orientation
+    nominal = robot.plan(clover, phi=0.0, mode=MODE, avoid=False)
+    runs = excursions(phi, 0.0)
+    assert 1 <= len(runs) <= 8
+    for k0, k1 in runs:
+        # Each departure is caused by a nearby singularity at the nominal orientation...
+        assert np.min(nominal.distance[max(0, k0 - 60):k1 + 60]) < 0.05
+        # ...and goes out and back once (no chattering): |phi| rises to one peak, then falls.
+        a = np.abs(phi[k0:k1])
+        peak = int(np.argmax(a))
+        assert np.all(np.diff(a[:peak + 1]) >= -1e-12) and np.all(np.diff(a[peak:]) <= 1e-12)
+
+
+def test_avoidance_never_serial_and_stays_in_its_mode(robot, clover):
+    plan = robot.plan(clover, phi=0.0, mode=MODE, serial_margin=0.02)
+    assert np.min(np.abs(det_b_norm(robot, plan.poses))) >= 0.02 - 1e-12
+    for p, alpha in zip(plan.poses, plan.alpha):
+        a, b, o = elbows(robot, alpha), platform(robot, p), base(robot)
+        np.testing.assert_allclose(np.linalg.norm(b - a, axis=1), robot.l2, atol=1e-12)
+        assert np.all(np.sign(cross(a - o, b - a)) == np.array(MODE))
+
+
+def test_the_circle_needs_no_avoidance(robot):
+    circle = rk.paths.circle(629, radius=0.1)
+    plan = robot.plan(circle, phi=0.0, mode=MODE)
+    assert plan.feasible
+    np.testing.assert_array_equal(plan.poses[:, 2], 0.0)
+    d = det_a_norm(robot, plan.poses)
+    assert np.all(np.sign(d) == np.sign(d[0])) and np.min(np.abs(d)) > 0.1
+
+
+def test_other_nominal_orientation_and_mode(robot):
+    pts = rk.paths.clover(300, center=(0.01, 0.0))
+    plan = robot.plan(pts, phi=0.2, mode=(1, -1, 1))
+    phi = plan.poses[:, 2]
+    assert np.max(np.abs(np.diff(phi))) <= 0.01 + 1e-12
+    reachable = ~np.isnan(plan.alpha[:, 0])
+    assert reachable.all()
+    d = det_a_norm(robot, plan.poses, (1, -1, 1))
+    assert np.all(np.sign(d) == plan.sign)
+
+
+def test_plan_bad_input(robot):
+    with pytest.raises(ValueError, match="points"):
+        robot.plan(np.zeros((5, 3)))
+    with pytest.raises(ValueError, match="points"):
+        robot.plan(np.full((5, 2), np.nan))
+    with pytest.raises(ValueError, match="resolution"):
+        robot.plan(np.zeros((5, 2)), max_step=0.01, resolution=0.02)
+    with pytest.raises(ValueError, match="mode"):
+        robot.plan(np.zeros((5, 2)), mode=(1, 1, 0))
+    with pytest.raises(ValueError, match="phi"):
+        robot.plan(np.zeros((5, 2)), phi=float("inf"))
+    with pytest.raises(ValueError, match="points"):
+        robot.plan(np.zeros((100_000, 2)), span=3.0, resolution=0.001)  # 6001 orientations for each of 1e5 points
+    assert robot.plan(np.zeros((0, 2))).poses.shape == (0, 3)
+    far = robot.plan(np.array([[1.0, 1.0], [1.0, 1.01]]))  # unreachable everywhere: no crash
+    assert not far.feasible and np.isnan(far.alpha).all()

@@ -1,0 +1,120 @@
+"""3-RRR workspace maps and the design study, against reachability and determinants computed here."""
+
+import numpy as np
+import pytest
+
+import robokin as rk
+import robokin.rrr3_design as design
+
+from rrr3_truth import base, platform, seed_jacobians
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return rk.RRR3()
+
+
+@pytest.fixture(scope="module")
+def ws(robot):
+    return robot.workspace(phi=0.1, mode=(1, 1, 1), n=120)
+
+
+def test_reachable_cells_are_the_reachable_poses(robot, ws):
+    xx, yy = np.meshgrid(ws.x, ws.y)  # row j at y[j], column i at x[i]
+    reach = np.ones(xx.shape, bool)
+    for i in range(3):
+        bx = xx + robot.platform_radius * np.cos(np.radians(-90 + 120 * i) + 0.1)
+        by = yy + robot.platform_radius * np.sin(np.radians(-90 + 120 * i) + 0.1)
+        r = np.hypot(bx - base(robot)[i, 0], by - base(robot)[i, 1])
+        reach &= (r <= robot.l1 + robot.l2) & (r > 0)
+    assert reach.sum() > 1000
+    np.testing.assert_array_equal(ws.cells > 0, reach)
+    assert not reach[0].any() and not reach[-1].any() and not reach[:, 0].any() and not reach[:, -1].any()
+    assert ws.reachable_area == pytest.approx(reach.sum() * ws.cell_size**2)
+
+
+def test_reachable_area_converges_to_the_intersection_of_disks(robot):
+    # Monte Carlo estimate of the intersection of the three reach disks (an independent estimate).
+    rng = np.random.default_rng(1)
+    pts = rng.uniform(-0.3, 0.3, (400_000, 2))
+    inside = np.ones(len(pts), bool)
+    for i in range(3):
+        c = base(robot)[i] - platform(robot, np.zeros(3))[i]
+        inside &= np.linalg.norm(pts - c, axis=1) <= robot.l1 + robot.l2
+    mc = inside.mean() * 0.36
+    assert robot.workspace(0.0, (1, 1, 1), 400).reachable_area == pytest.approx(mc, rel=0.02)
+
+
+def test_singular_cells(robot, ws):
+    """Red cells sit on det A = 0: small |det A| or a sign change to a neighbour; others keep a sign."""
+    mode = (1, 1, 1)
+    det = np.full(ws.cells.shape, np.nan)
+    for j, i in zip(*np.nonzero(ws.cells > 0)):
+        pose = np.array([ws.x[i], ws.y[j], 0.1])
+        det[j, i] = np.linalg.det(seed_jacobians(robot, pose, robot.ik(pose, mode))[0]) / robot.platform_radius
+    sign = np.sign(det)
+    flips = np.zeros(det.shape, bool)
+    for axis in (0, 1):
+        d = np.abs(np.diff(sign, axis=axis)) == 2
+        sl_a = [slice(None)] * 2
+        sl_b = [slice(None)] * 2
+        sl_a[axis], sl_b[axis] = slice(None, -1), slice(1, None)
+        flips[tuple(sl_a)] |= d
+        flips[tuple(sl_b)] |= d
+    red = ws.cells == 2
+    assert red.sum() > 50
+    assert np.all(flips[red] | (np.abs(det[red]) < 1e-3))
+    # Every sign change between neighbours has a red (or serial) cell on one side.
+    for axis in (0, 1):
+        a = np.moveaxis(sign, axis, 0)
+        c = np.moveaxis(ws.cells, axis, 0)
+        change = np.abs(a[1:] - a[:-1]) == 2
+        assert np.all(((c[1:] >= 2) | (c[:-1] >= 2))[change])
+    assert ws.area <= ws.regular_area <= ws.reachable_area
+    assert ws.regular_area == pytest.approx(np.sum(ws.cells == 1) * ws.cell_size**2)
+
+
+def test_workspace_bad_input(robot):
+    with pytest.raises(ValueError, match="n"):
+        robot.workspace(n=1)
+    with pytest.raises(ValueError, match="n"):
+        robot.workspace(n=100_000)
+    with pytest.raises(ValueError, match="mode"):
+        robot.workspace(mode=(1, 1, 2))
+    with pytest.raises(ValueError, match="phi"):
+        robot.workspace(phi=float("nan"))
+    with pytest.raises(ValueError, match="platform_radii"):
+        design.area_vs_platform_radius([0.05, -0.1])
+    with pytest.raises(ValueError, match="robots"):
+        rk._core.rrr3_region_areas(np.array([[0.15, 0.05, 0.1, 0.0]]))
+
+
+def test_design_study_matches_the_workspace_maps():
+    radii = np.array([0.04, 0.08, 0.12])
+    curve = design.area_vs_platform_radius(radii, n=80)
+    for r, a in zip(radii, curve.area):
+        assert a == pytest.approx(rk.RRR3(0.15, r, 0.10, 0.10).workspace(0.0, (1, 1, 1), 80).area)
+    assert curve.best in radii
+    best = design.best_l2([0.08, 0.12], np.linspace(0.04, 0.2, 9), n=60)
+    assert best.area.shape == (2, 9)
+    np.testing.assert_allclose(best.index, best.area / (np.pi * (best.l1[:, None] + best.l2[None, :]) ** 2))
+    for k in range(2):
+        assert best.index[k].max() == best.index[k][list(best.l2).index(best.best_l2[k])]
+
+
+def test_plots_render(tmp_path, robot):
+    mpl = pytest.importorskip("matplotlib")
+    mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import robokin.plots_rrr3 as plots
+
+    fig, _ = plots.plot_robot(robot, np.array([0.02, 0.01, 0.2]), path=rk.paths.clover(100))
+    fig.savefig(tmp_path / "robot.png")
+    fig, _, w = plots.plot_workspace(robot, n=80)
+    fig.savefig(tmp_path / "ws.png")
+    fig, _ = plots.plot_design(design.area_vs_platform_radius(np.linspace(0.03, 0.12, 4), n=40),
+                               design.best_l2([0.08, 0.1], [0.05, 0.1, 0.15], n=40))
+    fig.savefig(tmp_path / "design.png")
+    plt.close("all")
+    assert all((tmp_path / f).stat().st_size > 1000 for f in ("robot.png", "ws.png", "design.png"))
