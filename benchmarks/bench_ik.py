@@ -222,10 +222,10 @@ def main() -> list:
                       f"{100 * results[ref][2]:.1f} % at 1e-6)")
             ref = results["KDL lma eps 1e-05 it 500"]
             ratio = results[best][1] / ref[1]
-            goals.append({"name": f"IK {name} best+restarts vs KDL LMA", "ratio": ratio, "goal": 0.2,
-                          "met": ratio <= 0.2 and results[best][0] >= ref[2]})
-            goals.append({"name": f"IK {name} 100 %, median vs 10 us", "ratio": results[best][1] / 10.0, "goal": 1.0,
-                          "met": results[best][1] <= 10.0})
+            goals.append({"name": f"IK {name} best+restarts vs KDL LMA", "ratio": float(ratio), "goal": 0.2,
+                          "met": bool(ratio <= 0.2 and results[best][0] >= ref[2])})
+            goals.append({"name": f"IK {name} 100 %, median vs 10 us", "ratio": float(results[best][1] / 10.0),
+                          "goal": 1.0, "met": bool(results[best][1] <= 10.0)})
         else:
             goals.append({"name": f"IK {name} 100 % with restarts", "ratio": float("nan"), "goal": 1.0, "met": False})
         t = time.perf_counter()
@@ -237,16 +237,23 @@ def main() -> list:
     puma = rk.robots.puma560()
     rng = np.random.default_rng(7)
     targets = puma.fk(rng.uniform(*puma.limits, (N_TARGETS, 6)))
-    counts, times = [], []
+    counts = []
     for T in targets:
-        t = time.perf_counter()
         s = rk.closed.puma560(T, limits=None)
-        times.append(time.perf_counter() - t)
         counts.append(len(s))
         assert all(np.abs(puma.fk(q) - T).max() < 1e-9 for q in s.q)
-    t = np.asarray(times) * 1e6
+    # per call: a loop over the 1,000 targets, best and median of 7 runs (no timer inside the loop)
+    runs = []
+    for _ in range(7):
+        t = time.perf_counter()
+        for T in targets:
+            rk.closed.puma560(T, limits=None)
+        runs.append((time.perf_counter() - t) / len(targets) * 1e6)
+    best_us, median_us = min(runs), float(np.median(runs))
     print(f"\nclosed-form PUMA 560: {np.mean(np.asarray(counts) == 8) * 100:.1f} % of targets with all 8 solutions "
-          f"(each checked by FK), median {np.median(t):.2f} us, p95 {np.percentile(t, 95):.2f} us per call (goal <= 3 us)")
+          f"(each checked by FK); {best_us:.2f} us per call (best of 7 loops over the targets, median "
+          f"{median_us:.2f} us; goal <= 3 us)")
+    t = np.asarray([median_us])
     goals.append({"name": "closed-form PUMA 560, median vs 3 us", "ratio": float(np.median(t)) / 3.0, "goal": 1.0,
                   "met": bool(np.mean(np.asarray(counts) == 8) == 1.0 and np.median(t) <= 3.0)})
     return goals
