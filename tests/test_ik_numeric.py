@@ -204,3 +204,27 @@ def test_bound_solver_matches_ik():
         solver.solve(T[0], np.zeros(3))
     with pytest.raises(ValueError, match="method"):
         rk.IKSolver(chain, method="x")
+
+
+def test_batch_in_parallel_equals_one_by_one():
+    chain = rk.robots.ur5()
+    _, T = random_targets(chain, 40, seed=31)
+    batch = rk.ik_batch(chain, T, np.zeros(6), method="lm", restarts=10, seed=100)
+    for k in range(40):
+        r = rk.ik(chain, T[k], np.zeros(6), method="lm", restarts=10, seed=100 + k)
+        assert np.array_equal(batch.q[k], r.q) and batch.success[k] == r.success
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_redundant_seven_joint_arm(method):
+    # A 7R arm (KUKA LBR iiwa-like DH: d = 0.34, 0.4, 0.4, 0.126 m): more joints than task rows.
+    p = math.pi / 2
+    rows = [(0, -p, 0.34, 0, "R"), (0, p, 0, 0, "R"), (0, p, 0.4, 0, "R"), (0, -p, 0, 0, "R"),
+            (0, -p, 0.4, 0, "R"), (0, p, 0, 0, "R"), (0, 0, 0.126, 0, "R")]
+    lim = np.radians([170, 120, 170, 120, 170, 120, 175])
+    chain = rk.Chain.from_dh(rows, limits=(-lim, lim))
+    _, T = random_targets(chain, 60, seed=41)
+    res = rk.ik_batch(chain, T, np.zeros(7), method=method, restarts=30, seed=0)
+    for k in range(len(T)):
+        assert res.success[k] == verified(chain, res.q[k], T[k])
+    assert res.success.mean() >= 0.95
