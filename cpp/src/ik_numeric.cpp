@@ -68,8 +68,6 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   ym_.resize(m_);
   qt_.resize(n_);
   frozen_.assign(n_, false);
-  llt_n_ = Eigen::LLT<Eigen::MatrixXd>(n_);
-  llt_m_ = Eigen::LLT<Eigen::MatrixXd>(m_);
 }
 
 // Joint value v brought within the limits of joint i, by multiples of 2 pi for a revolute joint.
