@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace robokin::bind {
 namespace {
@@ -28,6 +29,12 @@ Mode as_mode(py::handle obj) {
 }
 
 Pose as_pose(py::handle obj, const char* name = "pose") { return as_vector(obj, name, 3); }
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
 
 py::array_t<double> vec3(const Eigen::Vector3d& v) {
   py::array_t<double> out(3);
@@ -222,7 +229,8 @@ void bind_rrr3(py::module_& m) {
       .def("__iter__", [](const RRR3Newton& r) { return py::iter(py::make_tuple(vec3(r.alpha), vec3(r.beta))); })
       .def("__repr__", [](const RRR3Newton& r) {
         return "RRR3Newton(converged=" + std::string(r.converged ? "True" : "False") +
-               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
+               ", alpha=" + py::repr(vec3(r.alpha)).cast<std::string>() + ")";
       });
 
   py::class_<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.")
@@ -232,7 +240,8 @@ void bind_rrr3(py::module_& m) {
       .def_readonly("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
       .def("__repr__", [](const RRR3Fk& r) {
         return "RRR3Fk(converged=" + std::string(r.converged ? "True" : "False") +
-               ", iterations=" + std::to_string(r.iterations) + ", error=" + std::to_string(r.error) + ")";
+               ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
+               ", pose=" + py::repr(vec3(r.pose)).cast<std::string>() + ")";
       });
 
   py::class_<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.")
