@@ -298,7 +298,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
         double alpha = 1.0;
         a_ = dq_;
         bool decreased = false;
-        for (int ls = 0; ls < 30; ++ls) {
+        for (int ls = 0; ls < 12; ++ls) {  // down to 1/2048 of the step: beyond, a local minimum
           for (int i = 0; i < n_; ++i) {
             double v = q(i) + alpha * a_(i);
             if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
