@@ -16,7 +16,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
 // With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
-constexpr int kStallWindow = 12;
+constexpr int kStallWindow = 6;
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
