@@ -16,7 +16,9 @@ setup: $(VENV)/.installed
 	$*/bin/python -m pip install -q "scikit-build-core>=0.10" "pybind11>=2.12" cmake ninja
 	touch $@
 
-$(VENV)/.installed: $(VENV)/.base $(SOURCES)
+# The system packages are checked again when their list changes (a venv made before keeps working).
+$(VENV)/.installed: $(VENV)/.base $(SOURCES) scripts/install-system-deps.sh
+	scripts/install-system-deps.sh
 	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test]"
 	touch $@
 
@@ -34,7 +36,8 @@ test: setup
 # must be loaded before Python (with libstdc++, so that its exception interceptor finds __cxa_throw);
 # Python's own allocations are not leak-checked.
 ASAN_VENV := .venv-asan
-$(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES)
+$(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES) scripts/install-system-deps.sh
+	scripts/install-system-deps.sh
 	$(ASAN_VENV)/bin/python -m pip install -q --no-build-isolation \
 	  -Cbuild-dir=build/asan -Ccmake.define.ROBOKIN_SANITIZE=ON -Ccmake.build-type=RelWithDebInfo ".[sim,plot,test]"
 	touch $@

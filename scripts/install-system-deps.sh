@@ -2,7 +2,7 @@
 # Installs the Debian packages robokin builds against, only those missing.
 # Usage: scripts/install-system-deps.sh [extra-package ...]
 set -euo pipefail
-packages=(libeigen3-dev liborocos-kdl-dev "$@")
+packages=(libeigen3-dev liborocos-kdl-dev libkdl-parser-dev liburdfdom-dev "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -35,12 +35,24 @@ int task_rows(Task task) {
   return 0;
 }
 
+// The rotation vector (angle * axis) of R: from the skew part, sin(angle) * axis, and the trace,
+// without the quaternion detour of Eigen::AngleAxis (which remains the route near angle = pi).
+Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R) {
+  const Eigen::Vector3d v(0.5 * (R(2, 1) - R(1, 2)), 0.5 * (R(0, 2) - R(2, 0)), 0.5 * (R(1, 0) - R(0, 1)));
+  const double c = 0.5 * (R.trace() - 1.0);
+  if (c > -0.9) {
+    const double s = v.norm();
+    return s < 1e-300 ? v : Eigen::Vector3d(v * (std::atan2(s, c) / s));
+  }
+  const Eigen::AngleAxisd rot(R);
+  return rot.angle() * rot.axis();
+}
+
 void task_error(const Target& t, const Rigid& T, double* e) {
   switch (t.task) {
     case Task::Pose: {
       const Eigen::Vector3d dp = t.pose.p - T.p;
-      const Eigen::AngleAxisd rot(t.pose.R * T.R.transpose());
-      const Eigen::Vector3d w = rot.angle() * rot.axis();
+      const Eigen::Vector3d w = rotation_vector(t.pose.R * T.R.transpose());
       for (int i = 0; i < 3; ++i) e[i] = dp(i), e[3 + i] = w(i);
       return;
     }

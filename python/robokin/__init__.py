@@ -4,9 +4,10 @@ Serial chains from Denavit-Hartenberg tables, forward kinematics and Jacobians, 
 with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
-from . import paths, robots
+from . import closed, paths, robots
 from ._core import RRR3, Chain, ReachResult, TrackResult
 from .errors import PrecisionWarning, UnreachableError
+from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 
 __version__ = "0.1.0"
@@ -14,10 +15,16 @@ __version__ = "0.1.0"
 __all__ = [
     "Chain",
     "PrecisionWarning",
+    "IKBatchResult",
+    "IKResult",
+    "IKSolver",
     "RRR3",
     "ReachResult",
     "TrackResult",
     "UnreachableError",
+    "closed",
+    "ik",
+    "ik_batch",
     "paths",
     "reach",
     "robots",

@@ -25,6 +25,9 @@ struct Target {
 // pose is the rotation vector of R_target R^T, the planar angle error is wrapped to (-pi, pi].
 void task_error(const Target& target, const Rigid& current, double* err);
 
+// Rotation vector (angle * axis, angle in [0, pi]) of a rotation matrix.
+Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R);
+
 // Copies the task's rows of a 6 x n Jacobian into a rows x n one.
 template <class Out>
 void task_jacobian(Task task, const Matrix6X& J, Out& out) {

@@ -1,0 +1,277 @@
+// Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/ik.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdio>
+#include <atomic>
+#include <chrono>
+
+namespace robokin::bind {
+namespace {
+
+struct BatchResult {
+  py::array_t<double> q, error_p, error_r;
+  py::array_t<bool> success;
+  py::array_t<int> iterations, attempts;
+};
+
+Target target_from(Task task, const double* data) {
+  Target t;
+  t.task = task;
+  if (task == Task::Pose) {
+    t.pose = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(data));
+  } else {
+    t.value.setZero();
+    for (int i = 0; i < task_rows(task); ++i) t.value(i) = data[i];
+  }
+  return t;
+}
+
+Target one_target(Task task, py::handle obj) {
+  if (task == Task::Pose) {
+    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = as_transform(obj, "target");
+    return target_from(task, m.data());
+  }
+  const Eigen::VectorXd v = as_vector(obj, "target", task_rows(task));
+  return target_from(task, v.data());
+}
+
+std::uint64_t seed_arg(py::handle seed) {
+  if (seed.is_none()) {
+    // A fresh seed per call, cheaply: splitmix64 of a counter mixed with the clock.
+    static std::atomic<std::uint64_t> counter{0};
+    std::uint64_t z = counter.fetch_add(0x9E3779B97F4A7C15ull) +
+                      static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) fail("seed: expected None or an int");
+  try {
+    return static_cast<std::uint64_t>(py::cast<long long>(seed));
+  } catch (const py::cast_error&) {
+    fail("seed: does not fit in 64 bits");
+  }
+}
+
+IkOptions options_arg(const std::string& method, const std::string& task, double tol_p, double tol_r, int max_iter,
+                      int restarts, py::handle timeout, py::handle damping) {
+  IkOptions o;
+  o.method = parse_ik_method(method);
+  o.task = parse_task(task);
+  if (!(tol_p > 0) || !std::isfinite(tol_p)) fail("tol_p: must be a positive number");
+  if (!(tol_r > 0) || !std::isfinite(tol_r)) fail("tol_r: must be a positive number");
+  if (max_iter < 1) fail("max_iter: must be at least 1");
+  if (restarts < 0) fail("restarts: must be >= 0");
+  o.tol_p = tol_p;
+  o.tol_r = o.task == Task::Pose || o.task == Task::XYPhi ? tol_r : INFINITY;
+  o.max_iter = max_iter;
+  o.restarts = restarts;
+  if (!timeout.is_none()) {
+    const double t = py::cast<double>(timeout);
+    if (!(t > 0) || !std::isfinite(t)) fail("timeout: must be None or a positive number of seconds");
+    o.timeout = t;
+  }
+  if (!damping.is_none()) {
+    const double d = py::cast<double>(damping);
+    if (!(d > 0) || !std::isfinite(d)) fail("damping: must be None or a positive number");
+    o.damping = d;
+  } else {
+    o.damping = o.method == IkMethod::LM ? 1e-1 : o.method == IkMethod::Halley ? 1e-9 : 1e-6;
+  }
+  return o;
+}
+
+IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std::string& method,
+            const std::string& task, double tol_p, double tol_r, int max_iter, int restarts, py::handle seed,
+            py::handle timeout, py::handle damping) {
+  const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  const Target t = one_target(o.task, target);
+  const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
+  const std::uint64_t s = seed_arg(seed);
+  // One solver per thread, kept between calls: no workspace allocation per solve.
+  thread_local IkSolver solver(chain, o);
+  solver.reset(chain, o);
+  if (o.timeout > 1e-3 || o.restarts > 16) {
+    py::gil_scoped_release release;
+    return solver.solve(t, q0.data(), s);
+  }
+  return solver.solve(t, q0.data(), s);
+}
+
+BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
+                        const std::string& task, double tol_p, double tol_r, int max_iter, int restarts,
+                        py::handle seed, py::handle timeout, py::handle damping, bool path) {
+  const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  const int rows = task_rows(o.task), n = chain.dof();
+  Array a = as_array(targets_obj, "targets");
+  const bool ok = o.task == Task::Pose ? (a.ndim() == 3 && a.shape(1) == 4 && a.shape(2) == 4)
+                                       : (a.ndim() == 2 && a.shape(1) == rows);
+  if (!ok)
+    fail(std::string("targets: expected shape ") + (o.task == Task::Pose ? "(N, 4, 4)" : "(N, " + std::to_string(rows) + ")") +
+         " for task '" + task_name(o.task) + "', got " + shape_of(a));
+  require_finite(a.data(), a.size(), "targets");
+  const long count = a.shape(0), stride = o.task == Task::Pose ? 16 : rows;
+  std::vector<Target> targets;
+  targets.reserve(count);
+  for (long k = 0; k < count; ++k) {
+    if (o.task == Task::Pose) as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets");
+    targets.push_back(target_from(o.task, a.data() + k * stride));
+  }
+  Array q0 = as_array(q0_obj, "q0");
+  long q0_stride;
+  if (q0.ndim() == 1 && q0.shape(0) == n) {
+    q0_stride = 0;
+  } else if (q0.ndim() == 2 && q0.shape(0) == count && q0.shape(1) == n && !path) {
+    q0_stride = n;
+  } else {
+    fail("q0: expected shape (" + std::to_string(n) + ",)" +
+         (path ? std::string(" (path=True starts from one configuration)")
+               : " or (" + std::to_string(count) + ", " + std::to_string(n) + ")") +
+         ", got " + shape_of(q0));
+  }
+  require_finite(q0.data(), q0.size(), "q0");
+  const std::uint64_t s = seed_arg(seed);
+  const auto N = static_cast<py::ssize_t>(count);
+  BatchResult r{py::array_t<double>({N, static_cast<py::ssize_t>(n)}), py::array_t<double>(N),
+                py::array_t<double>(N), py::array_t<bool>(N), py::array_t<int>(N), py::array_t<int>(N)};
+  double *q = r.q.mutable_data(), *ep = r.error_p.mutable_data(), *er = r.error_r.mutable_data();
+  bool* success = r.success.mutable_data();
+  int *it = r.iterations.mutable_data(), *at = r.attempts.mutable_data();
+  {
+    py::gil_scoped_release release;
+    robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, q, success, it, at, ep, er);
+  }
+  return r;
+}
+
+// A solver bound to a chain and options: the per-call cost is the target and q0 only.
+struct BoundSolver {
+  const Chain* chain;
+  IkOptions options;
+  IkSolver solver;
+  bool seeded = false;
+  std::uint64_t seed = 0, calls = 0;
+
+  BoundSolver(const Chain& c, const IkOptions& o, py::handle seed_obj)
+      : chain(&c), options(o), solver(c, o), seeded(!seed_obj.is_none()), seed(seed_arg(seed_obj)) {}
+
+  IkResult solve(py::handle target, py::handle q0_obj) {
+    const Target t = one_target(options.task, target);
+    const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
+    const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
+    return solver.solve(t, q0.data(), s);
+  }
+};
+
+std::string repr(const IkResult& r) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "IKResult(success=%s, iterations=%d, attempts=%d, error_p=%.3g m, error_r=%.3g rad, q=",
+                r.success ? "True" : "False", r.iterations, r.attempts, r.error_p, r.error_r);
+  return buf + py::repr(to_numpy(r.q)).cast<std::string>() + ")";
+}
+
+}  // namespace
+
+void bind_ik(py::module_& m) {
+  py::class_<IkResult>(m, "IKResult", "What one numerical IK solve found.")
+      .def_property_readonly("q", [](const IkResult& r) { return to_numpy(r.q); },
+                             "(dof,) joints: the solution, or the best point found (within the limits).")
+      .def_readonly("success", &IkResult::success,
+                    "True when FK of q meets tol_p and tol_r (checked after wrapping and clamping).")
+      .def_readonly("iterations", &IkResult::iterations, "Iterations over every attempt.")
+      .def_readonly("attempts", &IkResult::attempts, "1 + the random restarts used.")
+      .def_readonly("error_p", &IkResult::error_p, "Position error at q (m).")
+      .def_readonly("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
+      .def("__bool__", [](const IkResult& r) { return r.success; })
+      .def("__repr__", &repr);
+  py::class_<BatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target.")
+      .def_readonly("q", &BatchResult::q, "(N, dof) joints.")
+      .def_readonly("success", &BatchResult::success, "(N,) verified successes.")
+      .def_readonly("iterations", &BatchResult::iterations, "(N,) iterations.")
+      .def_readonly("attempts", &BatchResult::attempts, "(N,) attempts (1 + restarts used).")
+      .def_readonly("error_p", &BatchResult::error_p, "(N,) position errors (m).")
+      .def_readonly("error_r", &BatchResult::error_r, "(N,) orientation errors (rad).")
+      .def("__len__", [](const BatchResult& r) { return r.success.size(); })
+      .def("__repr__", [](const BatchResult& r) {
+        const long n = r.success.size();
+        long ok = 0;
+        double worst_p = 0, worst_r = 0;
+        for (long k = 0; k < n; ++k) {
+          ok += r.success.data()[k];
+          worst_p = std::max(worst_p, r.error_p.data()[k]);
+          worst_r = std::max(worst_r, r.error_r.data()[k]);
+        }
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "IKBatchResult(targets=%ld, success=%ld/%ld, max_error_p=%.3g m, max_error_r=%.3g rad)",
+                      n, ok, n, worst_p, worst_r);
+        return std::string(buf);
+      });
+  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("method") = "lm",
+        py::arg("task") = "pose", py::arg("tol_p") = 1e-9, py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100,
+        py::arg("restarts") = 0, py::arg("seed") = py::none(), py::arg("timeout") = py::none(),
+        py::arg("damping") = py::none(), "Numerical IK. Use robokin.ik.");
+  m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::arg("method") = "lm",
+        py::arg("task") = "pose", py::arg("tol_p") = 1e-9, py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100,
+        py::arg("restarts") = 0, py::arg("seed") = py::none(), py::arg("timeout") = py::none(),
+        py::arg("damping") = py::none(), py::arg("path") = false, "Numerical IK of many targets. Use robokin.ik_batch.");
+  m.def(
+      "_hessian_times",
+      [](const Chain& chain, py::handle q_obj, py::handle a_obj) {
+        const Vector q = as_vector(q_obj, "q", chain.dof()), a = as_vector(a_obj, "a", chain.dof());
+        Matrix6X J6(6, chain.dof()), out;
+        Rigid T;
+        chain.fk_jacobian(q.data(), T, J6.data());
+        hessian_times(chain, J6, a, out);
+        return to_numpy(out);
+      },
+      py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  py::class_<BoundSolver>(m, "IKSolver",
+                          "A numerical IK solver bound to a chain and options (robokin.ik's arguments):\n"
+                          "solve(target, q0) costs only the solve. Call k of a seeded solver uses seed + k.\n"
+                          "Not thread-safe: one solver per thread (ik_batch is the parallel route).")
+      .def(py::init([](const Chain& chain, const std::string& method, const std::string& task, double tol_p,
+                       double tol_r, int max_iter, int restarts, py::handle seed, py::handle timeout,
+                       py::handle damping) {
+             return std::make_unique<BoundSolver>(
+                 chain, options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), seed);
+           }),
+           py::arg("chain"), py::arg("method") = "lm", py::arg("task") = "pose", py::arg("tol_p") = 1e-9,
+           py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100, py::arg("restarts") = 0, py::arg("seed") = py::none(),
+           py::arg("timeout") = py::none(), py::arg("damping") = py::none(), py::keep_alive<1, 2>())
+      .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
+      .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
+      .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
+      .def("__repr__", [](const BoundSolver& b) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "IKSolver(method='%s', task='%s', tol_p=%g, tol_r=%g, max_iter=%d, restarts=%d)",
+                      ik_method_name(b.options.method), task_name(b.options.task), b.options.tol_p, b.options.tol_r,
+                      b.options.max_iter, b.options.restarts);
+        return std::string(buf);
+      });
+  py::class_<KdlIkReference>(m, "_KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
+      .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {
+             if (max_iter < 1) fail("max_iter: must be at least 1");
+             if (!(eps > 0)) fail("eps: must be positive");
+             return std::make_unique<KdlIkReference>(chain, solver, max_iter, eps);
+           }),
+           py::arg("chain"), py::arg("solver") = "lma", py::arg("max_iter") = 500, py::arg("eps") = 1e-5)
+      .def(
+          "solve",
+          [](KdlIkReference& k, py::handle target, py::handle q0_obj) {
+            const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
+            const Vector q0 = as_vector(q0_obj, "q0", k.dof());
+            Vector q;
+            const int code = k.solve(T, q0, q);
+            return py::make_tuple(to_numpy(q), code);
+          },
+          py::arg("target"), py::arg("q0"), "(q, KDL error code) for one target.");
+}
+
+}  // namespace robokin::bind

@@ -1,0 +1,184 @@
+// Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/ik_closed.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace robokin::bind {
+namespace {
+
+JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismatic = {}) {
+  JointLimits lim;
+  lim.prismatic = std::move(prismatic);
+  if (obj.is_none()) return lim;
+  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) || py::len(obj) != 2)
+    fail("limits: expected None or a pair (lower, upper) of arrays");
+  py::sequence pair = py::reinterpret_borrow<py::sequence>(obj);
+  lim.lower = as_vector(pair[0], "limits", dof, false);
+  lim.upper = as_vector(pair[1], "limits", dof, false);
+  for (int i = 0; i < dof; ++i) {
+    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
+    if (lim.lower(i) > lim.upper(i))
+      fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
+  }
+  return lim;
+}
+
+double length_arg(double v, const char* name, bool positive) {
+  if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
+  if (positive && !(v > 0)) fail(std::string(name) + ": must be positive");
+  return v;
+}
+
+ClosedFormSolutions planar_rp(py::handle target, py::handle limits) {
+  const Vector p = as_vector(target, "target", 2);
+  return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
+}
+
+ClosedFormSolutions planar_2r(py::handle target, double a1, double a2, py::handle limits) {
+  const Vector p = as_vector(target, "target", 2);
+  return ik_planar_2r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), p(0), p(1), limits_arg(limits, 2));
+}
+
+ClosedFormSolutions planar_3r(py::handle target, double a1, double a2, double a3, const std::string& method,
+                              py::handle limits) {
+  const Vector p = as_vector(target, "target", 3);
+  if (method != "algebraic" && method != "geometric")
+    fail("method: expected 'algebraic' or 'geometric', got '" + method + "'");
+  return ik_planar_3r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), length_arg(a3, "a3", false), p(0),
+                      p(1), p(2), method == "geometric", limits_arg(limits, 3));
+}
+
+ArmGeometry arm_arg(double d1, double a2, double a3, double d3, double d4) {
+  ArmGeometry g;
+  g.d1 = length_arg(d1, "d1", false);
+  g.a2 = length_arg(a2, "a2", true);
+  g.a3 = length_arg(a3, "a3", false);
+  g.d3 = length_arg(d3, "d3", false);
+  g.d4 = length_arg(d4, "d4", false);
+  if (std::hypot(g.a3, g.d4) <= 0) fail("a3, d4: the forearm needs a length (a3 or d4 non-zero)");
+  return g;
+}
+
+ClosedFormSolutions anthropomorphic(py::handle target, double a2, double a3, double d1, py::handle limits) {
+  const Vector p = as_vector(target, "target", 3);
+  return ik_anthropomorphic(arm_arg(d1, a2, a3, 0, 0), p, limits_arg(limits, 3));
+}
+
+ClosedFormSolutions spherical_wrist(py::handle target, double a2, double a3, double d3, double d4, double d1,
+                                    double d6, py::handle limits) {
+  const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
+  return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), T, limits_arg(limits, 6));
+}
+
+py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, double d3, double d4, double d1,
+                               double d6, py::handle q0_obj, py::handle limits) {
+  Array a = as_array(targets_obj, "targets");
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+    fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
+  require_finite(a.data(), a.size(), "targets");
+  const long count = a.shape(0);
+  std::vector<Rigid> targets;
+  targets.reserve(count);
+  for (long k = 0; k < count; ++k)
+    targets.push_back(Rigid::from_matrix(as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets")));
+  const Vector q0 = as_vector(q0_obj, "q0", 6);
+  const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
+  const double tool = length_arg(d6, "d6", false);
+  const JointLimits lim = limits_arg(limits, 6);
+  py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{6}});
+  py::array_t<bool> ok(static_cast<py::ssize_t>(count));
+  double* qd = q.mutable_data();
+  bool* okd = ok.mutable_data();
+  {
+    py::gil_scoped_release release;
+    ik_spherical_wrist_path(g, tool, targets.data(), count, q0.data(), lim, qd, okd);
+  }
+  return py::make_tuple(q, ok);
+}
+
+// A spherical-wrist solver with its geometry and limits parsed once (robokin.closed.puma560).
+struct SphericalWrist {
+  ArmGeometry arm;
+  double d6;
+  JointLimits limits;
+  ClosedFormSolutions solve(py::handle target) const {
+    return ik_spherical_wrist(arm, d6, Rigid::from_matrix(as_transform(target, "target")), limits);
+  }
+};
+
+py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
+  py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
+  std::copy(s.q.begin(), s.q.end(), out.mutable_data());
+  return out;
+}
+
+std::string repr(const ClosedFormSolutions& s) {
+  std::string out = "IKSolutions(" + std::to_string(s.count()) + " solution" + (s.count() == 1 ? "" : "s");
+  if (s.singular) out += ", singular";
+  out += s.count() ? ":" : ")";
+  for (int k = 0; k < s.count(); ++k) {
+    out += "\n  " + std::string(s.postures[k]) + ": [";
+    for (int i = 0; i < s.dof; ++i) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.q[k * s.dof + i]);
+      out += buf;
+    }
+    out += "]";
+  }
+  return s.count() ? out + "\n)" : out;
+}
+
+}  // namespace
+
+void bind_ik_closed(py::module_& m) {
+  py::class_<ClosedFormSolutions>(m, "IKSolutions",
+                                  "Every closed-form solution of a pose: q (k, dof) and one posture label per row.")
+      .def_property_readonly("q", &solutions_q, "(k, dof) joint vectors, one per solution.")
+      .def_property_readonly(
+          "postures",
+          [](const ClosedFormSolutions& s) {
+            py::list out;
+            for (const char* p : s.postures) out.append(py::str(p));
+            return out;
+          },
+          "Posture label of each row of q.")
+      .def_readonly("singular", &ClosedFormSolutions::singular,
+                    "True at a singularity (postures coincide, or a joint is free: 0 was chosen).")
+      .def_readonly("dof", &ClosedFormSolutions::dof)
+      .def("__len__", &ClosedFormSolutions::count)
+      .def(
+          "nearest",
+          [](const ClosedFormSolutions& s, py::handle q_obj) -> py::object {
+            const Vector q = as_vector(q_obj, "q", s.dof);
+            const int k = nearest_solution(s, q.data());
+            if (k < 0) return py::none();
+            return py::int_(k);
+          },
+          py::arg("q"), "Index of the solution nearest to q (Euclidean in joint space); None when empty.")
+      .def("__repr__", &repr);
+  py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
+      .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, py::handle limits) {
+             return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), limits_arg(limits, 6)};
+           }),
+           py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
+           py::arg("limits") = py::none())
+      .def("solve", &SphericalWrist::solve, py::arg("target"));
+  m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
+  m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
+  m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),
+        py::arg("method") = "algebraic", py::arg("limits") = py::none());
+  m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1") = 0.0,
+        py::arg("limits") = py::none());
+  m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
+        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
+  m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
+        py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
+}
+
+}  // namespace robokin::bind

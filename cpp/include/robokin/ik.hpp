@@ -1,0 +1,114 @@
+// Numerical inverse kinematics: Gauss-Newton, Levenberg-Marquardt, Newton-Raphson (damped
+// pseudoinverse) and Halley (Lloyd, Irani, Ahmadi, T-RO 2022), with joint limits handled by an
+// active set (a joint that would cross its limit stops on it and the others re-solve the step,
+// so no joint sticks), revolute angles wrapped by 2 pi into wide limits, and seeded random restarts.
+#pragma once
+
+#include "robokin/chain.hpp"
+#include "robokin/task.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace robokin {
+
+enum class IkMethod { LM, GN, NR, Halley };
+
+IkMethod parse_ik_method(const std::string& name);  // "lm" | "gn" | "nr" | "halley"
+const char* ik_method_name(IkMethod method);
+
+struct IkOptions {
+  IkMethod method = IkMethod::LM;
+  Task task = Task::Pose;
+  double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
+  double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
+  int max_iter = 100;      // iterations per attempt
+  int restarts = 0;        // extra attempts from random configurations within the limits
+  double timeout = 0.0;    // seconds for the whole solve (every attempt); 0: no time budget
+  double damping = 1e-4;   // lambda of the damped pseudoinverse (nr, halley) / initial mu (lm)
+};
+
+struct IkResult {
+  Vector q;
+  bool success = false;   // verified: FK of q (wrapped, within limits) meets tol_p and tol_r
+  int iterations = 0;     // over every attempt
+  int attempts = 0;       // 1 + restarts used
+  double error_p = 0.0;   // position error at q
+  double error_r = 0.0;   // orientation error at q (0 when the task has none)
+};
+
+// sum_j a_j dJ/dq_j for the 6 x n geometric Jacobian J6 of chain at some q (Halley's H a).
+void hessian_times(const Chain& chain, const Matrix6X& J6, const Vector& a, Matrix6X& out);
+
+// One solver per thread: it owns its workspace (no allocation per iteration).
+class IkSolver {
+ public:
+  IkSolver(const Chain& chain, const IkOptions& options);
+  // Re-targets the solver (the workspace is kept when the sizes match): the chain must outlive use.
+  void reset(const Chain& chain, const IkOptions& options);
+
+  // Solves from q0; restarts draw from a generator seeded with `seed`.
+  IkResult solve(const Target& target, const double* q0, std::uint64_t seed);
+
+  // Errors (position, orientation) of the tool at q for the target, as used for success.
+  void errors(const Target& target, const double* q, double& error_p, double& error_r) const;
+
+  const IkOptions& options() const { return opt_; }
+
+ private:
+  // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
+  bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline, bool may_stall);
+  double evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep, double& er);
+  void errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const;
+  void select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const;
+  bool met(double ep, double er) const;
+  // Leaves in qt_ the point reached by a step from q through the joint limits, in dq_ the step.
+  // `solve(J, r, dq)` maps a Jacobian (frozen joints' columns zeroed) and a residual to a step.
+  template <class Solve>
+  void constrained_step(const Vector& q, const Eigen::MatrixXd& J, const Vector& e, Solve solve);
+  void normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq);
+  void damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq);
+  bool fit(int i, double& v) const;  // wraps a joint value by 2 pi into its limits; false if outside
+  void random_q(std::mt19937_64& rng, Vector& q) const;
+  void finalise(const Target& target, IkResult& r) const;
+
+  const Chain* chain_ = nullptr;
+  IkOptions opt_;
+  int n_ = -1, m_ = -1;
+  // workspace: sized once, no allocation per iteration
+  Matrix6X J6_, HA_;
+  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_, Am_;
+  Vector e_, et_, r_, dq_, a_, g_, ym_, qt_;
+  std::vector<bool> frozen_;
+  Rigid T_;
+  Eigen::LLT<Eigen::MatrixXd> llt_n_, llt_m_;
+};
+
+// Solves each target; `q0` holds one start per target (stride dof) or one for all (stride 0).
+// path: each target starts from the previous solution (sequential); otherwise targets are solved
+// in parallel on every core with seeds seed + k. The caller releases the GIL.
+void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count,
+              const double* q0, long q0_stride, bool path, std::uint64_t seed, double* q_out,
+              bool* success, int* iterations, int* attempts, double* error_p, double* error_r);
+
+// References for the benchmark: KDL's ChainIkSolverPos_LMA ("lma", KDL's default weights) and
+// ChainIkSolverPos_NR_JL ("nr_jl", with ChainIkSolverVel_pinv and the chain's limits), built once
+// and called as KDL users call them.
+class KdlIkReference {
+ public:
+  KdlIkReference(const Chain& chain, const std::string& solver, int max_iter, double eps);
+  ~KdlIkReference();
+  // Returns KDL's error code (>= 0 on success as KDL sees it); q holds KDL's answer.
+  int solve(const Rigid& target, const Vector& q0, Vector& q);
+  int dof() const { return dof_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int dof_ = 0;
+};
+
+}  // namespace robokin

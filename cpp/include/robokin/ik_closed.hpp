@@ -1,0 +1,75 @@
+// Closed-form inverse kinematics (seed 003): every solution of a pose, each labelled by its
+// posture, filtered by the joint limits. An empty set (never an exception) when out of reach.
+#pragma once
+
+#include "robokin/chain.hpp"
+
+#include <string>
+#include <vector>
+
+namespace robokin {
+
+// A set of solutions: row k of q is one joint vector, postures[k] its label.
+struct ClosedFormSolutions {
+  int dof = 0;
+  std::vector<double> q;  // row-major, size() / dof rows
+  std::vector<const char*> postures;  // static strings: no allocation per label
+  bool singular = false;  // the pose is at a singularity (coinciding or infinitely many solutions)
+
+  int count() const { return static_cast<int>(postures.size()); }
+  void add(const double* joints, const char* posture) {
+    q.insert(q.end(), joints, joints + dof);
+    postures.push_back(posture);
+  }
+};
+
+// Joint limits for the filter; empty vectors mean unlimited. Revolute angles are first wrapped to
+// (-pi, pi], then shifted by a multiple of 2 pi into the limits when one fits (a joint with a
+// range wider than 2 pi keeps the representative nearest to 0).
+struct JointLimits {
+  Vector lower, upper;
+  std::vector<bool> prismatic;  // empty: every joint revolute
+};
+
+// Planar RP (seed 003, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the
+// stroke forward (d2 >= 0) and, when the limits allow a negative stroke, the one backwards.
+// At the origin theta1 is free: one solution theta1 = 0, d2 = 0, flagged singular.
+ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits);
+
+// Planar 2R with links a1, a2: tip position (px, py). Elbow down (theta2 in (0, pi)) and elbow up.
+ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, const JointLimits& limits);
+
+// Planar 3R with links a1..a3 and tool orientation phi (seed 003, example 2), by the algebraic
+// method (c2, s2 = +-sqrt(1 - c2^2), s1, c1) or the geometric one (law of cosines, alpha +- beta).
+// When s2 = 0 the two postures coincide: one solution, flagged singular.
+ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, double py, double phi,
+                                 bool geometric, const JointLimits& limits);
+
+// The arm of a 6R robot with a spherical wrist, standard DH: (0, pi/2, d1), (a2, 0, 0),
+// (a3, -pi/2 or 0, d3), then a wrist whose centre is d4 along z3. With d3 = d4 = 0 this is the
+// anthropomorphic arm (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0) of the course.
+struct ArmGeometry {
+  double d1 = 0, a2 = 0, a3 = 0, d3 = 0, d4 = 0;
+};
+
+// The anthropomorphic arm: tip position p; 4 postures (shoulder right / left x elbow up / down).
+ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vector3d& p,
+                                       const JointLimits& limits);
+
+// A 6R arm with a spherical wrist in the PUMA 560 layout (standard DH):
+//   (0, pi/2, d1), (a2, 0, 0), (a3, -pi/2, d3), (0, pi/2, d4), (0, -pi/2, 0), (0, 0, d6)
+// For the target tool frame T: up to 8 solutions, shoulder right / left x elbow up / down x wrist
+// flip / no flip. When s5 = 0 (wrist singular) q4 + q6 is fixed: q4 is set to 0 (or pi).
+ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
+                                       const JointLimits& limits);
+
+// Along a path of tool frames: for each, the spherical-wrist solution nearest to the previous
+// joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value within the
+// limits: no branch jumps. ok[k] false (row k = previous joints) where the frame has no solution.
+void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok);
+
+// Row of `solutions` nearest to q (Euclidean distance between joint vectors); -1 when empty.
+int nearest_solution(const ClosedFormSolutions& solutions, const double* q);
+
+}  // namespace robokin

@@ -1,0 +1,302 @@
+// Closed-form inverse kinematics: the planar arms of seed 003 and the PUMA-type 6R arm.
+#include "robokin/ik_closed.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace robokin {
+namespace {
+
+constexpr double kPi = M_PI;
+// |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
+constexpr double kCosEps = 1e-12;
+
+double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
+
+// Wraps revolute angles to (-pi, pi] and fits them into the limits (shifting by 2 pi when that
+// helps); false when a joint cannot be brought within its limits.
+bool fit_limits(double* q, int n, const JointLimits& lim) {
+  for (int i = 0; i < n; ++i) {
+    const bool prismatic = !lim.prismatic.empty() && lim.prismatic[i];
+    if (!prismatic) q[i] = wrap(q[i]);
+    if (lim.lower.size() == 0) continue;
+    const double lo = lim.lower(i), hi = lim.upper(i);
+    // A hair of tolerance: a solution exactly at a limit must not be lost to rounding.
+    const double eps = 1e-12 * std::max(1.0, std::abs(q[i]));
+    if (q[i] >= lo - eps && q[i] <= hi + eps) {
+      q[i] = std::min(std::max(q[i], lo), hi);
+      continue;
+    }
+    if (prismatic) return false;
+    bool fitted = false;
+    for (int k = 1; k <= 3 && !fitted; ++k)
+      for (int sgn : {1, -1}) {
+        const double v = q[i] + sgn * k * 2.0 * kPi;
+        if (v >= lo - eps && v <= hi + eps) {
+          q[i] = std::min(std::max(v, lo), hi);
+          fitted = true;
+          break;
+        }
+      }
+    if (!fitted) return false;
+  }
+  return true;
+}
+
+void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture) {
+  if (fit_limits(q, out.dof, lim)) out.add(q, posture);
+}
+
+// Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
+const char* const kShoulder[] = {"shoulder right", "shoulder left", "shoulder singular"};
+const char* const kElbow[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
+const char* const kWrist[] = {"", ", wrist no flip", ", wrist flip"};
+
+const char* arm_label(int shoulder, int elbow, int wrist) {
+  static const std::vector<std::string> labels = [] {
+    std::vector<std::string> all;
+    for (const char* s : kShoulder)
+      for (const char* e : kElbow)
+        for (const char* w : kWrist) all.push_back(std::string(s) + ", " + e + w);
+    return all;
+  }();
+  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
+}
+
+// Elbow cosine: returns false when out of reach, clamps and flags the singular case otherwise.
+bool elbow_cosine(double& c, bool& singular) {
+  if (!std::isfinite(c) || std::abs(c) > 1.0 + kCosEps) return false;
+  singular = std::abs(c) >= 1.0 - kCosEps;
+  if (singular) c = c > 0 ? 1.0 : -1.0;
+  return true;
+}
+
+const char* singular_elbow(double c) { return c > 0 ? "elbow straight" : "elbow folded"; }
+
+// The planar 2R solutions (theta1, theta2) of links a1, a2 for the point (x, y), algebraically:
+// s2 = +sqrt (elbow down) then -sqrt (elbow up); one when singular. Returns the count.
+int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], const char* label[2],
+                    bool& singular) {
+  double c2 = (x * x + y * y - a1 * a1 - a2 * a2) / (2.0 * a1 * a2);
+  singular = false;
+  if (!elbow_cosine(c2, singular)) return 0;
+  const int count = singular ? 1 : 2;
+  for (int k = 0; k < count; ++k) {
+    const double s2 = singular ? 0.0 : (k == 0 ? 1.0 : -1.0) * std::sqrt(1.0 - c2 * c2);
+    const double k1 = a1 + a2 * c2, k2 = a2 * s2;
+    // s1, c1 share the positive denominator x^2 + y^2: atan2 does not need it.
+    th[k][0] = std::atan2(k1 * y - k2 * x, k1 * x + k2 * y);
+    th[k][1] = std::atan2(s2, c2);
+    label[k] = singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up");
+  }
+  // The base angle is free when the point is on the first axis (x = y = 0, a1 = a2).
+  if (x * x + y * y < 1e-24) singular = true;
+  return count;
+}
+
+Eigen::Matrix3d rot_z(double a) {
+  Eigen::Matrix3d m;
+  const double c = std::cos(a), s = std::sin(a);
+  m << c, -s, 0, s, c, 0, 0, 0, 1;
+  return m;
+}
+
+Eigen::Matrix3d rot_x(double a) {
+  Eigen::Matrix3d m;
+  const double c = std::cos(a), s = std::sin(a);
+  m << 1, 0, 0, 0, c, -s, 0, s, c;
+  return m;
+}
+
+struct ArmSolution {
+  double q[3];
+  int shoulder, elbow;  // indices into kShoulder, kElbow
+};
+
+// The arm's solutions (q1, q2, q3) putting the wrist centre (origin of frame 4; the tip for the
+// anthropomorphic arm) at p. In frame 1 the wrist is at
+//   (a2 c2 + a3 c23 - d4 s23, a2 s2 + a3 s23 + d4 c23, d3),
+// so with r = a2 c2 + a3 c23 - d4 s23:  px = c1 r + d3 s1,  py = s1 r - d3 c1,  pz - d1 = a2 s2 + ...
+// r = +-sqrt(px^2 + py^2 - d3^2) (shoulder right / left), q1 = atan2(py, px) + atan2(d3, r); then
+// a planar 2R in (r, pz - d1) with links a2 and L = |(a3, d4)| at an angle offset psi = atan2(d4, a3).
+std::vector<ArmSolution> arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular) {
+  std::vector<ArmSolution> out;
+  const double rho2 = p.x() * p.x() + p.y() * p.y();
+  const double disc = rho2 - g.d3 * g.d3;
+  if (disc < -kCosEps * std::max(1.0, rho2)) return out;
+  const double rmag = std::sqrt(std::max(0.0, disc));
+  // r = 0: both shoulders coincide (and with d3 = 0, q1 is free: 0 is returned).
+  const bool shoulder_singular = rmag < 1e-12;
+  const double L = std::hypot(g.a3, g.d4), psi = std::atan2(g.d4, g.a3);
+  const double z = p.z() - g.d1;
+  for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
+    const double r = side == 0 ? rmag : -rmag;
+    const double q1 = std::atan2(p.y(), p.x()) + std::atan2(g.d3, r);
+    double th[2][2];
+    const char* lab[2];
+    bool elbow_singular = false;
+    const int n = planar_2r_solve(g.a2, L, r, z, th, lab, elbow_singular);
+    for (int k = 0; k < n; ++k) {
+      ArmSolution s;
+      s.q[0] = q1;
+      s.q[1] = th[k][0];
+      s.q[2] = th[k][1] - psi;
+      s.shoulder = shoulder_singular ? 2 : side;
+      if (n == 1) {
+        s.elbow = th[k][1] > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
+      } else {
+        // Elbow above the shoulder-wrist line: sin(theta') < 0 when the wrist is in front (r > 0).
+        const bool up = (std::sin(th[k][1]) < 0) != (r < 0);
+        s.elbow = up ? 0 : 1;
+      }
+      out.push_back(s);
+    }
+    singular = singular || elbow_singular || shoulder_singular;
+  }
+  return out;
+}
+
+}  // namespace
+
+ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits) {
+  ClosedFormSolutions out;
+  out.dof = 2;
+  JointLimits lim = limits;
+  if (lim.prismatic.empty()) lim.prismatic = {false, true};
+  const double d = std::hypot(px, py);
+  if (d < 1e-15) {
+    double q[2] = {0.0, 0.0};
+    out.singular = true;
+    add_if_admissible(out, q, lim, "origin (theta1 free)");
+    return out;
+  }
+  const double th = std::atan2(py, px);
+  double fwd[2] = {th, d}, back[2] = {th + kPi, -d};
+  add_if_admissible(out, fwd, lim, "stroke forward");
+  add_if_admissible(out, back, lim, "stroke backward");
+  return out;
+}
+
+ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, const JointLimits& limits) {
+  ClosedFormSolutions out;
+  out.dof = 2;
+  double th[2][2];
+  const char* lab[2];
+  const int n = planar_2r_solve(a1, a2, px, py, th, lab, out.singular);
+  for (int k = 0; k < n; ++k) add_if_admissible(out, th[k], limits, lab[k]);
+  return out;
+}
+
+ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, double py, double phi,
+                                 bool geometric, const JointLimits& limits) {
+  ClosedFormSolutions out;
+  out.dof = 3;
+  // The wrist point W, origin of frame 2 (seed 003): p_W = p - a3 (cos phi, sin phi).
+  const double wx = px - a3 * std::cos(phi), wy = py - a3 * std::sin(phi);
+  if (!geometric) {
+    double th[2][2];
+    const char* lab[2];
+    const int n = planar_2r_solve(a1, a2, wx, wy, th, lab, out.singular);
+    for (int k = 0; k < n; ++k) {
+      double q[3] = {th[k][0], th[k][1], phi - th[k][0] - th[k][1]};
+      add_if_admissible(out, q, limits, lab[k]);
+    }
+    return out;
+  }
+  // Geometric method: law of cosines in the triangle (O, elbow, W), then theta1 = alpha -+ beta.
+  const double w2 = wx * wx + wy * wy, w = std::sqrt(w2);
+  double c2 = (w2 - a1 * a1 - a2 * a2) / (2.0 * a1 * a2);
+  bool elbow_singular = false;
+  if (!elbow_cosine(c2, elbow_singular)) return out;
+  const double alpha = std::atan2(wy, wx);
+  double beta = 0.0;
+  if (w > 1e-12) {
+    const double cb = (w2 + a1 * a1 - a2 * a2) / (2.0 * a1 * w);
+    beta = std::acos(std::min(1.0, std::max(-1.0, cb)));
+  }
+  // W on the first axis (a1 = a2): theta1 is free, 0 is returned.
+  out.singular = elbow_singular || w <= 1e-12;
+  const double t2 = std::acos(c2);
+  for (int k = 0; k < (elbow_singular ? 1 : 2); ++k) {
+    // Elbow down: theta2 in (0, pi), theta1 = alpha - beta; elbow up: theta2 < 0, alpha + beta.
+    const double theta2 = k == 0 ? t2 : -t2;
+    const double theta1 = w > 1e-12 ? (k == 0 ? alpha - beta : alpha + beta) : 0.0;
+    double q[3] = {theta1, theta2, phi - theta1 - theta2};
+    add_if_admissible(out, q, limits, elbow_singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"));
+  }
+  return out;
+}
+
+ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vector3d& p,
+                                       const JointLimits& limits) {
+  ClosedFormSolutions out;
+  out.dof = 3;
+  for (ArmSolution& s : arm_solve(arm, p, out.singular)) add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0));
+  return out;
+}
+
+ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
+                                       const JointLimits& limits) {
+  ClosedFormSolutions out;
+  out.dof = 6;
+  out.q.reserve(48);
+  out.postures.reserve(8);
+  const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
+  const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
+  for (ArmSolution& s : arm_solve(arm, pw, out.singular)) {
+    const Eigen::Matrix3d R03 = rot_z(s.q[0]) * rx_p * rot_z(s.q[1]) * rot_z(s.q[2]) * rx_m;
+    // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
+    // (-c4 s5, -s4 s5, c5). Given q4, N = Rz(-q4) R36 = Ry(-q5) Rz(q6) gives q5 (third column
+    // (-s5, 0, c5)) and q6 (second row (s6, c6, 0)).
+    const Eigen::Matrix3d M = R03.transpose() * T.R;
+    const double w = std::hypot(M(0, 2), M(1, 2));
+    const bool wrist_singular = w < 1e-10;
+    out.singular = out.singular || wrist_singular;
+    for (int flip = 0; flip < 2; ++flip) {
+      double q4 = wrist_singular ? 0.0 : std::atan2(-M(1, 2), -M(0, 2));
+      if (flip) q4 += kPi;
+      const Eigen::Matrix3d N = rot_z(-q4) * M;
+      double q[6] = {s.q[0], s.q[1], s.q[2], q4, std::atan2(-N(0, 2), N(2, 2)), std::atan2(N(1, 0), N(1, 1))};
+      add_if_admissible(out, q, limits, arm_label(s.shoulder, s.elbow, flip ? 2 : 1));
+    }
+  }
+  return out;
+}
+
+void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok) {
+  double prev[6];
+  std::copy(q0, q0 + 6, prev);
+  for (long k = 0; k < count; ++k) {
+    ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
+    // Each solution's angles moved by 2 pi towards the previous joints, while within the limits.
+    for (int r = 0; r < s.count(); ++r)
+      for (int i = 0; i < 6; ++i) {
+        double& v = s.q[r * 6 + i];
+        const double lo = limits.lower.size() ? limits.lower(i) : -INFINITY;
+        const double hi = limits.upper.size() ? limits.upper(i) : INFINITY;
+        while (v - prev[i] > kPi && v - 2 * kPi >= lo) v -= 2 * kPi;
+        while (prev[i] - v > kPi && v + 2 * kPi <= hi) v += 2 * kPi;
+      }
+    const int best = nearest_solution(s, prev);
+    ok[k] = best >= 0;
+    if (best >= 0) std::copy(s.q.begin() + best * 6, s.q.begin() + best * 6 + 6, prev);
+    std::copy(prev, prev + 6, q_out + 6 * k);
+  }
+}
+
+int nearest_solution(const ClosedFormSolutions& s, const double* q) {
+  int best = -1;
+  double best_d = 0;
+  for (int k = 0; k < s.count(); ++k) {
+    double d = 0;
+    for (int i = 0; i < s.dof; ++i) {
+      const double e = s.q[k * s.dof + i] - q[i];
+      d += e * e;
+    }
+    if (best < 0 || d < best_d) best = k, best_d = d;
+  }
+  return best;
+}
+
+}  // namespace robokin

@@ -1,0 +1,427 @@
+// Numerical inverse kinematics: LM, GN, NR and Halley with joint limits and seeded restarts.
+#include "robokin/ik.hpp"
+
+#include "robokin/parallel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace robokin {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+// LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
+constexpr double kMuShrink = 0.1;
+// With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
+constexpr int kStallWindow = 6;
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+IkMethod parse_ik_method(const std::string& name) {
+  if (name == "lm") return IkMethod::LM;
+  if (name == "gn") return IkMethod::GN;
+  if (name == "nr") return IkMethod::NR;
+  if (name == "halley") return IkMethod::Halley;
+  throw std::invalid_argument("method: expected one of 'lm', 'gn', 'nr', 'halley', got '" + name + "'");
+}
+
+const char* ik_method_name(IkMethod method) {
+  switch (method) {
+    case IkMethod::LM: return "lm";
+    case IkMethod::GN: return "gn";
+    case IkMethod::NR: return "nr";
+    case IkMethod::Halley: return "halley";
+  }
+  return "?";
+}
+
+IkSolver::IkSolver(const Chain& chain, const IkOptions& options) { reset(chain, options); }
+
+void IkSolver::reset(const Chain& chain, const IkOptions& options) {
+  chain_ = &chain;
+  opt_ = options;
+  const int n = chain.dof(), m = task_rows(options.task);
+  if (n == n_ && m == m_) return;  // the workspace fits already
+  n_ = n;
+  m_ = m;
+  J6_.resize(6, n_);
+  HA_.resize(6, n_);
+  J_.resize(m_, n_);
+  Jt_.resize(m_, n_);
+  Jw_.resize(m_, n_);
+  M_.resize(m_, n_);
+  An_.resize(n_, n_);
+  Am_.resize(m_, m_);
+  e_.resize(m_);
+  et_.resize(m_);
+  r_.resize(m_);
+  dq_.resize(n_);
+  a_.resize(n_);
+  g_.resize(n_);
+  ym_.resize(m_);
+  qt_.resize(n_);
+  frozen_.assign(n_, false);
+}
+
+// Joint value v brought within the limits of joint i, by multiples of 2 pi for a revolute joint.
+bool IkSolver::fit(int i, double& v) const {
+  const double lo = chain_->lower()(i), hi = chain_->upper()(i);
+  if (v >= lo && v <= hi) return true;
+  if (chain_->prismatic(i) || hi - lo <= 0) return false;
+  const double k = std::ceil((lo - v) / kTwoPi);  // smallest shift up to reach lo
+  const double w = v + k * kTwoPi;
+  if (w >= lo && w <= hi) {
+    v = w;
+    return true;
+  }
+  return false;
+}
+
+void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const {
+  task_error(target, T, e);
+  switch (opt_.task) {
+    case Task::Pose:
+      ep = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      er = std::sqrt(e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
+      return;
+    case Task::Position:
+      ep = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      er = 0;
+      return;
+    case Task::XY:
+      ep = std::hypot(e[0], e[1]);
+      er = 0;
+      return;
+    case Task::XYPhi:
+      ep = std::hypot(e[0], e[1]);
+      er = std::abs(e[2]);
+      return;
+  }
+}
+
+void IkSolver::errors(const Target& target, const double* q, double& ep, double& er) const {
+  Rigid T;
+  chain_->fk(q, T);
+  double e[6];
+  errors_of(target, T, e, ep, er);
+}
+
+// FK (+ Jacobian rows of the task) and the error at q, into (J, e, ep, er); returns the cost |e|^2.
+double IkSolver::evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep,
+                          double& er) {
+  chain_->fk_jacobian(q.data(), T_, J6_.data());
+  select_rows(J6_, J);
+  errors_of(target, T_, e.data(), ep, er);
+  return e.squaredNorm();
+}
+
+void IkSolver::select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const {
+  switch (opt_.task) {
+    case Task::Pose: J = J6; return;
+    case Task::Position: J = J6.topRows(3); return;
+    case Task::XY: J = J6.topRows(2); return;
+    case Task::XYPhi:
+      J.topRows(2) = J6.topRows(2);
+      J.row(2) = J6.row(5);
+      return;
+  }
+}
+
+bool IkSolver::met(double ep, double er) const { return ep < opt_.tol_p && er < opt_.tol_r; }
+
+// The active set: solve for a step; a joint that would leave its limits (after wrapping) stops on
+// the limit and the step is solved again for the others with the residual it leaves. A joint
+// frozen here is free again at the next iteration: nothing sticks.
+template <class Solve>
+void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const Vector& e, Solve solve) {
+  std::fill(frozen_.begin(), frozen_.end(), false);
+  Jw_ = J;
+  r_ = e;
+  for (int pass = 0; pass <= n_; ++pass) {
+    solve(Jw_, r_, dq_);
+    bool changed = false;
+    for (int i = 0; i < n_; ++i) {
+      if (frozen_[i]) continue;
+      double v = q(i) + dq_(i);
+      if (!std::isfinite(v)) v = q(i), dq_(i) = 0;
+      if (fit(i, v)) {
+        qt_(i) = v;
+        continue;
+      }
+      const double lim = v < chain_->lower()(i) ? chain_->lower()(i) : chain_->upper()(i);
+      frozen_[i] = true;
+      qt_(i) = lim;
+      r_ -= J.col(i) * (lim - q(i));
+      Jw_.col(i).setZero();
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  for (int i = 0; i < n_; ++i)
+    if (frozen_[i]) dq_(i) = qt_(i) - q(i);
+}
+
+// dq = (J^T J + (mu + rel max diag(J^T J)) I)^-1 J^T r; fixed-size arithmetic for 6 x 6.
+void IkSolver::normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq) {
+  if (m_ == 6 && n_ == 6) {
+    using M6 = Eigen::Matrix<double, 6, 6>;
+    using V6 = Eigen::Matrix<double, 6, 1>;
+    const Eigen::Map<const M6> Jf(J.data());
+    M6 A;
+    A.noalias() = Jf.transpose() * Jf;
+    A.diagonal().array() += mu + rel * A.diagonal().maxCoeff();
+    V6 g;
+    g.noalias() = Jf.transpose() * Eigen::Map<const V6>(r.data());
+    Eigen::Map<V6>(dq.data()) = A.llt().solve(g);
+    return;
+  }
+  An_.noalias() = J.transpose() * J;
+  An_.diagonal().array() += mu + rel * An_.diagonal().maxCoeff();
+  g_.noalias() = J.transpose() * r;
+  llt_n_.compute(An_);
+  dq = llt_n_.solve(g_);
+}
+
+void IkSolver::damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+  // dq = J^T (J J^T + lambda^2 I)^-1 r
+  if (m_ == 6) {
+    using M6 = Eigen::Matrix<double, 6, 6>;
+    using V6 = Eigen::Matrix<double, 6, 1>;
+    const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> Jf(J.data(), 6, n_);
+    M6 A;
+    A.noalias() = Jf * Jf.transpose();
+    A.diagonal().array() += opt_.damping * opt_.damping;
+    const V6 y = A.llt().solve(Eigen::Map<const V6>(r.data()));
+    dq.noalias() = Jf.transpose() * y;
+    return;
+  }
+  Am_.noalias() = J * J.transpose();
+  Am_.diagonal().array() += opt_.damping * opt_.damping;
+  llt_m_.compute(Am_);
+  ym_ = llt_m_.solve(r);
+  dq.noalias() = J.transpose() * ym_;
+}
+
+// Column k of sum_j a_j dJ/dq_j (the kinematic Hessian applied to a), from the Jacobian's columns:
+// revolute k: [W_k x Jv_k + w_k x V_k ; W_k x w_k] with W_k = sum_{j<=k} a_j w_j and
+// V_k = sum_{j>k} a_j Jv_j; prismatic k: [W_k x z_k ; 0].
+void hessian_times(const Chain& chain, const Matrix6X& J6, const Vector& a, Matrix6X& out) {
+  const int n = chain.dof();
+  out.resize(6, n);
+  Eigen::Vector3d V = Eigen::Vector3d::Zero();
+  for (int j = 0; j < n; ++j) V += a(j) * J6.col(j).head<3>();
+  Eigen::Vector3d W = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d Jv = J6.col(k).head<3>(), w = J6.col(k).tail<3>();
+    V -= a(k) * Jv;  // now the sum over j > k
+    if (chain.prismatic(k)) {
+      out.col(k).head<3>() = W.cross(Jv);
+      out.col(k).tail<3>().setZero();
+    } else {
+      W += a(k) * w;
+      out.col(k).head<3>() = W.cross(Jv) + w.cross(V);
+      out.col(k).tail<3>() = W.cross(w);
+    }
+  }
+}
+
+void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < n_; ++i) {
+    double lo = chain_->lower()(i), hi = chain_->upper()(i);
+    const double span = chain_->prismatic(i) ? 1.0 : M_PI;
+    if (!std::isfinite(lo) && !std::isfinite(hi)) lo = -span, hi = span;
+    else if (!std::isfinite(lo)) lo = hi - 2 * span;
+    else if (!std::isfinite(hi)) hi = lo + 2 * span;
+    q(i) = lo + (hi - lo) * u(rng);
+  }
+}
+
+// One attempt from q (within limits) for at most `budget` iterations; q is left at the best point.
+bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline,
+                       bool may_stall) {
+  double ep, er;
+  double cost = evaluate(target, q, J_, e_, ep, er);
+  if (met(ep, er)) return true;
+  double mu = 0, nu = 2;
+  if (opt_.method == IkMethod::LM) {
+    mu = opt_.damping * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
+  }
+  double window_cost = cost;
+  for (int it = 0; it < budget; ++it) {
+    if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return false;
+    if (may_stall && it > 0 && it % kStallWindow == 0) {
+      if (cost > 0.5 * window_cost) return false;  // crawling: a restart does better
+      window_cost = cost;
+    }
+    ++iterations;
+    double ept, ert, cost_t;
+    switch (opt_.method) {
+      case IkMethod::LM: {
+        constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+          normal_solve(J, r, mu, 0.0, dq);
+        });
+        cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+        // Gain ratio of the actual to the predicted (linear model) decrease, Nielsen's update.
+        r_ = e_;
+        r_.noalias() -= J_ * dq_;
+        const double predicted = cost - r_.squaredNorm();
+        const double rho = predicted > 0 ? (cost - cost_t) / predicted : -1.0;
+        if (cost_t < cost && rho > 0) {
+          q.swap(qt_);
+          J_.swap(Jt_);
+          e_.swap(et_);
+          cost = cost_t;
+          if (met(ept, ert)) return true;
+          const double t = 2 * rho - 1;
+          mu *= std::max(kMuShrink, 1.0 - t * t * t);
+          nu = 2;
+        } else {
+          mu *= nu;
+          nu *= 2;
+          if (mu > 1e20 || !std::isfinite(mu)) return false;  // a local minimum: nothing decreases the error
+        }
+        break;
+      }
+      case IkMethod::GN: {
+        constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+          normal_solve(J, r, 1e-12, 1e-12, dq);  // a hair of regularisation for singular J
+        });
+        // Backtracking line search on the Gauss-Newton direction.
+        double alpha = 1.0;
+        a_ = dq_;
+        bool decreased = false;
+        for (int ls = 0; ls < 12; ++ls) {  // down to 1/2048 of the step: beyond, a local minimum
+          for (int i = 0; i < n_; ++i) {
+            double v = q(i) + alpha * a_(i);
+            if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
+            qt_(i) = v;
+          }
+          cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+          if (cost_t < cost) {
+            decreased = true;
+            break;
+          }
+          alpha *= 0.5;
+        }
+        if (!decreased) return false;
+        q.swap(qt_);
+        J_.swap(Jt_);
+        e_.swap(et_);
+        cost = cost_t;
+        if (met(ept, ert)) return true;
+        break;
+      }
+      case IkMethod::NR:
+      case IkMethod::Halley: {
+        if (opt_.method == IkMethod::Halley) {
+          // Newton step a, then Halley's correction: solve (J + 1/2 H a) b = e.
+          damped_pinv(J_, e_, a_);
+          hessian_times(*chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
+          select_rows(HA_, M_);
+          M_ = J_ + 0.5 * M_;
+          constrained_step(q, M_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+            damped_pinv(J, r, dq);
+          });
+          if (!dq_.allFinite() || dq_.norm() > 2.0 * a_.norm() + 1e-12) {
+            constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+              damped_pinv(J, r, dq);
+            });
+          }
+        } else {
+          constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+            damped_pinv(J, r, dq);
+          });
+        }
+        if (dq_.lpNorm<Eigen::Infinity>() < 1e-15) return false;  // stalled
+        cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+        q.swap(qt_);
+        J_.swap(Jt_);
+        e_.swap(et_);
+        cost = cost_t;
+        if (met(ept, ert)) return true;
+        break;
+      }
+    }
+  }
+  return false;
+}
+
+IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed) {
+  IkResult r;
+  const double start = opt_.timeout > 0 ? now_s() : 0.0;
+  const double deadline = opt_.timeout > 0 ? start + opt_.timeout : 0.0;
+  Vector q = Eigen::Map<const Vector>(q0, n_);
+  for (int i = 0; i < n_; ++i)
+    if (!fit(i, q(i))) q(i) = std::min(std::max(q(i), chain_->lower()(i)), chain_->upper()(i));
+  Vector best = q;
+  double best_cost = std::numeric_limits<double>::infinity();
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k <= opt_.restarts; ++k) {
+    if (k > 0) {
+      if (deadline > 0 && now_s() > deadline) break;
+      random_q(rng, q);
+    }
+    ++r.attempts;
+    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts);
+    double ep, er;
+    errors(target, q.data(), ep, er);
+    const double c = ep * ep + er * er;
+    if (ok || c < best_cost) best = q, best_cost = c;
+    if (ok) break;
+  }
+  r.q = best;
+  finalise(target, r);
+  return r;
+}
+
+// Success is decided here, on the returned q: angles wrapped into their limits (nearest to 0 when a
+// joint spans more than 2 pi), clamped, then FK and the tolerances.
+void IkSolver::finalise(const Target& target, IkResult& r) const {
+  for (int i = 0; i < n_; ++i) {
+    double& v = r.q(i);
+    if (!chain_->prismatic(i)) {
+      const double w = std::remainder(v, kTwoPi);
+      if (w >= chain_->lower()(i) && w <= chain_->upper()(i)) v = w;
+    }
+    if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
+  }
+  errors(target, r.q.data(), r.error_p, r.error_r);
+  r.success = r.q.allFinite() && met(r.error_p, r.error_r);
+}
+
+void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count, const double* q0,
+              long q0_stride, bool path, std::uint64_t seed, double* q_out, bool* success, int* iterations,
+              int* attempts, double* error_p, double* error_r) {
+  const int n = chain.dof();
+  auto store = [&](long k, const IkResult& r) {
+    Eigen::Map<Vector>(q_out + k * n, n) = r.q;
+    success[k] = r.success;
+    iterations[k] = r.iterations;
+    attempts[k] = r.attempts;
+    error_p[k] = r.error_p;
+    error_r[k] = r.error_r;
+  };
+  if (path) {
+    IkSolver solver(chain, options);
+    for (long k = 0; k < count; ++k) {
+      const double* start = k == 0 ? q0 : q_out + (k - 1) * n;
+      store(k, solver.solve(targets[k], start, seed + static_cast<std::uint64_t>(k)));
+    }
+    return;
+  }
+  parallel_for(count, 16, [&](long begin, long end) {
+    IkSolver solver(chain, options);
+    for (long k = begin; k < end; ++k)
+      store(k, solver.solve(targets[k], q0 + k * q0_stride, seed + static_cast<std::uint64_t>(k)));
+  });
+}
+
+}  // namespace robokin

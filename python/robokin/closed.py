@@ -1,0 +1,183 @@
+"""Closed-form inverse kinematics (seed 003): every solution of a pose, labelled by its posture.
+
+Each function returns an :class:`IKSolutions` (``q`` of shape ``(k, dof)``, ``postures``, ``singular``),
+filtered by the joint limits, and empty (``len(s) == 0``, never an exception) when the pose is out
+of reach. Revolute angles are wrapped to ``(-pi, pi]`` and shifted by ``2 pi`` into the limits when
+that fits. The solvers run in the C++ core.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from . import _core
+from ._core import Chain, IKSolutions
+
+__all__ = [
+    "IKSolutions",
+    "anthropomorphic",
+    "planar_2r",
+    "planar_3r",
+    "planar_rp",
+    "puma560",
+    "puma560_path",
+    "rpr_self_motion",
+    "spherical_wrist_6r",
+]
+
+#: PUMA 560 standard DH (P. Corke's Robotics Toolbox ``Puma560``, as in :func:`robokin.robots.puma560`).
+PUMA560 = {"d1": 0.0, "a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318, "d6": 0.0}
+
+
+def _limits(limits):
+    """``None``, a ``(lower, upper)`` pair, or a Chain whose limits are used."""
+    if isinstance(limits, Chain):
+        return limits.limits
+    return limits
+
+
+def planar_rp(target, limits=None) -> IKSolutions:
+    """Planar RP arm (seed 003, example 1): ``theta1 = atan2(p_y, p_x)``, ``d2 = sqrt(p_x^2 + p_y^2)``.
+
+    Args:
+        target: Tip position (x, y).
+        limits: ``(lower, upper)`` for ``(theta1, d2)``, or a Chain (e.g. :func:`robokin.robots.rp`).
+
+    Returns:
+        The forward stroke and, when the limits allow ``d2 < 0``, the backward one.
+    """
+    return _core.ik_planar_rp(target, _limits(limits))
+
+
+def planar_2r(target, a1: float = 1.0, a2: float = 1.0, limits=None) -> IKSolutions:
+    """Planar 2R arm: both elbow postures putting the tip at ``target`` (x, y).
+
+    Args:
+        target: Tip position (x, y).
+        a1: Length of link 1.
+        a2: Length of link 2.
+        limits: ``(lower, upper)`` or a Chain.
+
+    Returns:
+        "elbow down" (``theta2`` in ``(0, pi)``) and "elbow up"; one solution when ``sin theta2 = 0``.
+    """
+    return _core.ik_planar_2r(target, a1, a2, _limits(limits))
+
+
+def planar_3r(target, a1: float = 1.0, a2: float = 1.0, a3: float = 1.0, method: str = "algebraic",
+              limits=None) -> IKSolutions:
+    """Planar 3R arm with the tool orientation (seed 003, example 2).
+
+    Args:
+        target: ``(x, y, phi)``, the tip position and the angle of the last link to the x axis.
+        a1: Length of link 1.
+        a2: Length of link 2.
+        a3: Length of link 3.
+        method: ``"algebraic"`` (``c2``, ``s2 = +-sqrt(1 - c2^2)``, then ``s1``, ``c1``) or
+            ``"geometric"`` (law of cosines, ``theta1 = alpha -+ beta``).
+        limits: ``(lower, upper)`` or a Chain (e.g. :func:`robokin.robots.planar_3r`).
+
+    Returns:
+        "elbow down" and "elbow up"; one solution ("elbow straight" / "elbow folded", ``singular``)
+        when ``s2 = 0``.
+    """
+    return _core.ik_planar_3r(target, a1, a2, a3, method, _limits(limits))
+
+
+def anthropomorphic(target, a2: float, a3: float, d1: float = 0.0, limits=None) -> IKSolutions:
+    """Anthropomorphic arm, standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``.
+
+    Args:
+        target: Tip position (x, y, z).
+        a2: Upper arm length.
+        a3: Forearm length.
+        d1: Shoulder height.
+        limits: ``(lower, upper)`` or a Chain.
+
+    Returns:
+        Up to 4 postures: shoulder right / left x elbow up / down.
+    """
+    return _core.ik_anthropomorphic(target, a2, a3, d1, _limits(limits))
+
+
+def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: float = 0.0, d6: float = 0.0,
+                       limits=None) -> IKSolutions:
+    """6R arm with a spherical wrist in the PUMA layout (standard DH rows
+    ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, -pi/2, d3)``, ``(0, pi/2, d4)``, ``(0, -pi/2, 0)``, ``(0, 0, d6)``).
+
+    Args:
+        target: Tool frame (4, 4).
+        a2, a3, d3, d4, d1, d6: The DH lengths above.
+        limits: ``(lower, upper)`` or a Chain.
+
+    Returns:
+        Up to 8 solutions: shoulder right / left x elbow up / down x wrist no flip / flip. At the
+        wrist singularity (``q5 = 0``) only ``q4 + q6`` is determined: ``q4 = 0`` (and ``pi``).
+    """
+    return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
+
+
+_PUMA560_CACHE = {}
+
+
+def _puma560_limits():
+    if "limits" not in _PUMA560_CACHE:
+        from .robots import puma560 as _puma
+
+        _PUMA560_CACHE["limits"] = _puma().limits
+    return _PUMA560_CACHE["limits"]
+
+
+def _puma560_solver(default_limits: bool):
+    key = "default" if default_limits else "none"
+    if key not in _PUMA560_CACHE:
+        g = PUMA560
+        lim = _puma560_limits() if default_limits else None
+        _PUMA560_CACHE[key] = _core._SphericalWrist6R(g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], lim)
+    return _PUMA560_CACHE[key]
+
+
+def puma560(target, limits="default") -> IKSolutions:
+    """All (up to 8) solutions of :func:`robokin.robots.puma560` for the tool frame ``target``.
+
+    Args:
+        target: Tool frame (4, 4).
+        limits: ``"default"`` for the PUMA's joint limits, ``None`` for none, a pair or a Chain.
+    """
+    if limits is None or (isinstance(limits, str) and limits == "default"):
+        return _puma560_solver(limits is not None).solve(target)
+    g = PUMA560
+    return _core.ik_spherical_wrist(target, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], _limits(limits))
+
+
+def puma560_path(targets, q0, limits="default"):
+    """Follows a path of tool frames with the closed form: at each frame, the solution nearest to
+    the previous joints (``q0`` for the first), angles shifted by ``2 pi`` towards the previous
+    ones within the limits. The posture never jumps to another branch unless the path forces it.
+
+    Args:
+        targets: (K, 4, 4) tool frames.
+        q0: (6,) joints before the first frame.
+        limits: As :func:`puma560`.
+
+    Returns:
+        ``(q, ok)``: (K, 6) joints and (K,) booleans; where a frame has no solution, ``ok`` is
+        False and the row repeats the previous joints.
+    """
+    if isinstance(limits, str) and limits == "default":
+        limits = _puma560_limits()
+    g = PUMA560
+    return _core.ik_spherical_wrist_path(
+        targets, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], q0, _limits(limits)
+    )
+
+
+def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
+    """The seed-000 RPR's self-motion set (redundant: infinitely many solutions); see
+    :func:`robokin.robots.rpr_self_motion`, which this is."""
+    from .robots import rpr_self_motion as _sm
+
+    return _sm(point, t1, num)

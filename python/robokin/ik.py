@@ -1,0 +1,109 @@
+"""Numerical inverse kinematics; the solvers run in the C++ core (GIL released for batches).
+
+Methods:
+    ``"lm"``: Levenberg-Marquardt, ``(J^T J + mu I) dq = J^T e`` with the damping ``mu`` adapted
+    by the gain ratio (Nielsen's rule). The most robust; the default.
+    ``"gn"``: Gauss-Newton, ``(J^T J) dq = J^T e`` with a backtracking line search.
+    ``"nr"``: Newton-Raphson with the damped pseudoinverse ``dq = J^T (J J^T + lambda^2 I)^-1 e``.
+    ``"halley"``: Halley's method (Lloyd, Irani, Ahmadi, IEEE T-RO 38(5), 2022): the Newton step
+    ``a``, then ``(J + H a / 2) dq = e`` with the kinematic Hessian ``H`` built from the Jacobian's
+    columns; cubic convergence near the solution.
+
+Joint limits: a joint that would cross its limit stops on it and the other joints solve the rest
+of the step (an active set renewed at every iteration, so no joint sticks at a limit); revolute
+angles are wrapped by ``2 pi`` into limits wider than ``2 pi``. Success is decided on the returned
+``q`` (wrapped, clamped) by forward kinematics: position error ``< tol_p`` and orientation error
+``< tol_r``.
+
+For many calls with the same options, ``IKSolver(chain, method=..., ...)`` binds the chain and the
+options once; ``solver.solve(target, q0)`` then costs only the solve.
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from . import _core
+from ._core import IKBatchResult, IKResult, IKSolver
+
+__all__ = ["IKBatchResult", "IKResult", "IKSolver", "ik", "ik_batch"]
+
+
+def ik(
+    chain: _core.Chain,
+    target,
+    q0,
+    method: str = "lm",
+    task: str = "pose",
+    tol_p: float = 1e-9,
+    tol_r: float = 1e-9,
+    max_iter: int = 100,
+    restarts: int = 0,
+    seed: Optional[int] = None,
+    timeout: Optional[float] = None,
+    damping: Optional[float] = None,
+) -> IKResult:
+    """Solves the inverse kinematics of one target numerically.
+
+    Args:
+        chain: The serial chain; its joint limits are respected.
+        target: ``task="pose"``: a (4, 4) frame; ``"position"``: (x, y, z); ``"xy"``: (x, y);
+            ``"xyphi"``: (x, y, phi).
+        q0: Start configuration, shape (dof,).
+        method: ``"lm"``, ``"gn"``, ``"nr"`` or ``"halley"`` (see the module docstring).
+        task: Which part of the tool pose is solved for.
+        tol_p: Position tolerance (m).
+        tol_r: Orientation tolerance (rad): the rotation angle between the frames (pose), the
+            planar angle (xyphi); unused for the other tasks.
+        max_iter: Iterations per attempt.
+        restarts: Extra attempts from random configurations drawn uniformly within the limits
+            (revolute joints without limits: ``[-pi, pi]``) when an attempt fails.
+        seed: Seed of the restarts' generator (reproducible results); None draws one.
+        timeout: Time budget in seconds for all the attempts; None for none.
+        damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-3);
+            ``nr``/``halley``: lambda of the damped pseudoinverse (default 1e-6); unused by ``gn``.
+
+    Returns:
+        IKResult with ``q``, ``success``, ``iterations``, ``attempts``, ``error_p``, ``error_r``.
+        When no attempt succeeds, ``q`` is the best point found and ``success`` is False.
+
+    Raises:
+        ValueError: For a bad argument (the message names it).
+    """
+    return _core.ik(chain, target, q0, method, task, tol_p, tol_r, max_iter, restarts, seed, timeout, damping)
+
+
+def ik_batch(
+    chain: _core.Chain,
+    targets,
+    q0,
+    method: str = "lm",
+    task: str = "pose",
+    tol_p: float = 1e-9,
+    tol_r: float = 1e-9,
+    max_iter: int = 100,
+    restarts: int = 0,
+    seed: Optional[int] = None,
+    timeout: Optional[float] = None,
+    damping: Optional[float] = None,
+    path: bool = False,
+) -> IKBatchResult:
+    """Solves many targets in one call, the GIL released.
+
+    Args:
+        chain: The serial chain.
+        targets: ``(N, 4, 4)`` frames for ``task="pose"``, ``(N, rows)`` otherwise.
+        q0: ``(dof,)`` start for every target, or ``(N, dof)`` one start per target.
+        method, task, tol_p, tol_r, max_iter, restarts, timeout, damping: As :func:`ik`
+            (``timeout`` applies to each target).
+        seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
+        path: The targets are a path: each starts from the previous solution (warm start, no
+            branch jumps; sequential). Otherwise the targets are solved in parallel on every core.
+
+    Returns:
+        IKBatchResult with ``q`` (N, dof), ``success``, ``iterations``, ``attempts``, ``error_p``,
+        ``error_r`` (N,).
+    """
+    return _core.ik_batch(
+        chain, targets, q0, method, task, tol_p, tol_r, max_iter, restarts, seed, timeout, damping, path
+    )

@@ -1,0 +1,230 @@
+"""Numerical IK, checked against independent truth: forward kinematics of the returned q (success
+must mean the pose is reached), the joint limits, and finite differences of the Jacobian."""
+
+import math
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+METHODS = ["lm", "gn", "nr", "halley"]
+
+
+def rotation_angle(R):
+    """Angle of a rotation matrix, accurate near 0 (acos of the trace is not)."""
+    s = np.linalg.norm([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / 2.0
+    return math.atan2(s, (np.trace(R) - 1.0) / 2.0)
+
+
+def verified(chain, q, T, tol_p=1e-9, tol_r=1e-9):
+    F = chain._fk_kdl(q)  # KDL's recursive FK: independent of the solver's fast path
+    return np.linalg.norm(F[:3, 3] - T[:3, 3]) < tol_p and rotation_angle(F[:3, :3].T @ T[:3, :3]) < tol_r
+
+
+def random_targets(chain, count, seed):
+    lo, hi = chain.limits
+    q = np.random.default_rng(seed).uniform(lo, hi, (count, chain.dof))
+    return q, chain.fk(q)
+
+
+@pytest.mark.parametrize("robot", ["ur5", "puma560"])
+@pytest.mark.parametrize("method", METHODS)
+def test_reported_success_equals_verified_success(robot, method):
+    chain = getattr(rk.robots, robot)()
+    lo, hi = chain.limits
+    _, targets = random_targets(chain, 150, seed=7)
+    q0 = np.clip(np.zeros(6), lo, hi)
+    for restarts in (0, 30):
+        res = rk.ik_batch(chain, targets, q0, method=method, restarts=restarts, seed=3)
+        for k in range(len(targets)):
+            assert res.success[k] == verified(chain, res.q[k], targets[k])
+            assert np.all(res.q[k] >= lo) and np.all(res.q[k] <= hi)
+        if restarts:
+            assert res.success.mean() >= 0.98, (robot, method, res)
+    # the default method solves every target with restarts
+    if method == "lm":
+        assert res.success.all()
+
+
+def test_single_solve_matches_batch_and_repr():
+    chain = rk.robots.ur5()
+    q, T = random_targets(chain, 1, seed=11)
+    r = rk.ik(chain, T[0], np.zeros(6), restarts=10, seed=5)
+    assert r.success and bool(r)
+    assert verified(chain, r.q, T[0])
+    assert "IKResult(success=True" in repr(r) and "error_p" in repr(r)
+    b = rk.ik_batch(chain, T, np.zeros(6), restarts=10, seed=5)
+    assert np.allclose(b.q[0], r.q) and b.success[0]
+    assert "IKBatchResult(targets=1, success=1/1" in repr(b)
+
+
+def test_same_seed_same_answer():
+    chain = rk.robots.puma560()
+    _, T = random_targets(chain, 20, seed=12)
+    a = rk.ik_batch(chain, T, np.zeros(6), method="nr", restarts=5, seed=42)
+    b = rk.ik_batch(chain, T, np.zeros(6), method="nr", restarts=5, seed=42)
+    assert np.array_equal(a.q, b.q) and np.array_equal(a.attempts, b.attempts)
+
+
+def test_unreachable_target_is_never_a_success():
+    chain = rk.robots.ur5()
+    T = np.eye(4)
+    T[:3, 3] = (2.0, 0.0, 0.5)  # the UR5 reaches about 0.95 m
+    for method in METHODS:
+        r = rk.ik(chain, T, np.zeros(6), method=method, restarts=3, seed=1, max_iter=50)
+        assert not r.success and r.error_p > 0.5
+        assert np.all(np.isfinite(r.q))
+
+
+@pytest.mark.parametrize(
+    "goal, start",
+    [
+        ([0.01, -1.921, 0.617], [0.166, 0.565, 2.086]),
+        ([0.22, 0.661, 1.551], [-0.095, 0.218, -1.519]),
+        ([0.052, 1.698, 1.132], [-0.081, -0.258, -0.662]),
+    ],
+)
+def test_joint_limits_do_not_stick(goal, start):
+    # A planar 3R with a tight first joint: from these starts KDL's NR_JL (which clamps each
+    # iteration's step) stalls on a limit; the active set lets the other joints finish the step.
+    lim = (np.array([-0.3, -2.5, -2.5]), np.array([0.3, 2.5, 2.5]))
+    chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 3, limits=lim)
+    target = chain.fk(np.array(goal))
+    for method in METHODS:
+        r = rk.ik(chain, target, np.array(start), method=method, max_iter=200)
+        assert r.success, (method, r)
+        assert verified(chain, r.q, target)
+        assert np.all(r.q >= lim[0]) and np.all(r.q <= lim[1])
+
+
+def test_solution_at_a_limit_is_reached():
+    lim = (np.array([-1.0, 0.0, -1.0]), np.array([1.0, 2.0, 1.0]))
+    chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 3, limits=lim)
+    q_goal = np.array([1.0, 0.0, 0.5])  # two joints exactly on a limit
+    target = chain.fk(q_goal)
+    r = rk.ik(chain, target, np.array([-0.5, 1.5, -0.5]), restarts=10, seed=0)
+    assert r.success and verified(chain, r.q, target)
+
+
+def test_tasks_position_xy_xyphi():
+    chain = rk.robots.planar_3r(1.0, 0.8, 0.5)
+    q = np.array([0.3, 0.7, -0.4])
+    T = chain.fk(q)
+    phi = math.atan2(T[1, 0], T[0, 0])
+    for method in METHODS:
+        r = rk.ik(chain, (T[0, 3], T[1, 3], phi), np.zeros(3), method=method, task="xyphi", restarts=5, seed=0)
+        F = chain.fk(r.q)
+        assert r.success and np.hypot(*(F[:2, 3] - T[:2, 3])) < 1e-9
+        assert abs(math.remainder(math.atan2(F[1, 0], F[0, 0]) - phi, 2 * math.pi)) < 1e-9
+        r = rk.ik(chain, T[:2, 3], np.zeros(3), method=method, task="xy", restarts=5, seed=0)
+        assert r.success and np.hypot(*(chain.fk(r.q)[:2, 3] - T[:2, 3])) < 1e-9 and r.error_r == 0
+    ur5 = rk.robots.ur5()
+    p = ur5.fk(np.array([0.1, -1.0, 1.2, 0.3, 0.4, 0.5]))[:3, 3]
+    r = rk.ik(ur5, p, np.zeros(6), task="position", restarts=5, seed=0)
+    assert r.success and np.linalg.norm(ur5.fk(r.q)[:3, 3] - p) < 1e-9
+
+
+def test_path_warm_start_has_no_branch_jumps():
+    chain = rk.robots.puma560()
+    q_start = np.array([0.2, 0.6, -0.5, 0.3, 0.8, 0.1])
+    T0 = chain.fk(q_start)
+    steps = 100
+    targets = np.repeat(T0[None], steps, axis=0)
+    targets[:, 2, 3] += np.linspace(0.0, 0.05, steps)  # a vertical line of 5 cm
+    assert len(rk.closed.puma560(targets[-1])) > 0  # reachable
+    res = rk.ik_batch(chain, targets, q_start, path=True)
+    assert res.success.all()
+    jumps = np.abs(np.diff(np.vstack([q_start, res.q]), axis=0)).max()
+    assert jumps < 0.05
+    for k in range(0, steps, 10):
+        assert verified(chain, res.q[k], targets[k])
+
+
+def test_hessian_term_matches_finite_differences():
+    rng = np.random.default_rng(0)
+    chains = [rk.robots.ur5(), rk.robots.puma560(), rk.robots.rpr(), rk.robots.prr()]
+    for chain in chains:
+        for _ in range(5):
+            q = rng.uniform(-1, 1, chain.dof)
+            a = rng.normal(size=chain.dof)
+            h = 1e-6
+            fd = (chain.jacobian(q + h * a) - chain.jacobian(q - h * a)) / (2 * h)
+            assert np.allclose(rk._core._hessian_times(chain, q, a), fd, atol=1e-7)
+
+
+def test_timeout_bounds_the_restarts():
+    chain = rk.robots.ur5()
+    T = np.eye(4)
+    T[:3, 3] = (2.0, 0.0, 0.5)
+    r = rk.ik(chain, T, np.zeros(6), restarts=1_000_000, timeout=0.02, seed=0)
+    assert not r.success and r.attempts < 1_000_000
+
+
+def test_bad_input_names_the_argument():
+    chain = rk.robots.ur5()
+    T = chain.fk(np.zeros(6))
+    with pytest.raises(ValueError, match="method"):
+        rk.ik(chain, T, np.zeros(6), method="bfgs")
+    with pytest.raises(ValueError, match="task"):
+        rk.ik(chain, T, np.zeros(6), task="orientation")
+    with pytest.raises(ValueError, match="q0"):
+        rk.ik(chain, T, np.zeros(5))
+    with pytest.raises(ValueError, match="q0"):
+        rk.ik(chain, T, [np.nan] * 6)
+    with pytest.raises(ValueError, match="target"):
+        rk.ik(chain, np.ones((4, 4)), np.zeros(6))
+    with pytest.raises(ValueError, match="tol_p"):
+        rk.ik(chain, T, np.zeros(6), tol_p=-1.0)
+    with pytest.raises(ValueError, match="restarts"):
+        rk.ik(chain, T, np.zeros(6), restarts=-1)
+    with pytest.raises(ValueError, match="max_iter"):
+        rk.ik(chain, T, np.zeros(6), max_iter=0)
+    with pytest.raises(ValueError, match="seed"):
+        rk.ik(chain, T, np.zeros(6), seed="abc")
+    with pytest.raises(ValueError, match="targets"):
+        rk.ik_batch(chain, np.zeros((3, 4)), np.zeros(6))
+    with pytest.raises(ValueError, match="q0"):
+        rk.ik_batch(chain, np.stack([T, T]), np.zeros((3, 6)))
+    with pytest.raises(ValueError, match="q0"):
+        rk.ik_batch(chain, np.stack([T, T]), np.zeros((2, 6)), path=True)
+
+
+def test_bound_solver_matches_ik():
+    chain = rk.robots.puma560()
+    _, T = random_targets(chain, 5, seed=21)
+    solver = rk.IKSolver(chain, method="halley", restarts=20, seed=9)
+    assert "IKSolver(method='halley'" in repr(solver) and solver.task == "pose"
+    for k in range(5):
+        a = solver.solve(T[k], np.zeros(6))
+        b = rk.ik(chain, T[k], np.zeros(6), method="halley", restarts=20, seed=9 + k)
+        assert np.array_equal(a.q, b.q) and a.success == b.success
+        assert a.success == verified(chain, a.q, T[k])
+    with pytest.raises(ValueError, match="q0"):
+        solver.solve(T[0], np.zeros(3))
+    with pytest.raises(ValueError, match="method"):
+        rk.IKSolver(chain, method="x")
+
+
+def test_batch_in_parallel_equals_one_by_one():
+    chain = rk.robots.ur5()
+    _, T = random_targets(chain, 40, seed=31)
+    batch = rk.ik_batch(chain, T, np.zeros(6), method="lm", restarts=10, seed=100)
+    for k in range(40):
+        r = rk.ik(chain, T[k], np.zeros(6), method="lm", restarts=10, seed=100 + k)
+        assert np.array_equal(batch.q[k], r.q) and batch.success[k] == r.success
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_redundant_seven_joint_arm(method):
+    # A 7R arm (KUKA LBR iiwa-like DH: d = 0.34, 0.4, 0.4, 0.126 m): more joints than task rows.
+    p = math.pi / 2
+    rows = [(0, -p, 0.34, 0, "R"), (0, p, 0, 0, "R"), (0, p, 0.4, 0, "R"), (0, -p, 0, 0, "R"),
+            (0, -p, 0.4, 0, "R"), (0, p, 0, 0, "R"), (0, 0, 0.126, 0, "R")]
+    lim = np.radians([170, 120, 170, 120, 170, 120, 175])
+    chain = rk.Chain.from_dh(rows, limits=(-lim, lim))
+    _, T = random_targets(chain, 60, seed=41)
+    res = rk.ik_batch(chain, T, np.zeros(7), method=method, restarts=30, seed=0)
+    for k in range(len(T)):
+        assert res.success[k] == verified(chain, res.q[k], T[k])
+    assert res.success.mean() >= 0.95
