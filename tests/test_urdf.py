@@ -131,3 +131,14 @@ def test_bad_urdf_input():
         rk.Chain.from_urdf(SMALL, "base_link", "nowhere")
     with pytest.raises(ValueError, match="base, tip"):
         rk.Chain.from_urdf(SMALL, "tool", "tool")
+
+
+def test_fast_path_equals_kdl_with_joint_origins(rng):
+    """kdl_parser gives joints a non-zero KDL origin (pose(q) = Frame(Rot(axis, q), origin)): the
+    specialised evaluation path must agree with KDL's solvers on such chains too."""
+    ur5 = rk.robots.ur5()
+    for xml, base in ((SMALL, "base_link"), (urdf_from_dh("ur5", UR5_DH, *ur5.limits), "l0")):
+        chain = rk.Chain.from_urdf(xml, base, "tool")
+        for q in rng.uniform(-1, 1, size=(20, chain.dof)):
+            np.testing.assert_allclose(chain.fk(q), chain._fk_kdl(q), atol=1e-12)
+            np.testing.assert_allclose(chain.jacobian(q), chain._jacobian_kdl(q), atol=1e-12)

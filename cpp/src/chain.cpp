@@ -45,10 +45,9 @@ KDL::JntArray to_jnt(const Vector& q) {
   return j;
 }
 
-// A frame at `origin` whose z axis is `axis` (exactly the identity rotation for +z, as in DH chains).
-Rigid frame_with_z(const Eigen::Vector3d& axis, const Eigen::Vector3d& origin) {
+// A rotation whose z axis is `axis` (exactly the identity for +z, as in DH chains).
+Rigid frame_with_z(const Eigen::Vector3d& axis) {
   Rigid g;
-  g.p = origin;
   const Eigen::Vector3d z = axis.normalized();
   if (z.isApprox(Eigen::Vector3d::UnitZ(), 1e-15)) return g;
   const Eigen::Vector3d helper =
@@ -146,9 +145,11 @@ void Chain::build_fast_path() {
       continue;
     }
     const bool prismatic = joint.getType() >= KDL::Joint::TransAxis;
-    const KDL::Vector a = joint.JointAxis(), o = joint.JointOrigin();
+    const KDL::Vector a = joint.JointAxis();
     const Eigen::Vector3d axis(a.x(), a.y(), a.z());
-    const Rigid G = frame_with_z(axis, prismatic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(o.x(), o.y(), o.z()));
+    // KDL: joint.pose(q) = Frame(Rot(axis, scale q + offset), origin), so joint.pose(q) =
+    // P0 * G Mz(scale q) G^-1 with G a rotation taking z to the axis (no translation).
+    const Rigid G = frame_with_z(axis);
     const Rigid P0 = to_rigid(joint.pose(0.0)), P1 = to_rigid(joint.pose(1.0));
     // The joint's scale: how far one unit of q moves it (1 for every chain robokin builds).
     double scale;

@@ -6,32 +6,9 @@
 
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace robokin {
-
-namespace {
-
-// kdl_parser puts each joint's axis through the URDF joint origin (a non-zero KDL joint origin).
-// Rewritten here with the origin as a fixed segment and the joint through the origin of its own
-// segment: the same motion (rotation about the same line), in the form Chain's fast path expects.
-KDL::Chain normalised(const KDL::Chain& in) {
-  KDL::Chain out;
-  for (const KDL::Segment& seg : in.segments) {
-    const KDL::Joint& j = seg.getJoint();
-    if (j.getType() == KDL::Joint::Fixed || j.JointOrigin().Norm() == 0.0) {
-      out.addSegment(seg);
-      continue;
-    }
-    const KDL::Vector o = j.JointOrigin();
-    out.addSegment(KDL::Segment(seg.getName() + "_joint_origin", KDL::Joint(KDL::Joint::Fixed),
-                                KDL::Frame(o)));
-    const KDL::Joint moved(j.getName(), KDL::Vector::Zero(), j.JointAxis(), j.getType());
-    out.addSegment(KDL::Segment(seg.getName(), moved, KDL::Frame(-o) * seg.pose(0.0)));
-  }
-  return out;
-}
-
-}  // namespace
 
 Chain chain_from_urdf(const std::string& xml, const std::string& base, const std::string& tip) {
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
@@ -61,7 +38,7 @@ Chain chain_from_urdf(const std::string& xml, const std::string& base, const std
     }
     ++j;
   }
-  return Chain(normalised(chain), lower, upper);
+  return Chain(std::move(chain), lower, upper);
 }
 
 }  // namespace robokin
