@@ -3,6 +3,7 @@
 Arrays are float64; bad input raises ValueError naming the argument.
 """
 
+import os
 from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -39,6 +40,10 @@ class Chain:
         """Builds a chain from KDL-style segments ``(joint, axis, tip)``: a joint ``"R"``,
         ``"P"`` or ``"F"`` (fixed) about / along ``axis`` (3,) through the segment's start, then the
         constant (4, 4) frame ``tip`` to the segment's end."""
+    @staticmethod
+    def from_urdf(path_or_string: Union[str, os.PathLike], base: str, tip: str) -> "Chain":
+        """Builds the chain from link ``base`` to link ``tip`` of a URDF (a file path or the XML
+        itself) through kdl_parser; joint limits come from the file (continuous joints unlimited)."""
     @property
     def dof(self) -> int: ...
     @property
@@ -377,9 +382,3 @@ class _KdlIk:
     """Benchmark reference: KDL's ChainIkSolverPos_LMA ("lma") or ChainIkSolverPos_NR_JL ("nr_jl")."""
     def __init__(self, chain: Chain, solver: str = "lma", max_iter: int = 500, eps: float = 1e-5) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> Tuple[NDArray, int]: ...
-
-# --- URDF (cpp/bindings/urdf.cpp) ----------------------------------------------------------------
-# cpp/bindings/urdf.cpp adds a static method to Chain (kept out of the Chain section above to avoid
-# merge conflicts; move it into the class when merging):
-#     @staticmethod
-#     def from_urdf(path_or_string: Union[str, os.PathLike], base: str, tip: str) -> Chain: ...

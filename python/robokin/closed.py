@@ -120,7 +120,7 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
-_PUMA560_CACHE = {}
+_PUMA560_CACHE: dict = {}
 
 
 def _puma560_limits():
