@@ -267,3 +267,9 @@ def test_bad_chain_definitions():
         rk.Chain.from_segments([("F", (0, 0, 1), np.eye(4))])
     with pytest.raises(ValueError, match="in_frame: expected 0..3"):
         rk.robots.rpr().point_in_frame([0, 0, 0], [0, 0, 0], frame=3, in_frame=7)
+
+
+def test_limits_must_admit_a_value():
+    for lower, upper in (([np.inf], [np.inf]), ([-np.inf], [-np.inf])):
+        with pytest.raises(ValueError, match="limits: joint 0 has no admissible value"):
+            rk.Chain.from_dh([(1, 0, 0, 0, "R")], limits=(lower, upper))

@@ -245,3 +245,19 @@ def test_puma560_path_keeps_its_branch():
     far[100, 0, 3] = 3.0
     q2, ok2 = rk.closed.puma560_path(far, q_start)
     assert not ok2[100] and ok2.sum() == K - 1 and np.array_equal(q2[100], q2[99])
+
+
+def test_puma560_path_shifts_whole_turns_towards_far_previous_joints():
+    """Unlimited joints follow the previous joints by whole turns, computed in one step: a far-away
+    q0 (1e17 rad) returns at once with finite joints instead of stepping 2 pi at a time."""
+    puma = rk.robots.puma560()
+    q = np.array([0.3, 0.4, -0.5, 0.4, 0.5, 0.6])
+    T = puma.fk(q)[None]
+    turns = np.array([3, -2, 0, 5, 1, -4])
+    path, ok = rk.closed.puma560_path(T, q + 2 * np.pi * turns + 0.01, limits=None)
+    assert ok[0]
+    np.testing.assert_allclose(path[0], q + 2 * np.pi * turns, atol=1e-9)
+    path, ok = rk.closed.puma560_path(T, np.full(6, 1e17), limits=None)
+    assert ok[0] and np.all(np.isfinite(path))
+    path, ok = rk.closed.puma560_path(T, np.full(6, 1e9), limits=None)  # a double keeps 1e-7 rad there
+    np.testing.assert_allclose(puma.fk(path[0])[:3, 3], T[0, :3, 3], atol=1e-5)

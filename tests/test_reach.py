@@ -95,6 +95,18 @@ def test_nullspace_lowers_the_joint_limit_cost_at_the_same_accuracy():
     np.testing.assert_array_equal(rk.track(chain, points, Q1, nullspace=np.zeros(3)).q, plain.q)
 
 
+def test_joint_limit_cost_is_the_seeds_z(rng):
+    chain = rk.robots.rpr()
+    Q = rng.uniform(Q_MIN, Q_MAX, size=(50, 3))
+    np.testing.assert_allclose(rk.joint_limit_cost(chain, Q), joint_limit_cost(Q), rtol=1e-14)
+    assert rk.joint_limit_cost(chain, Q[0]) == pytest.approx(joint_limit_cost(Q[0]), rel=1e-14)
+    # Unlimited and fixed-range joints do not count (no NaN from a zero range).
+    c = rk.Chain.from_dh([(1, 0, 0, 0, "R")] * 3, limits=([0, -np.inf, 0.5], [2, np.inf, 0.5]))
+    assert rk.joint_limit_cost(c, [2.0, 7.0, 0.5]) == pytest.approx(0.5 * (0.5 * 1.0) ** 2)
+    with pytest.raises(ValueError, match=r"q: expected shape \(3,\) or \(N, 3\)"):
+        rk.joint_limit_cost(chain, [0.0, 0.0])
+
+
 def test_track_equals_reach_point_by_point(rng):
     chain = rk.robots.planar_3r(0.5, 0.4, 0.3)
     q = np.array([0.3, 0.6, -0.4])

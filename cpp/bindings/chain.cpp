@@ -171,15 +171,13 @@ Task task_of(py::handle obj) {
   throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
 }
 
-constexpr int kTaskRows[4][6] = {{0, 1, 2, 3, 4, 5}, {0, 1, 2}, {0, 1}, {0, 1, 5}};
-
 py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
   const Task task = task_of(task_obj);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
   const int rows = task_rows(task), n = c.dof();
-  const int* row_of = kTaskRows[static_cast<int>(task)];
+  const int* row_of = task_row_indices(task);
   const long batch = count < 0 ? 1 : count;
   py::array out = count < 0 ? new_float64(2, std::array<py::ssize_t, 2>{rows, n}.data())
                             : new_float64(3, std::array<py::ssize_t, 3>{batch, rows, n}.data());

@@ -144,6 +144,22 @@ void bind_reach(py::module_& m) {
         py::arg("max_iter") = 25, py::arg("tol") = 1e-5, py::arg("gain") = 0.75, py::arg("dt") = 0.025,
         py::arg("saturate") = true, py::arg("nullspace") = py::none(), py::arg("damping") = 0.0,
         "Reach every point of a path in turn. Use robokin.track, which also warns.");
+  m.def(
+      "joint_limit_cost",
+      [](const Chain& chain, py::handle q_obj) -> py::object {
+        Array q = as_array(q_obj, "q");
+        const long n = chain.dof();
+        if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))
+          fail("q: expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) + "), got " + shape_of(q));
+        require_finite(q.data(), q.size(), "q");
+        if (q.ndim() == 1) return py::float_(joint_limit_cost(chain, q.data()));
+        py::array_t<double> out(q.shape(0));
+        for (py::ssize_t k = 0; k < q.shape(0); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data() + k * n);
+        return std::move(out);
+      },
+      py::arg("chain"), py::arg("q"),
+      "Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2, W = diag(1 / (q_max - q_min)) (0 for an\n"
+      "unlimited joint): a float for q (dof,), an array (N,) for a batch (N, dof).");
 }
 
 }  // namespace robokin::bind

@@ -76,6 +76,9 @@ void check_limits(int dof, Vector& lower, Vector& upper) {
     if (lower(i) > upper(i))
       throw std::invalid_argument("limits: joint " + std::to_string(i) +
                                   " has its lower limit above its upper limit");
+    if (lower(i) == inf || upper(i) == -inf)
+      throw std::invalid_argument("limits: joint " + std::to_string(i) +
+                                  " has no admissible value (lower +inf or upper -inf)");
   }
 }
 

@@ -269,14 +269,17 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
   std::copy(q0, q0 + 6, prev);
   for (long k = 0; k < count; ++k) {
     ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
-    // Each solution's angles moved by 2 pi towards the previous joints, while within the limits.
+    // Each solution's angles shifted by the whole turns that bring them nearest the previous
+    // joints, as far as the limits allow (v itself is within them, so 0 turns always is).
     for (int r = 0; r < s.count(); ++r)
       for (int i = 0; i < 6; ++i) {
         double& v = s.q[r * 6 + i];
         const double lo = limits.lower.size() ? limits.lower(i) : -INFINITY;
         const double hi = limits.upper.size() ? limits.upper(i) : INFINITY;
-        while (v - prev[i] > kPi && v - 2 * kPi >= lo) v -= 2 * kPi;
-        while (prev[i] - v > kPi && v + 2 * kPi <= hi) v += 2 * kPi;
+        const double fewest = std::min(0.0, std::ceil((lo - v) / (2 * kPi)));
+        const double most = std::max(0.0, std::floor((hi - v) / (2 * kPi)));
+        const double turns = std::clamp(std::round((prev[i] - v) / (2 * kPi)), fewest, most);
+        v += 2 * kPi * turns;
       }
     const int best = nearest_solution(s, prev);
     ok[k] = best >= 0;

@@ -45,12 +45,25 @@ Vector joint_limit_weights(const Chain& chain) {
   return w;
 }
 
+namespace {
+// The middle of each joint's range; 0 for an unlimited joint (its weight is 0).
+Vector joint_middles(const Chain& chain) {
+  Vector qbar = 0.5 * (chain.lower() + chain.upper());
+  for (int i = 0; i < chain.dof(); ++i)
+    if (!std::isfinite(qbar(i))) qbar(i) = 0.0;
+  return qbar;
+}
+}  // namespace
+
+double joint_limit_cost(const Chain& chain, const double* q) {
+  const Vector w = joint_limit_weights(chain), qbar = joint_middles(chain);
+  return 0.5 * (w.array() * (qbar - Eigen::Map<const Vector>(q, chain.dof())).array()).square().sum();
+}
+
 Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
     : chain_(chain), task_(task), opt_(options), m_(task_rows(task)), n_(chain.dof()) {
   check_reach_options(chain, options);
-  qbar_ = 0.5 * (chain.lower() + chain.upper());
-  for (int i = 0; i < n_; ++i)
-    if (!std::isfinite(qbar_(i))) qbar_(i) = 0.0;  // unlimited joints have zero weight
+  qbar_ = joint_middles(chain);
   q_.resize(n_);
   J6_.resize(6, n_);
   J_.resize(m_, n_);
@@ -60,8 +73,6 @@ Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
 }
 
 namespace {
-
-constexpr int kTaskRows[4][6] = {{0, 1, 2, 3, 4, 5}, {0, 1, 2}, {0, 1}, {0, 1, 5}};
 
 // out <- J^T (J J^T + lambda^2 I)^-1 rhs, the minimum-norm (damped) solution of J out = rhs; the
 // least-squares minimum-norm solution when J J^T is singular and lambda = 0. M task rows: the
@@ -122,7 +133,7 @@ int Reacher::run_rows(const Target& target, double& error) {
   const Eigen::Map<const JointVector> lower(chain_.lower().data(), n_), upper(chain_.upper().data(), n_),
       qbar(qbar_.data(), n_);
   Eigen::Map<RowsVector> e(e_);
-  const int* rows = kTaskRows[static_cast<int>(task_)];
+  const int* rows = task_row_indices(task_);
   const bool use_nullspace = opt_.nullspace_weights.size() != 0;
   const double step = opt_.gain / opt_.dt;
   task_error(target, T_, e_);

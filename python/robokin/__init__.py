@@ -5,7 +5,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import closed, paths, robots
-from ._core import RRR3, Chain, ReachResult, TrackResult
+from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
 from .errors import PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
@@ -25,6 +25,7 @@ __all__ = [
     "closed",
     "ik",
     "ik_batch",
+    "joint_limit_cost",
     "paths",
     "reach",
     "robots",

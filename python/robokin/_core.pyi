@@ -100,6 +100,11 @@ def track(
     nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
 ) -> TrackResult: ...
 
+def joint_limit_cost(chain: Chain, q: ArrayLike) -> Union[float, NDArray]:
+    """Seed 000's joint-limit cost ``z = 1/2 |W (qbar - q)|^2``, ``W = diag(1 / (q_max - q_min))``
+    (0 for an unlimited or fixed joint), ``qbar`` the middle of the range: a float for q (dof,),
+    an array (N,) for a batch (N, dof)."""
+
 # --- the seed-000 RPR arm (cpp/bindings/rpr.cpp) ---------------------------------------------
 
 def rpr_self_motion(

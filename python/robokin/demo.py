@@ -14,6 +14,7 @@ import time
 import numpy as np
 
 from . import paths, robots
+from ._core import joint_limit_cost
 from .reach import track
 
 Q1, P2 = robots.RPR_LINE_Q1, robots.RPR_LINE_P2
@@ -25,7 +26,7 @@ def main(argv=None) -> int:
     parser.add_argument("--step", type=float, default=1e-3, help="path point spacing (m)")
     args = parser.parse_args(argv)
 
-    from .plots import joint_limit_cost, rpr_line_figure
+    from .plots import rpr_line_figure
 
     chain = robots.rpr()
     p1 = chain.fk(Q1)[:2, 3]

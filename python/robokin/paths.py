@@ -33,7 +33,8 @@ def line(p1, p2, step: float) -> np.ndarray:
     """Points from ``p1`` to ``p2`` (both included), evenly spaced at most ``step`` apart.
 
     Returns:
-        (K, 2) or (K, 3) array, K = ceil(|p2 - p1| / step) + 1.
+        (K, 2) or (K, 3) array, K = max(2, ceil(|p2 - p1| / step) + 1) (two equal points when
+        p1 == p2).
     """
     a, b = _point(p1, "p1"), _point(p2, "p2")
     if a.shape != b.shape:

@@ -7,7 +7,7 @@ from typing import Dict, Optional
 import numpy as np
 
 from . import robots
-from ._core import Chain, TrackResult
+from ._core import Chain, TrackResult, joint_limit_cost
 
 
 def _new_figure(**kwargs):
@@ -18,16 +18,6 @@ def _new_figure(**kwargs):
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError("robokin.plots needs matplotlib: pip install 'robokin[plot]'") from exc
     return Figure(**kwargs)
-
-
-def joint_limit_cost(chain: Chain, q) -> np.ndarray:
-    """Seed 000's joint-limit cost ``z = 1/2 |W (qbar - q)|^2``, ``W = diag(1 / (q_max - q_min))``
-    (0 for an unlimited joint), for q of shape (dof,) or (N, dof)."""
-    lower, upper = chain.limits
-    finite = np.isfinite(lower) & np.isfinite(upper)
-    w = np.where(finite, 1.0 / np.where(finite, upper - lower, 1.0), 0.0)
-    qbar = np.where(finite, 0.5 * (lower + upper), 0.0)
-    return 0.5 * np.sum((w * (qbar - np.asarray(q))) ** 2, axis=-1)
 
 
 def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> None:

@@ -35,6 +35,10 @@ void check_reach_options(const Chain& chain, const ReachOptions& options);
 // The seed's weights for joint-limit avoidance: 1 / (q_max - q_min), 0 for unlimited joints.
 Vector joint_limit_weights(const Chain& chain);
 
+// The seed's joint-limit cost z = 1/2 |W (qbar - q)|^2 (eqs. 6-7), W from joint_limit_weights and
+// qbar the middle of each limited joint's range.
+double joint_limit_cost(const Chain& chain, const double* q);
+
 // Reuses its buffers across calls: one per thread, no allocation per iteration nor per path point.
 class Reacher {
  public:

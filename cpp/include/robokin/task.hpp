@@ -28,19 +28,10 @@ void task_error(const Target& target, const Rigid& current, double* err);
 // Rotation vector (angle * axis, angle in [0, pi]) of a rotation matrix.
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R);
 
-// Copies the task's rows of a 6 x n Jacobian into a rows x n one.
-template <class Out>
-void task_jacobian(Task task, const Matrix6X& J, Out& out) {
-  switch (task) {
-    case Task::Pose: out = J; return;
-    case Task::Position: out = J.topRows(3); return;
-    case Task::XY: out = J.topRows(2); return;
-    case Task::XYPhi:
-      out.resize(3, J.cols());
-      out.topRows(2) = J.topRows(2);
-      out.row(2) = J.row(5);
-      return;
-  }
+// The rows of the 6 x n geometric Jacobian that a task controls (task_rows(task) of them).
+inline const int* task_row_indices(Task task) {
+  static constexpr int kRows[4][6] = {{0, 1, 2, 3, 4, 5}, {0, 1, 2}, {0, 1}, {0, 1, 5}};
+  return kRows[static_cast<int>(task)];
 }
 
 // The planar angle of a frame about the base z axis.
