@@ -2,6 +2,9 @@
 must mean the pose is reached), the joint limits, and finite differences of the Jacobian."""
 
 import math
+import re
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -228,3 +231,124 @@ def test_redundant_seven_joint_arm(method):
     for k in range(len(T)):
         assert res.success[k] == verified(chain, res.q[k], T[k])
     assert res.success.mean() >= 0.95
+
+
+def test_half_infinite_limits_give_a_finite_solution():
+    # lower = -inf, upper finite: wrapping by 2 pi must shift from the upper limit, never to -inf.
+    chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 2, limits=([-np.inf, -np.inf], [1.0, np.inf]))
+    for method in METHODS:
+        r = rk.ik(chain, [1.0, 1.0], [2.0, 0.0], method=method, task="xy")
+        assert np.all(np.isfinite(r.q)) and np.isfinite(r.error_p), (method, r)
+        assert r.q[0] <= 1.0 and r.success, (method, r)
+        assert np.hypot(*(chain.fk(r.q)[:2, 3] - [1.0, 1.0])) < 1e-9
+    # one joint, the solution angle pi/2 above the upper limit: reached at pi/2 - 2 pi
+    for lim, target, q_expected in [(([-np.inf], [1.0]), [0.0, 1.0], -1.5 * math.pi),
+                                    (([-1.0], [np.inf]), [0.0, -1.0], 1.5 * math.pi)]:
+        chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")], limits=lim)
+        for method in METHODS:
+            r = rk.ik(chain, target, [0.0], method=method, task="xy")
+            assert r.success and np.all(np.isfinite(r.q)), (method, lim, r)
+            assert abs(r.q[0] - q_expected) < 1e-6, (method, lim, r)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_the_best_point_is_returned(method):
+    # Out of reach: nr and halley overshoot and climb; the answer is the lowest-error point seen,
+    # so more iterations never return a worse point, and never worse than the start.
+    chain = rk.robots.planar_3r()
+    q0 = np.array([0.3, 0.2, 0.1])
+    start = np.hypot(*(chain.fk(q0)[:2, 3] - [5.0, 0.0]))
+    previous = start
+    for max_iter in range(1, 40):
+        r = rk.ik(chain, [5.0, 0.0], q0, method=method, task="xy", max_iter=max_iter)
+        assert r.error_p <= previous + 1e-12, (max_iter, r, previous)
+        previous = r.error_p
+    assert previous < start - 0.4  # towards the 2 m that are out of reach
+    for seed in range(5):  # across attempts too: random restarts never lose the first attempt's best
+        r = rk.ik(chain, [5.0, 0.0], q0, method=method, task="xy", max_iter=7, restarts=3, seed=seed)
+        assert r.error_p <= start and np.all(np.isfinite(r.q))
+
+
+def test_default_damping_is_the_documented_one():
+    doc = " ".join(rk.ik.__doc__.split())
+    patterns = {
+        "lm": r"``lm``: initial damping relative to ``max diag\(J\^T J\)`` \(default ([^)]+)\)",
+        "nr": r"``nr``: lambda of the damped pseudoinverse \(default ([^)]+)\)",
+        "halley": r"``halley``: the same lambda \(default ([^)]+)\)",
+    }
+    chain = rk.robots.ur5()
+    _, T = random_targets(chain, 3, seed=5)
+    for method, pattern in patterns.items():
+        m = re.search(pattern, doc)
+        assert m, method
+        documented = float(m.group(1))
+        solver = rk.IKSolver(chain, method=method, max_iter=3)
+        for k in range(3):
+            default = rk.ik(chain, T[k], np.zeros(6), method=method, max_iter=3)
+            explicit = rk.ik(chain, T[k], np.zeros(6), method=method, max_iter=3, damping=documented)
+            other = rk.ik(chain, T[k], np.zeros(6), method=method, max_iter=3, damping=documented * 1e3)
+            assert np.array_equal(default.q, explicit.q), method
+            assert np.array_equal(solver.solve(T[k], np.zeros(6)).q, explicit.q), method
+            assert not np.array_equal(other.q, explicit.q), method  # the damping does matter here
+
+
+def test_bound_solver_releases_the_gil():
+    chain = rk.robots.ur5()
+    T = np.eye(4)
+    T[:3, 3] = (2.0, 0.0, 0.5)  # out of reach: every restart runs until the timeout
+    solver = rk.IKSolver(chain, restarts=1_000_000, timeout=0.3, seed=0)
+    results = []
+    worker = threading.Thread(target=lambda: results.append(solver.solve(T, np.zeros(6))))
+    t0 = last = time.perf_counter()
+    worker.start()
+    gap = 0.0
+    while worker.is_alive():
+        now = time.perf_counter()
+        gap, last = max(gap, now - last), now
+        time.sleep(0.001)
+    worker.join()
+    assert results and not results[0].success and np.all(np.isfinite(results[0].q))
+    assert time.perf_counter() - t0 >= 0.25
+    assert gap < 0.15, gap  # the main thread ran while the solver worked
+    # one solver used by two threads at once: serialised, both answers valid
+    solver = rk.IKSolver(chain, restarts=1_000_000, timeout=0.05, seed=0)
+    out = []
+    threads = [threading.Thread(target=lambda: out.append(solver.solve(T, np.zeros(6)))) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(out) == 2 and all(np.all(np.isfinite(r.q)) and not r.success for r in out)
+
+
+def test_seed_is_any_64_bit_unsigned_int():
+    chain = rk.robots.ur5()
+    _, T = random_targets(chain, 2, seed=8)
+    top = 2**64 - 1
+    a = rk.ik(chain, T[0], np.zeros(6), restarts=3, seed=top)
+    b = rk.ik(chain, T[0], np.zeros(6), restarts=3, seed=np.uint64(top))
+    assert np.array_equal(a.q, b.q)
+    assert rk.IKSolver(chain, seed=top).solve(T[0], np.zeros(6)).q.shape == (6,)
+    assert len(rk.ik_batch(chain, T, np.zeros(6), seed=top)) == 2  # target 1: seed 2**64 wraps to 0
+    for bad in (2**64, -1, 2**100):
+        with pytest.raises(ValueError, match="seed"):
+            rk.ik(chain, T[0], np.zeros(6), seed=bad)
+        with pytest.raises(ValueError, match="seed"):
+            rk.IKSolver(chain, seed=bad)
+
+
+def test_restarts_are_capped():
+    chain = rk.robots.ur5()
+    T = chain.fk(np.zeros(6))
+    assert rk.ik(chain, T, np.zeros(6), restarts=1_000_000).success
+    assert rk.ik(chain, T, np.zeros(6), restarts=np.int64(3)).success
+    for bad in (1_000_001, 2**31, 2**70):
+        with pytest.raises(ValueError, match="restarts.*timeout"):
+            rk.ik(chain, T, np.zeros(6), restarts=bad)
+        with pytest.raises(ValueError, match="restarts"):
+            rk.ik_batch(chain, T[None], np.zeros(6), restarts=bad)
+        with pytest.raises(ValueError, match="restarts"):
+            rk.IKSolver(chain, restarts=bad)
+    for bad in (-1, -(2**70), 2.5, "3", True):
+        with pytest.raises(ValueError, match="restarts"):
+            rk.ik(chain, T, np.zeros(6), restarts=bad)

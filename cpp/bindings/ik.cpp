@@ -6,10 +6,11 @@
 
 #include <pybind11/stl.h>
 
-#include <cmath>
-#include <cstdio>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
 
 namespace robokin::bind {
 namespace {
@@ -51,27 +52,49 @@ std::uint64_t seed_arg(py::handle seed) {
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
   }
-  if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) fail("seed: expected None or an int");
-  try {
-    return static_cast<std::uint64_t>(py::cast<long long>(seed));
-  } catch (const py::cast_error&) {
-    fail("seed: does not fit in 64 bits");
+  // Any int (or object with __index__, such as numpy's integers) but a bool.
+  if (py::isinstance<py::bool_>(seed) || !PyIndex_Check(seed.ptr())) fail("seed: expected None or an int");
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(seed.ptr()));
+  if (!index) throw py::error_already_set();
+  const unsigned long long v = PyLong_AsUnsignedLongLong(index.ptr());
+  if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+    PyErr_Clear();
+    fail("seed: expected an int in [0, 2**64)");
   }
+  return static_cast<std::uint64_t>(v);
+}
+
+// An int argument (anything with __index__, not a bool) in [lo, hi]; the message names it.
+int int_arg(py::handle obj, const char* name, long long lo, long long hi, const char* why) {
+  if (py::isinstance<py::bool_>(obj) || !PyIndex_Check(obj.ptr())) fail(std::string(name) + ": expected an int");
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(obj.ptr()));
+  if (!index) throw py::error_already_set();
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+  if (overflow < 0 || (!overflow && v < lo)) fail(std::string(name) + ": must be >= " + std::to_string(lo));
+  if (overflow > 0 || v > hi) fail(std::string(name) + ": must be at most " + std::to_string(hi) + why);
+  return static_cast<int>(v);
+}
+
+// Whether a solve may take long enough for the GIL to be worth releasing (a timeout, or more than
+// ~1700 iterations in all): short solves keep it (releasing costs more than they do).
+bool may_be_long(const IkOptions& o) {
+  return o.timeout > 1e-3 || (static_cast<long long>(o.restarts) + 1) * o.max_iter > 1700;
 }
 
 IkOptions options_arg(const std::string& method, const std::string& task, double tol_p, double tol_r, int max_iter,
-                      int restarts, py::handle timeout, py::handle damping) {
+                      py::handle restarts, py::handle timeout, py::handle damping) {
   IkOptions o;
   o.method = parse_ik_method(method);
   o.task = parse_task(task);
   if (!(tol_p > 0) || !std::isfinite(tol_p)) fail("tol_p: must be a positive number");
   if (!(tol_r > 0) || !std::isfinite(tol_r)) fail("tol_r: must be a positive number");
   if (max_iter < 1) fail("max_iter: must be at least 1");
-  if (restarts < 0) fail("restarts: must be >= 0");
   o.tol_p = tol_p;
   o.tol_r = o.task == Task::Pose || o.task == Task::XYPhi ? tol_r : INFINITY;
   o.max_iter = max_iter;
-  o.restarts = restarts;
+  o.restarts = int_arg(restarts, "restarts", 0, kMaxRestarts, " (use timeout to bound the time)");
   if (!timeout.is_none()) {
     const double t = py::cast<double>(timeout);
     if (!(t > 0) || !std::isfinite(t)) fail("timeout: must be None or a positive number of seconds");
@@ -82,13 +105,13 @@ IkOptions options_arg(const std::string& method, const std::string& task, double
     if (!(d > 0) || !std::isfinite(d)) fail("damping: must be None or a positive number");
     o.damping = d;
   } else {
-    o.damping = o.method == IkMethod::LM ? 1e-1 : o.method == IkMethod::Halley ? 1e-9 : 1e-6;
+    o.damping = default_damping(o.method);  // the C++ default, the one source of truth
   }
   return o;
 }
 
 IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std::string& method,
-            const std::string& task, double tol_p, double tol_r, int max_iter, int restarts, py::handle seed,
+            const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts, py::handle seed,
             py::handle timeout, py::handle damping) {
   const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
   const Target t = one_target(o.task, target);
@@ -97,7 +120,7 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
   // One solver per thread, kept between calls: no workspace allocation per solve.
   thread_local IkSolver solver(chain, o);
   solver.reset(chain, o);
-  if (o.timeout > 1e-3 || o.restarts > 16) {
+  if (may_be_long(o)) {
     py::gil_scoped_release release;
     return solver.solve(t, q0.data(), s);
   }
@@ -105,7 +128,7 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
 }
 
 BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
-                        const std::string& task, double tol_p, double tol_r, int max_iter, int restarts,
+                        const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts,
                         py::handle seed, py::handle timeout, py::handle damping, bool path) {
   const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
   const int rows = task_rows(o.task), n = chain.dof();
@@ -157,6 +180,7 @@ struct BoundSolver {
   IkSolver solver;
   bool seeded = false;
   std::uint64_t seed = 0, calls = 0;
+  std::mutex busy;  // the GIL may be released during a solve: one solve at a time
 
   BoundSolver(const Chain& c, const IkOptions& o, py::handle seed_obj)
       : chain(&c), options(o), solver(c, o), seeded(!seed_obj.is_none()), seed(seed_arg(seed_obj)) {}
@@ -165,6 +189,12 @@ struct BoundSolver {
     const Target t = one_target(options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
+    if (may_be_long(options)) {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(busy);  // taken without the GIL: no deadlock with a solve in progress
+      return solver.solve(t, q0.data(), s);
+    }
+    std::lock_guard<std::mutex> lock(busy);
     return solver.solve(t, q0.data(), s);
   }
 };
@@ -235,9 +265,11 @@ void bind_ik(py::module_& m) {
   py::class_<BoundSolver>(m, "IKSolver",
                           "A numerical IK solver bound to a chain and options (robokin.ik's arguments):\n"
                           "solve(target, q0) costs only the solve. Call k of a seeded solver uses seed + k.\n"
-                          "Not thread-safe: one solver per thread (ik_batch is the parallel route).")
+                          "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
+                          "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
+                          "thread for parallel solves (ik_batch is the parallel route).")
       .def(py::init([](const Chain& chain, const std::string& method, const std::string& task, double tol_p,
-                       double tol_r, int max_iter, int restarts, py::handle seed, py::handle timeout,
+                       double tol_r, int max_iter, py::handle restarts, py::handle seed, py::handle timeout,
                        py::handle damping) {
              return std::make_unique<BoundSolver>(
                  chain, options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), seed);

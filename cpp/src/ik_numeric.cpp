@@ -42,11 +42,22 @@ const char* ik_method_name(IkMethod method) {
   return "?";
 }
 
+double default_damping(IkMethod method) {
+  switch (method) {
+    case IkMethod::LM: return 1e-1;
+    case IkMethod::GN: return 0.0;
+    case IkMethod::NR: return 1e-6;
+    case IkMethod::Halley: return 1e-9;
+  }
+  return 0.0;
+}
+
 IkSolver::IkSolver(const Chain& chain, const IkOptions& options) { reset(chain, options); }
 
 void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   chain_ = &chain;
   opt_ = options;
+  if (!(opt_.damping > 0) || !std::isfinite(opt_.damping)) opt_.damping = default_damping(opt_.method);
   const int n = chain.dof(), m = task_rows(options.task);
   if (n == n_ && m == m_) return;  // the workspace fits already
   n_ = n;
@@ -67,21 +78,37 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   g_.resize(n_);
   ym_.resize(m_);
   qt_.resize(n_);
+  qb_.resize(n_);
   frozen_.assign(n_, false);
 }
 
 // Joint value v brought within the limits of joint i, by multiples of 2 pi for a revolute joint.
+// A non-finite v never fits. With a finite lower limit, the smallest shift up from below lo (or
+// down from above hi) that reaches lo; with lo = -inf (v above a finite hi), the smallest shift
+// down to reach hi: both keep the result finite.
 bool IkSolver::fit(int i, double& v) const {
+  if (!std::isfinite(v)) return false;
   const double lo = chain_->lower()(i), hi = chain_->upper()(i);
   if (v >= lo && v <= hi) return true;
-  if (chain_->prismatic(i) || hi - lo <= 0) return false;
-  const double k = std::ceil((lo - v) / kTwoPi);  // smallest shift up to reach lo
+  if (chain_->prismatic(i) || !(hi - lo > 0)) return false;
+  const double k = std::isfinite(lo) ? std::ceil((lo - v) / kTwoPi) : std::floor((hi - v) / kTwoPi);
   const double w = v + k * kTwoPi;
-  if (w >= lo && w <= hi) {
+  if (std::isfinite(w) && w >= lo && w <= hi) {
     v = w;
     return true;
   }
   return false;
+}
+
+// The finite point of joint i's limits nearest to v (NaN counts as 0; an infinite v beyond an
+// infinite limit gives the other limit, or 0 when both are infinite).
+double IkSolver::clamp(int i, double v) const {
+  const double lo = chain_->lower()(i), hi = chain_->upper()(i);
+  if (std::isnan(v)) v = 0.0;
+  v = std::min(std::max(v, lo), hi);
+  if (std::isfinite(v)) return v;
+  if (v > 0) return std::isfinite(lo) ? lo : std::min(0.0, hi);
+  return std::isfinite(hi) ? hi : std::max(0.0, lo);
 }
 
 void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const {
@@ -155,7 +182,7 @@ void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const
         qt_(i) = v;
         continue;
       }
-      const double lim = v < chain_->lower()(i) ? chain_->lower()(i) : chain_->upper()(i);
+      const double lim = clamp(i, v);
       frozen_[i] = true;
       qt_(i) = lim;
       r_ -= J.col(i) * (lim - q(i));
@@ -245,23 +272,31 @@ void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
 }
 
 // One attempt from q (within limits) for at most `budget` iterations; q is left at the best point.
+// LM and GN accept only decreasing steps; NR and Halley take every step (they may climb out of a
+// basin), so the lowest-cost point seen is kept in qb_ and restored when the attempt ends.
 bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline,
                        bool may_stall) {
   double ep, er;
   double cost = evaluate(target, q, J_, e_, ep, er);
   if (met(ep, er)) return true;
+  qb_ = q;
+  double best_cost = cost;
+  const auto give_up = [&]() {
+    if (best_cost < cost || !std::isfinite(cost)) q = qb_;
+    return false;
+  };
   double mu = 0, nu = 2;
   if (opt_.method == IkMethod::LM) {
     mu = opt_.damping * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
   }
   double window_cost = cost;
   for (int it = 0; it < budget; ++it) {
-    if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return false;
+    if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return give_up();
     if (may_stall && it > 0 && it % kStallWindow == 0) {
-      if (cost > 0.5 * window_cost) return false;  // crawling: a restart does better
+      if (!(cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
       window_cost = cost;
     }
-    ++iterations;
+    if (iterations < std::numeric_limits<int>::max()) ++iterations;
     double ept, ert, cost_t;
     switch (opt_.method) {
       case IkMethod::LM: {
@@ -286,7 +321,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
         } else {
           mu *= nu;
           nu *= 2;
-          if (mu > 1e20 || !std::isfinite(mu)) return false;  // a local minimum: nothing decreases the error
+          if (mu > 1e20 || !std::isfinite(mu)) return give_up();  // a local minimum: nothing decreases the error
         }
         break;
       }
@@ -301,7 +336,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
         for (int ls = 0; ls < 12; ++ls) {  // down to 1/2048 of the step: beyond, a local minimum
           for (int i = 0; i < n_; ++i) {
             double v = q(i) + alpha * a_(i);
-            if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
+            if (!fit(i, v)) v = clamp(i, v);
             qt_(i) = v;
           }
           cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
@@ -311,7 +346,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
           }
           alpha *= 0.5;
         }
-        if (!decreased) return false;
+        if (!decreased) return give_up();
         q.swap(qt_);
         J_.swap(Jt_);
         e_.swap(et_);
@@ -340,18 +375,23 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
             damped_pinv(J, r, dq);
           });
         }
-        if (dq_.lpNorm<Eigen::Infinity>() < 1e-15) return false;  // stalled
+        if (!(dq_.lpNorm<Eigen::Infinity>() >= 1e-15)) return give_up();  // stalled (or not finite)
         cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+        if (!std::isfinite(cost_t)) return give_up();  // no step out of a non-finite pose
         q.swap(qt_);
         J_.swap(Jt_);
         e_.swap(et_);
         cost = cost_t;
         if (met(ept, ert)) return true;
+        if (cost < best_cost) {
+          qb_ = q;
+          best_cost = cost;
+        }
         break;
       }
     }
   }
-  return false;
+  return give_up();
 }
 
 IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed) {
@@ -360,7 +400,7 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
   const double deadline = opt_.timeout > 0 ? start + opt_.timeout : 0.0;
   Vector q = Eigen::Map<const Vector>(q0, n_);
   for (int i = 0; i < n_; ++i)
-    if (!fit(i, q(i))) q(i) = std::min(std::max(q(i), chain_->lower()(i)), chain_->upper()(i));
+    if (!fit(i, q(i))) q(i) = clamp(i, q(i));
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   std::mt19937_64 rng(seed);
@@ -387,14 +427,14 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
 void IkSolver::finalise(const Target& target, IkResult& r) const {
   for (int i = 0; i < n_; ++i) {
     double& v = r.q(i);
-    if (!chain_->prismatic(i)) {
+    if (!chain_->prismatic(i) && std::isfinite(v)) {
       const double w = std::remainder(v, kTwoPi);
       if (w >= chain_->lower()(i) && w <= chain_->upper()(i)) v = w;
     }
-    if (!fit(i, v)) v = std::min(std::max(v, chain_->lower()(i)), chain_->upper()(i));
+    if (!fit(i, v)) v = clamp(i, v);
   }
   errors(target, r.q.data(), r.error_p, r.error_r);
-  r.success = r.q.allFinite() && met(r.error_p, r.error_r);
+  r.success = r.q.allFinite() && std::isfinite(r.error_p) && std::isfinite(r.error_r) && met(r.error_p, r.error_r);
 }
 
 void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count, const double* q0,

@@ -358,6 +358,9 @@ class IKBatchResult:
     def error_r(self) -> NDArray: ...
     def __len__(self) -> int: ...
 
+# damping None: the C++ default_damping, lm 1e-1 (initial mu relative to max diag(J^T J)),
+# nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by gn. restarts <= 1_000_000
+# (timeout bounds the time); seed in [0, 2**64).
 def ik(
     chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = "lm", task: str = "pose", tol_p: float = 1e-9,
     tol_r: float = 1e-9, max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None,
@@ -369,7 +372,12 @@ def ik_batch(
     timeout: Optional[float] = None, damping: Optional[float] = None, path: bool = False,
 ) -> IKBatchResult: ...
 class IKSolver:
-    """A numerical IK solver bound to a chain and options; solve(target, q0) costs only the solve."""
+    """A numerical IK solver bound to a chain and options; solve(target, q0) costs only the solve.
+
+    Options as ik (damping None: lm 1e-1, nr 1e-6, halley 1e-9). Like ik, solve releases the GIL
+    when it may be long (a timeout, or more than ~1700 iterations in all); concurrent calls on one
+    solver are serialised.
+    """
     def __init__(
         self, chain: Chain, method: str = "lm", task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9,
         max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None, timeout: Optional[float] = None,

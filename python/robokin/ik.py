@@ -1,4 +1,5 @@
-"""Numerical inverse kinematics; the solvers run in the C++ core (GIL released for batches).
+"""Numerical inverse kinematics; the solvers run in the C++ core (GIL released for batches, and
+for single solves that may be long: a timeout, or more than ~1700 iterations in all).
 
 Methods:
     ``"lm"``: Levenberg-Marquardt, ``(J^T J + mu I) dq = J^T e`` with the damping ``mu`` adapted
@@ -13,7 +14,14 @@ Joint limits: a joint that would cross its limit stops on it and the other joint
 of the step (an active set renewed at every iteration, so no joint sticks at a limit); revolute
 angles are wrapped by ``2 pi`` into limits wider than ``2 pi``. Success is decided on the returned
 ``q`` (wrapped, clamped) by forward kinematics: position error ``< tol_p`` and orientation error
-``< tol_r``.
+``< tol_r``. Joints may have half-infinite or no limits; the returned ``q`` is always finite.
+
+When no attempt succeeds, the returned ``q`` is the lowest-error point seen over every iteration
+of every attempt (``nr`` and ``halley`` take every step, so their last iterate may be worse).
+
+Default damping (the C++ core's ``default_damping``, the one source): ``lm`` 1e-1 (initial damping
+relative to ``max diag(J^T J)``), ``nr`` 1e-6 and ``halley`` 1e-9 (lambda of the damped
+pseudoinverse); ``gn`` uses none.
 
 For many calls with the same options, ``IKSolver(chain, method=..., ...)`` binds the chain and the
 options once; ``solver.solve(target, q0)`` then costs only the solve.
@@ -57,15 +65,21 @@ def ik(
             planar angle (xyphi); unused for the other tasks.
         max_iter: Iterations per attempt.
         restarts: Extra attempts from random configurations drawn uniformly within the limits
-            (revolute joints without limits: ``[-pi, pi]``) when an attempt fails.
-        seed: Seed of the restarts' generator (reproducible results); None draws one.
-        timeout: Time budget in seconds for all the attempts; None for none.
-        damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-3);
-            ``nr``/``halley``: lambda of the damped pseudoinverse (default 1e-6); unused by ``gn``.
+            (revolute joints without limits: ``[-pi, pi]``) when an attempt fails; at most
+            1,000,000. The restarts stop at the first success; on an unreachable target they all
+            run, so give a ``timeout`` to bound the time.
+        seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
+            None draws one.
+        timeout: Time budget in seconds for all the attempts (checked every few iterations);
+            None for none.
+        damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
+            ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
+            lambda (default 1e-9); unused by ``gn``. None selects the default.
 
     Returns:
         IKResult with ``q``, ``success``, ``iterations``, ``attempts``, ``error_p``, ``error_r``.
-        When no attempt succeeds, ``q`` is the best point found and ``success`` is False.
+        When no attempt succeeds, ``q`` is the lowest-error point found (over every iteration
+        of every attempt) and ``success`` is False. ``q`` is always finite.
 
     Raises:
         ValueError: For a bad argument (the message names it).
@@ -95,7 +109,7 @@ def ik_batch(
         targets: ``(N, 4, 4)`` frames for ``task="pose"``, ``(N, rows)`` otherwise.
         q0: ``(dof,)`` start for every target, or ``(N, dof)`` one start per target.
         method, task, tol_p, tol_r, max_iter, restarts, timeout, damping: As :func:`ik`
-            (``timeout`` applies to each target).
+            (``timeout`` applies to each target; ``damping`` None: the method's default).
         seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
         path: The targets are a path: each starts from the previous solution (warm start, no
             branch jumps; sequential). Otherwise the targets are solved in parallel on every core.

@@ -20,6 +20,14 @@ enum class IkMethod { LM, GN, NR, Halley };
 IkMethod parse_ik_method(const std::string& name);  // "lm" | "gn" | "nr" | "halley"
 const char* ik_method_name(IkMethod method);
 
+// The one source of the default damping (IkOptions::damping <= 0 selects it): lm 1e-1 (initial mu
+// relative to max diag(J^T J)), nr 1e-6 and halley 1e-9 (lambda of the damped pseudoinverse), gn 0
+// (unused: gn has its own hair of regularisation).
+double default_damping(IkMethod method);
+
+// The most restarts a solve accepts (the bindings reject more); `timeout` bounds the time.
+constexpr int kMaxRestarts = 1000000;
+
 struct IkOptions {
   IkMethod method = IkMethod::LM;
   Task task = Task::Pose;
@@ -28,13 +36,15 @@ struct IkOptions {
   int max_iter = 100;      // iterations per attempt
   int restarts = 0;        // extra attempts from random configurations within the limits
   double timeout = 0.0;    // seconds for the whole solve (every attempt); 0: no time budget
-  double damping = 1e-4;   // lambda of the damped pseudoinverse (nr, halley) / initial mu (lm)
+  // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm);
+  // <= 0 (the default): default_damping(method).
+  double damping = 0.0;
 };
 
 struct IkResult {
   Vector q;
   bool success = false;   // verified: FK of q (wrapped, within limits) meets tol_p and tol_r
-  int iterations = 0;     // over every attempt
+  int iterations = 0;     // over every attempt (saturates at INT_MAX)
   int attempts = 0;       // 1 + restarts used
   double error_p = 0.0;   // position error at q
   double error_r = 0.0;   // orientation error at q (0 when the task has none)
@@ -56,8 +66,6 @@ class IkSolver {
   // Errors (position, orientation) of the tool at q for the target, as used for success.
   void errors(const Target& target, const double* q, double& error_p, double& error_r) const;
 
-  const IkOptions& options() const { return opt_; }
-
  private:
   // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
   bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline, bool may_stall);
@@ -72,6 +80,7 @@ class IkSolver {
   void normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq);
   void damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq);
   bool fit(int i, double& v) const;  // wraps a joint value by 2 pi into its limits; false if outside
+  double clamp(int i, double v) const;  // the finite point of joint i's limits nearest to v
   void random_q(std::mt19937_64& rng, Vector& q) const;
   void finalise(const Target& target, IkResult& r) const;
 
@@ -81,7 +90,7 @@ class IkSolver {
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
   Eigen::MatrixXd J_, Jt_, Jw_, M_, An_, Am_;
-  Vector e_, et_, r_, dq_, a_, g_, ym_, qt_;
+  Vector e_, et_, r_, dq_, a_, g_, ym_, qt_, qb_;
   std::vector<bool> frozen_;
   Rigid T_;
   Eigen::LLT<Eigen::MatrixXd> llt_n_, llt_m_;
