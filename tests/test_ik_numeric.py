@@ -299,17 +299,16 @@ def test_bound_solver_releases_the_gil():
     solver = rk.IKSolver(chain, restarts=1_000_000, timeout=0.3, seed=0)
     results = []
     worker = threading.Thread(target=lambda: results.append(solver.solve(T, np.zeros(6))))
-    t0 = last = time.perf_counter()
+    t0 = time.perf_counter()
     worker.start()
-    gap = 0.0
+    turns = 0  # main-thread turns while the solver works: about 1 if it held the GIL, ~300 if not
     while worker.is_alive():
-        now = time.perf_counter()
-        gap, last = max(gap, now - last), now
+        turns += 1
         time.sleep(0.001)
     worker.join()
     assert results and not results[0].success and np.all(np.isfinite(results[0].q))
     assert time.perf_counter() - t0 >= 0.25
-    assert gap < 0.15, gap  # the main thread ran while the solver worked
+    assert turns >= 20, turns
     # one solver used by two threads at once: serialised, both answers valid
     solver = rk.IKSolver(chain, restarts=1_000_000, timeout=0.05, seed=0)
     out = []
