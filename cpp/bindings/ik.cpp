@@ -1,6 +1,7 @@
 // Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "targets.hpp"
 
 #include "robokin/ik.hpp"
 
@@ -20,27 +21,6 @@ struct BatchResult {
   py::array_t<bool> success;
   py::array_t<int> iterations, attempts;
 };
-
-Target target_from(Task task, const double* data) {
-  Target t;
-  t.task = task;
-  if (task == Task::Pose) {
-    t.pose = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(data));
-  } else {
-    t.value.setZero();
-    for (int i = 0; i < task_rows(task); ++i) t.value(i) = data[i];
-  }
-  return t;
-}
-
-Target one_target(Task task, py::handle obj) {
-  if (task == Task::Pose) {
-    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = as_transform(obj, "target");
-    return target_from(task, m.data());
-  }
-  const Eigen::VectorXd v = as_vector(obj, "target", task_rows(task));
-  return target_from(task, v.data());
-}
 
 std::uint64_t seed_arg(py::handle seed) {
   if (seed.is_none()) {
@@ -131,21 +111,9 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
                         const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts,
                         py::handle seed, py::handle timeout, py::handle damping, bool path) {
   const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
-  const int rows = task_rows(o.task), n = chain.dof();
-  Array a = as_array(targets_obj, "targets");
-  const bool ok = o.task == Task::Pose ? (a.ndim() == 3 && a.shape(1) == 4 && a.shape(2) == 4)
-                                       : (a.ndim() == 2 && a.shape(1) == rows);
-  if (!ok)
-    fail(std::string("targets: expected shape ") + (o.task == Task::Pose ? "(N, 4, 4)" : "(N, " + std::to_string(rows) + ")") +
-         " for task '" + task_name(o.task) + "', got " + shape_of(a));
-  require_finite(a.data(), a.size(), "targets");
-  const long count = a.shape(0), stride = o.task == Task::Pose ? 16 : rows;
-  std::vector<Target> targets;
-  targets.reserve(count);
-  for (long k = 0; k < count; ++k) {
-    if (o.task == Task::Pose) as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets");
-    targets.push_back(target_from(o.task, a.data() + k * stride));
-  }
+  const int n = chain.dof();
+  const std::vector<Target> targets = many_targets(o.task, targets_obj, "targets", "N");
+  const long count = static_cast<long>(targets.size());
   Array q0 = as_array(q0_obj, "q0");
   long q0_stride;
   if (q0.ndim() == 1 && q0.shape(0) == n) {

@@ -1,6 +1,7 @@
 // The Reach loop and path tracking (seed 000, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "targets.hpp"
 
 #include "robokin/reach.hpp"
 
@@ -14,46 +15,6 @@ struct TrackResult {
   py::array_t<bool> converged;
   py::array_t<int> iterations;
 };
-
-Target make_target(Task task, const double* data) {
-  Target t;
-  t.task = task;
-  if (task == Task::Pose) {
-    t.pose = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(data));
-  } else {
-    t.value.setZero();
-    for (int i = 0; i < task_rows(task); ++i) t.value(i) = data[i];
-  }
-  return t;
-}
-
-Target single_target(Task task, py::handle obj) {
-  if (task == Task::Pose) {
-    const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> m = as_transform(obj, "target");
-    return make_target(task, m.data());
-  }
-  const Eigen::VectorXd v = as_vector(obj, "target", task_rows(task));
-  return make_target(task, v.data());
-}
-
-std::vector<Target> path_targets(Task task, py::handle obj) {
-  Array a = as_array(obj, "points");
-  const int rows = task_rows(task);
-  const bool ok = task == Task::Pose ? (a.ndim() == 3 && a.shape(1) == 4 && a.shape(2) == 4)
-                                     : (a.ndim() == 2 && a.shape(1) == rows);
-  if (!ok)
-    fail(std::string("points: expected shape ") + (task == Task::Pose ? "(K, 4, 4)" : "(K, " + std::to_string(rows) + ")") +
-         " for task '" + task_name(task) + "', got " + shape_of(a));
-  require_finite(a.data(), a.size(), "points");
-  const long count = a.shape(0), stride = task == Task::Pose ? 16 : rows;
-  std::vector<Target> targets;
-  targets.reserve(count);
-  for (long k = 0; k < count; ++k) {
-    if (task == Task::Pose) as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "points");
-    targets.push_back(make_target(task, a.data() + k * stride));
-  }
-  return targets;
-}
 
 ReachOptions make_options(const Chain& chain, int max_iter, double tol, double gain, double dt, bool saturate,
                           py::handle nullspace, double damping) {
@@ -80,7 +41,7 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
                   int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
                   double damping) {
   const Task task = parse_task(task_str);
-  const Target t = single_target(task, target);
+  const Target t = one_target(task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
   Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
   return reacher.reach(t, q);
@@ -90,7 +51,7 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
                   int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
                   double damping) {
   const Task task = parse_task(task_str);
-  const std::vector<Target> targets = path_targets(task, points);
+  const std::vector<Target> targets = many_targets(task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
   const auto count = static_cast<py::ssize_t>(targets.size());
