@@ -178,6 +178,79 @@ def test_fk_all_misses_nothing_an_independent_search_finds(robot, rng):
     assert total > 10  # the random actuations did produce assembly modes
 
 
+def near_singular_poses(robot, rng, count, mode, offsets=(1e-5, 1e-4, 1e-3, 3e-3)):
+    """Poses a little off a parallel singularity: a root of det A along phi (bisected on the seed's
+    det A in numpy), then moved along phi by a small offset. Their assembly modes come in close pairs."""
+    def det(p):
+        try:
+            return np.linalg.det(seed_jacobians(robot, p, robot.ik(p, mode))[0])
+        except rk.UnreachableError:
+            return np.nan
+    out = []
+    while len(out) < count:
+        x, y = rng.uniform(-0.08, 0.08, 2)
+        phis = rng.uniform(-np.pi, np.pi) + np.linspace(0, 2 * np.pi, 121)
+        d = np.array([det(np.array([x, y, p])) for p in phis])
+        k = np.nonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) != np.sign(d[1:])))[0]
+        if len(k) == 0:
+            continue
+        lo, hi = phis[k[0]], phis[k[0] + 1]
+        for _ in range(50):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if np.sign(det(np.array([x, y, mid]))) == np.sign(d[k[0]]) else (lo, mid)
+        for off in offsets:
+            for sign in (1, -1):
+                p = np.array([x, y, np.angle(np.exp(1j * (lo + sign * off)))])
+                if np.isfinite(det(p)):
+                    out.append(p)
+    return out
+
+
+def assert_fk_all_finds(robot, pose, mode, dense=False):
+    alpha = robot.ik(pose, mode)
+    sols = robot.fk_all(alpha)
+    assert len(sols) >= 1, f"pose={pose!r} mode={mode}: fk_all found nothing"
+    for sol in sols:
+        assert np.max(closure(robot, alpha, sol)) < 1e-10
+        assert -np.pi <= sol[2] < np.pi
+    gap = np.linalg.norm(np.column_stack((sols[:, :2] - pose[:2], np.angle(np.exp(1j * (sols[:, 2] - pose[2]))))),
+                         axis=1)
+    assert gap.min() < 1e-6, f"pose={pose!r} mode={mode}: fk_all missed the pose itself"  # ill-conditioned near det A = 0
+    if dense:
+        for phi in independent_fk_phis(robot, alpha):
+            assert np.abs(np.angle(np.exp(1j * (sols[:, 2] - phi)))).min() < 1e-3, f"alpha={alpha!r}: missed {phi}"
+
+
+def test_fk_all_near_parallel_singularities(robot, rng):
+    # Review repro: two roots in phi within one scan step; r.fk closes the pose but fk_all missed it.
+    assert_fk_all_finds(robot, np.array([-0.0182793, -0.02691826, 0.80348873]), (-1, -1, 1), dense=True)
+    # Poses just off parallel singularities (|det_a_norm| down to ~1e-6) in every working mode.
+    local = np.random.default_rng(11)
+    count = 0
+    for mode in robot.modes:
+        for k, pose in enumerate(near_singular_poses(robot, local, 24, mode)):
+            assert_fk_all_finds(robot, pose, mode, dense=k % 8 == 0)
+            count += 1
+    assert count >= 8 * 24
+
+
+def test_fk_all_over_random_poses_without_a_singularity_filter(robot):
+    # Unlike random_poses, no |det| filter: near-singular poses are drawn as they come.
+    local = np.random.default_rng(12)
+    count = near = 0
+    while count < 3000:
+        pose = np.array([*local.uniform(-0.1, 0.1, 2), local.uniform(-np.pi, np.pi)])
+        mode = robot.modes[local.integers(8)]
+        try:
+            robot.ik(pose, mode)
+        except rk.UnreachableError:
+            continue
+        near += abs(robot.singularity(pose, mode).det_a_norm) < 0.01
+        assert_fk_all_finds(robot, pose, mode, dense=count % 300 == 0)
+        count += 1
+    assert near >= 10
+
+
 def test_fk_all_finds_six_modes_on_a_known_case():
     # Over random actuations the seed's robot shows several assembly modes at once.
     robot = rk.RRR3(0.13, 0.07, 0.12, 0.12)

@@ -6,8 +6,9 @@
 //   F(phi) = |N + D c_0|^2 - D^2 l2^2,
 // has no poles and is a trigonometric polynomial of degree 6 in phi (c_i, M are of degree 1,
 // D and N of degree 2). Its 13 coefficients come exactly from 16 samples (a DFT); a fine scan of
-// the polynomial brackets every sign change, and every local minimum of |F| between samples is
-// refined too, so that a pair of close roots or a double root is not missed. Each root is
+// the polynomial brackets every sign change, and every other scan interval is either certified
+// free of roots by a bound on F'' or searched (minimum of |F| refined, else bisected), so that a
+// pair of close roots or a double root is not missed. Each root is
 // polished by Newton on the three loop equations and kept only if it closes them to 1e-10 m.
 #include "robokin/rrr3.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 
 constexpr int kDegree = 6;
 constexpr int kFit = 16;    // samples for the exact coefficients (> 2 * kDegree + 1)
-constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by the dip test
+constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by search()
 
 struct TrigPoly {
   double a[kDegree + 1];  // F = a_0 + sum_k a_k cos(k phi) + b_k sin(k phi)
@@ -118,6 +119,43 @@ double extremum(const TrigPoly& p, double lo, double hi) {
   return refine(d, lo, hi);
 }
 
+
+// Roots of p in [lo, hi] where p(lo) = flo and p(hi) = fhi are non-zero with the same sign.
+void search(const TrigPoly& p, double curvature, double lo, double hi, double flo, double fhi, int depth,
+            std::vector<double>& roots) {
+  const double h = hi - lo;
+  if (std::min(std::abs(flo), std::abs(fhi)) > curvature * h * h / 8) return;  // certified: no root
+  double f, dlo, dhi, dd;
+  p.eval(lo, f, dlo, dd);
+  p.eval(hi, f, dhi, dd);
+  const double sign = flo < 0 ? -1.0 : 1.0;
+  if (sign * dlo < 0 && sign * dhi > 0) {
+    // |F| falls then rises: its minimum decides between no root, a double root and a pair.
+    const double m = extremum(p, lo, hi);
+    const double fm = p.value(m);
+    if (fm == 0 || std::abs(fm) < 1e-13) {
+      roots.push_back(m);  // a double root (tangency): the closure test in fk_all decides
+      return;
+    }
+    if ((fm < 0) != (flo < 0)) {
+      roots.push_back(refine(p, lo, m));
+      roots.push_back(refine(p, m, hi));
+      return;
+    }
+    if (std::abs(fm) > curvature * h * h / 8) return;  // p' has one root here as a rule: done
+  }
+  if (depth == 0) return;
+  const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
+  if (fmid == 0) {
+    roots.push_back(mid);
+  } else if ((fmid < 0) != (flo < 0)) {
+    roots.push_back(refine(p, lo, mid));
+    roots.push_back(refine(p, mid, hi));
+  } else {
+    search(p, curvature, lo, mid, flo, fmid, depth - 1, roots);
+    search(p, curvature, mid, hi, fmid, fhi, depth - 1, roots);
+  }
+}
 }  // namespace
 
 std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
@@ -148,30 +186,24 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     f[j] = v;
   }
 
+  // Every interval of the scan either has a sign change (one root, refined), or is certified free
+  // of roots by |F| >= min(|F(lo)|, |F(hi)|) - max|F''| h^2 / 8 (the error bound of linear
+  // interpolation), or is searched: a minimum of |F| inside (F' turns towards zero then away from
+  // it) is refined and checked for a pair of roots or a double root; otherwise it is bisected.
+  // No condition on neighbouring samples: two roots closer than a scan step are found wherever
+  // they fall (issue: 5 of 24,000 near-singular assemblies were missed by the former dip test).
+  double curvature = 0;  // max |F''| over phi
+  for (int k = 1; k <= kDegree; ++k) curvature += k * k * std::hypot(p.a[k], p.b[k]);
   std::vector<double> roots;
   for (int j = 0; j < kScan; ++j) {
-    const int prev = (j + kScan - 1) % kScan, next = (j + 1) % kScan;
+    const int next = (j + 1) % kScan;
     const double lo = t.scan_phi[j], hi = t.scan_phi[j + 1];  // hi = pi for the last interval
     if (f[j] == 0) {
       roots.push_back(lo);
     } else if ((f[j] < 0) != (f[next] < 0) && f[next] != 0) {
       roots.push_back(refine(p, lo, hi));
-    } else if ((f[prev] < 0) == (f[j] < 0) && (f[next] < 0) == (f[j] < 0) && std::abs(f[j]) < std::abs(f[prev]) &&
-               std::abs(f[j]) <= std::abs(f[next])) {
-      // |F| dips between samples without a sign change: look at the bottom of the dip.
-      const double a = lo - 2 * M_PI / kScan, b = hi;
-      double fa, da, dda, fb, db, ddb;
-      p.eval(a, fa, da, dda);
-      p.eval(b, fb, db, ddb);
-      if ((da < 0) == (db < 0)) continue;
-      const double m = extremum(p, a, b);
-      const double fm = p.value(m);
-      if ((fm < 0) != (f[j] < 0) && fm != 0) {
-        roots.push_back(refine(p, a, m));
-        roots.push_back(refine(p, m, b));
-      } else if (std::abs(fm) < 1e-13) {
-        roots.push_back(m);  // a double root (tangency): the closure test below decides
-      }
+    } else if (f[next] != 0) {
+      search(p, curvature, lo, hi, f[j], f[next], 8, roots);
     }
   }
 
