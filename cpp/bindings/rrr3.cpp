@@ -156,11 +156,7 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   if (o.serial_margin < 0) fail("serial_margin: must be >= 0");
   if (o.smoothing < 0) fail("smoothing: must be >= 0");
   const long count = static_cast<long>(pts.shape(0));
-  // The planner keeps one evaluated cell per point and grid orientation.
-  const double cells = static_cast<double>(count) * (2 * std::floor(o.span / o.resolution) + 1);
-  if (o.avoid && cells > 5e7)
-    fail("points: too many points for span / resolution (" + std::to_string(cells) +
-         " orientation cells, at most 5e7); use a coarser resolution or fewer points");
+  // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
   py::gil_scoped_release release;
   return plan_path(r, pts.data(), count, o);
 }
