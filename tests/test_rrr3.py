@@ -424,3 +424,59 @@ def test_ik_is_periodic_in_phi_for_any_orientation(robot, rng):
         np.testing.assert_allclose(np.angle(np.exp(1j * (got - want))), 0, atol=tol)
         for p, row in zip(shifted, got):
             np.testing.assert_array_equal(robot.ik(p, (1, -1, 1)), row)
+
+
+def parallel_lines_pose(robot, theta, signs, start):
+    """A pose whose lines A_iB_i are all parallel to u(theta): A_i = B_i - s_i l2 u(theta) on the
+    circle (O_i, l1). Newton on the three circle equations in (x, y, phi) from start; None if it fails."""
+    o, d = base(robot), robot.l2 * u(theta)
+    x = np.array(start, float)
+    for _ in range(60):
+        b = platform(robot, x)
+        r = b - np.outer(signs, d) - o  # O_iA_i
+        f = np.sum(r * r, axis=1) - robot.l1**2
+        db = (b - x[:2]) @ np.array([[0, 1], [-1, 0]])  # dB_i/dphi = perp(B_i - E)
+        jac = 2 * np.column_stack((r[:, 0], r[:, 1], np.sum(r * db, axis=1)))
+        try:
+            step = np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:
+            return None
+        x = x - step
+        if not np.all(np.isfinite(x)):
+            return None
+    return np.array([x[0], x[1], np.angle(np.exp(1j * x[2]))]) if np.max(np.abs(f)) < 1e-14 else None
+
+
+def test_parallel_lines_singularity(robot):
+    # With every s_i = 1 there is a closed form: E = l2 u(theta) puts A_i = R(phi) b_i, on the
+    # circle (O_i, l1) when |O_i - R(phi) b_i| = l1, i.e. cos phi = (R_b^2 + R_e^2 - l1^2) / (2 R_b R_e)
+    # (phi = +-66 deg for the seed's robot). Other sign triples come from a root search.
+    phi0 = math.acos((robot.base_radius**2 + robot.platform_radius**2 - robot.l1**2) /
+                     (2 * robot.base_radius * robot.platform_radius))
+    poses = [(np.array([robot.l2 * math.cos(t), robot.l2 * math.sin(t), sgn * phi0]), t, np.ones(3))
+             for t in (0.3, 2.0, -2.5) for sgn in (1, -1)]
+    rng = np.random.default_rng(4)
+    while len(poses) < 20:
+        theta, signs = rng.uniform(-np.pi, np.pi), rng.choice([-1, 1], 3)
+        pose = parallel_lines_pose(robot, theta, signs, [*rng.uniform(-0.1, 0.1, 2), rng.uniform(-np.pi, np.pi)])
+        if pose is not None:
+            poses.append((pose, theta, signs))
+    checked = 0
+    for pose, theta, signs in poses:
+        b = platform(robot, pose)
+        a = b - np.outer(signs, robot.l2 * u(theta))
+        np.testing.assert_allclose(np.linalg.norm(a - base(robot), axis=1), robot.l1, atol=1e-13)
+        mode = tuple(int(v) for v in np.sign(cross(a - base(robot), b - a)))
+        np.testing.assert_allclose(elbows(robot, robot.ik(pose, mode)), a, atol=1e-12)
+        sa, _ = seed_jacobians(robot, pose, robot.ik(pose, mode))
+        assert abs(np.linalg.det(sa)) < 1e-12  # (cos g_i, sin g_i) all collinear: A is singular
+        s = robot.singularity(pose, mode)
+        if s.kind == "serial":
+            continue  # a stretched or folded leg as well
+        checked += 1
+        assert s.kind == "parallel" and abs(s.det_a_norm) < 1e-12 and s.distance < 1e-6, (pose, mode)
+        assert s.lines == "parallel", (pose, mode)
+        # Turned away from it the lines are no longer parallel: at most a concurrent singularity.
+        t = robot.singularity(pose + [0, 0, 0.05], mode)
+        assert t.kind != "parallel" or t.lines == "concurrent"
+    assert checked >= 10

@@ -313,6 +313,16 @@ void bind_rrr3(py::module_& m) {
       .def_property_readonly("platform_radius", &RRR3::platform_radius)
       .def_property_readonly("l1", &RRR3::l1)
       .def_property_readonly("l2", &RRR3::l2)
+      .def_property_readonly(
+          "base_joints",
+          [](const RRR3& r) {
+            Elbows o;
+            for (int i = 0; i < 3; ++i) o.row(i) = r.base_joint(i).transpose();
+            py::array_t<double> out = rows32(o);
+            out.attr("setflags")(py::arg("write") = false);
+            return out;
+          },
+          "(3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only).")
       .def_property_readonly_static("modes", [](py::object) {
         py::list modes;
         for (int k = 0; k < 8; ++k) {
