@@ -480,3 +480,31 @@ def test_parallel_lines_singularity(robot):
         t = robot.singularity(pose + [0, 0, 0.05], mode)
         assert t.kind != "parallel" or t.lines == "concurrent"
     assert checked >= 10
+
+
+@pytest.mark.parametrize("geometry, pose, mode", [
+    # Two assembly modes at (nearly) the same phi: c_0, c_1, c_2 collinear, det M = 0, N / D = 0 / 0.
+    ((0.15, 0.0866, 0.1, 0.1), [-0.11210236524486471, -0.01674159504742448, 0.32668011224636606], (1, 1, 1)),
+    ((0.2, 0.05, 0.15, 0.08), [-0.07603874214982485, 0.02385199211094924, -0.0586967902403992], (1, -1, -1)),
+    ((0.13, 0.07, 0.12, 0.12), [-0.11989577701054777, -0.00792209681894901, 1.1516178773222334], (1, 1, -1)),
+    # Three roots of F within one scan step (a sign change hiding two more roots).
+    ((0.13, 0.07, 0.12, 0.12), [0.06634909065521899, -0.09234243044567052, 1.1103930395561186], (-1, 1, 1)),
+    ((0.13, 0.07, 0.12, 0.12), [0.0055549583776657585, -0.07314090889654673, 1.4136550870365436], (1, 1, -1)),
+    ((0.15, 0.0866, 0.1, 0.1), [0.04553210246852732, -0.011481287899902493, 0.8765751012293439], (-1, -1, 1)),
+    ((0.2, 0.05, 0.15, 0.08), [0.012019405956752577, 0.07088462600119894, 0.46224416209596475], (1, -1, -1)),
+    ((0.2, 0.05, 0.15, 0.08), [-0.05101960568996092, -0.056000981990985466, -0.3968591576762872], (1, -1, -1)),
+    ((0.1, 0.09, 0.07, 0.14), [-0.09038067992523888, 0.06430037069568303, -0.06692229484557988], (-1, -1, -1)),
+    ((13.0, 7.0, 12.0, 12.0), [6.6476266403898165, 11.45175562658715, -1.053853915485965], (-1, -1, 1)),
+])
+def test_fk_all_hard_cases_from_a_sweep(geometry, pose, mode):
+    # Misses of earlier versions in a sweep of 200,000 random (pose, mode) pairs over 5 geometries.
+    robot = rk.RRR3(*geometry)
+    pose = np.array(pose)
+    alpha = robot.ik(pose, mode)
+    sols = robot.fk_all(alpha)
+    scale = geometry[0] / 0.13
+    gap = np.linalg.norm(np.column_stack(((sols[:, :2] - pose[:2]) / scale, np.angle(np.exp(1j * (sols[:, 2] - pose[2]))))),
+                         axis=1)
+    assert gap.min() < 1e-6
+    for sol in sols:
+        assert np.max(closure(robot, alpha, sol)) < 1e-10 * scale

@@ -73,7 +73,13 @@ struct Elimination {
   const Eigen::Vector2d* b;  // platform joints in the effector frame
   double l2;
 
-  double F(double phi, Eigen::Vector2d* N = nullptr, double* D = nullptr) const {
+  struct Detail {
+    Eigen::Vector2d N, c0, r;
+    Eigen::Matrix2d M;
+    double D;
+  };
+
+  double F(double phi, Detail* detail = nullptr) const {
     const double c = std::cos(phi), s = std::sin(phi);
     Eigen::Vector2d ci[3];
     for (int i = 0; i < 3; ++i)
@@ -84,8 +90,7 @@ struct Elimination {
     const Eigen::Vector2d r(ci[0].squaredNorm() - ci[1].squaredNorm(), ci[0].squaredNorm() - ci[2].squaredNorm());
     const double det = M.determinant();
     const Eigen::Vector2d n(M(1, 1) * r(0) - M(0, 1) * r(1), -M(1, 0) * r(0) + M(0, 0) * r(1));
-    if (N) *N = n;
-    if (D) *D = det;
+    if (detail) *detail = Detail{n, ci[0], r, M, det};
     return (n + det * ci[0]).squaredNorm() - det * det * l2 * l2;
   }
 };
@@ -121,7 +126,35 @@ double extremum(const TrigPoly& p, double lo, double hi) {
 
 
 // Roots of p in [lo, hi] where p(lo) = flo and p(hi) = fhi are non-zero with the same sign.
-void search(const TrigPoly& p, double curvature, double lo, double hi, double flo, double fhi, int depth,
+void search(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi, int depth,
+            std::vector<double>& roots);
+
+// Roots of p in [lo, hi] where p(lo) = flo and p(hi) = fhi are non-zero with opposite signs: one
+// root when p' keeps its sign (certified by |p'| >= min(|p'(lo)|, |p'(hi)|) - max|p^(3)| h^2 / 8),
+// else the interval is bisected (three roots may hide in it).
+void search_change(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi,
+                   int depth, std::vector<double>& roots) {
+  const double h = hi - lo;
+  double f, dlo, dhi, dd;
+  p.eval(lo, f, dlo, dd);
+  p.eval(hi, f, dhi, dd);
+  if (depth == 0 || ((dlo < 0) == (dhi < 0) && std::min(std::abs(dlo), std::abs(dhi)) > jerk * h * h / 8)) {
+    roots.push_back(refine(p, lo, hi));
+    return;
+  }
+  const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
+  if (fmid == 0) {
+    roots.push_back(mid);
+    return;
+  }
+  for (int half = 0; half < 2; ++half) {
+    const double a = half ? mid : lo, b = half ? hi : mid, fa = half ? fmid : flo, fb = half ? fhi : fmid;
+    if ((fa < 0) != (fb < 0)) search_change(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+    else search(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+  }
+}
+
+void search(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi, int depth,
             std::vector<double>& roots) {
   const double h = hi - lo;
   if (std::min(std::abs(flo), std::abs(fhi)) > curvature * h * h / 8) return;  // certified: no root
@@ -138,22 +171,25 @@ void search(const TrigPoly& p, double curvature, double lo, double hi, double fl
       return;
     }
     if ((fm < 0) != (flo < 0)) {
-      roots.push_back(refine(p, lo, m));
-      roots.push_back(refine(p, m, hi));
+      search_change(p, curvature, jerk, lo, m, flo, fm, depth, roots);
+      search_change(p, curvature, jerk, m, hi, fm, fhi, depth, roots);
       return;
     }
-    if (std::abs(fm) > curvature * h * h / 8) return;  // p' has one root here as a rule: done
+    // F'(m) = 0, so |F(x) - F(m)| <= max|F''| (x - m)^2 / 2: no root in [lo, hi] when |F(m)| beats that
+    // (whatever other extrema the interval holds).
+    const double reach = std::max(m - lo, hi - m);
+    if (std::abs(fm) > curvature * reach * reach / 2) return;
   }
   if (depth == 0) return;
   const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
   if (fmid == 0) {
     roots.push_back(mid);
   } else if ((fmid < 0) != (flo < 0)) {
-    roots.push_back(refine(p, lo, mid));
-    roots.push_back(refine(p, mid, hi));
+    search_change(p, curvature, jerk, lo, mid, flo, fmid, depth - 1, roots);
+    search_change(p, curvature, jerk, mid, hi, fmid, fhi, depth - 1, roots);
   } else {
-    search(p, curvature, lo, mid, flo, fmid, depth - 1, roots);
-    search(p, curvature, mid, hi, fmid, fhi, depth - 1, roots);
+    search(p, curvature, jerk, lo, mid, flo, fmid, depth - 1, roots);
+    search(p, curvature, jerk, mid, hi, fmid, fhi, depth - 1, roots);
   }
 }
 }  // namespace
@@ -192,8 +228,11 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   // it) is refined and checked for a pair of roots or a double root; otherwise it is bisected.
   // No condition on neighbouring samples: two roots closer than a scan step are found wherever
   // they fall (issue: 5 of 24,000 near-singular assemblies were missed by the former dip test).
-  double curvature = 0;  // max |F''| over phi
-  for (int k = 1; k <= kDegree; ++k) curvature += k * k * std::hypot(p.a[k], p.b[k]);
+  double curvature = 0, jerk = 0;  // max |F''| and max |F'''| over phi
+  for (int k = 1; k <= kDegree; ++k) {
+    curvature += k * k * std::hypot(p.a[k], p.b[k]);
+    jerk += k * k * k * std::hypot(p.a[k], p.b[k]);
+  }
   std::vector<double> roots;
   for (int j = 0; j < kScan; ++j) {
     const int next = (j + 1) % kScan;
@@ -201,28 +240,47 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     if (f[j] == 0) {
       roots.push_back(lo);
     } else if ((f[j] < 0) != (f[next] < 0) && f[next] != 0) {
-      roots.push_back(refine(p, lo, hi));
+      search_change(p, curvature, jerk, lo, hi, f[j], f[next], 8, roots);
     } else if (f[next] != 0) {
-      search(p, curvature, lo, hi, f[j], f[next], 8, roots);
+      search(p, curvature, jerk, lo, hi, f[j], f[next], 8, roots);
     }
   }
 
-  for (double phi : roots) {
-    Eigen::Vector2d N;
-    double D;
-    elim.F(phi, &N, &D);
-    const Pose guess(N.x() / D, N.y() / D, phi);
-    if (!guess.allFinite()) continue;
+  // Each root phi gives E = N / D. Where D = det M is (nearly) zero, c_0, c_1, c_2 are (nearly)
+  // collinear: M E = r only fixes a line, which leg 0's circle cuts in two points, possibly two
+  // assembly modes at (nearly) the same phi (then F has a double root and N / D is 0 / 0). Both
+  // intersections are tried as well there.
+  const double size = rb_ + re_ + l1_ + l2_;
+  auto add = [&](const Pose& guess, double phi) {
+    if (!guess.allFinite()) return;
     const RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
-    if (!(polished.error < 1e-10)) continue;
-    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-6) continue;  // slid to another root
+    if (!(polished.error < 1e-10)) return;
+    // Slid far to another root: that one is polished from its own phi. Near a double root the two
+    // assembly modes may lie some 1e-5 rad on either side of the phi found.
+    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-3) return;
     Pose q = polished.pose;
+    q(2) = std::remainder(q(2), 2 * M_PI);
     if (q(2) >= M_PI) q(2) -= 2 * M_PI;
-    bool duplicate = false;
     for (const Pose& o : out)
-      duplicate = duplicate || ((o.head<2>() - q.head<2>()).norm() < 1e-9 &&
-                                std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-9);
-    if (!duplicate) out.push_back(q);
+      if ((o.head<2>() - q.head<2>()).norm() < 1e-8 * size && std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-8)
+        return;  // the same assembly mode (near a singularity Newton's end point is ill-conditioned)
+    out.push_back(q);
+  };
+  for (double phi : roots) {
+    Elimination::Detail d;
+    elim.F(phi, &d);
+    add(Pose(d.N.x() / d.D, d.N.y() / d.D, phi), phi);
+    if (!(std::abs(d.D) < 1e-3 * d.M.squaredNorm())) continue;
+    const int k = d.M.row(0).squaredNorm() >= d.M.row(1).squaredNorm() ? 0 : 1;
+    const Eigen::Vector2d g = d.M.row(k).transpose();
+    if (!(g.squaredNorm() > 0)) continue;
+    const Eigen::Vector2d e0 = g * (d.r(k) / g.squaredNorm()), n = Eigen::Vector2d(-g.y(), g.x()).normalized();
+    const Eigen::Vector2d w = e0 + d.c0;  // |e0 + t n + c_0| = l2
+    const double bq = n.dot(w), disc = std::max(0.0, bq * bq - (w.squaredNorm() - l2_ * l2_));
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Vector2d e = e0 + (-bq + sign * std::sqrt(disc)) * n;
+      add(Pose(e.x(), e.y(), phi), phi);
+    }
   }
   std::sort(out.begin(), out.end(), [](const Pose& a, const Pose& b) { return a(2) < b(2); });
   return out;
