@@ -6,10 +6,14 @@
 //   F(phi) = |N + D c_0|^2 - D^2 l2^2,
 // has no poles and is a trigonometric polynomial of degree 6 in phi (c_i, M are of degree 1,
 // D and N of degree 2). Its 13 coefficients come exactly from 16 samples (a DFT); a fine scan of
-// the polynomial brackets every sign change, and every other scan interval is either certified
-// free of roots by a bound on F'' or searched (minimum of |F| refined, else bisected), so that a
-// pair of close roots or a double root is not missed. Each root is
-// polished by Newton on the three loop equations and kept only if it closes them to 1e-10 m.
+// the polynomial (1 deg steps) is then searched interval by interval without any condition on
+// neighbouring samples: an interval with a sign change holds one root when F' keeps its sign
+// (certified by a bound on the third derivative), else it is bisected; an interval without one is
+// certified free of roots by a bound on F'' (linear interpolation error), or its minimum of |F| is
+// refined (a pair of close roots or a double root), or it is bisected. Each root phi is polished
+// by Newton on the three loop equations from E = N / D and, where D is nearly 0 (two assembly
+// modes at nearly the same phi, N / D = 0 / 0), from both points where the line M E = r cuts
+// leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m.
 #include "robokin/rrr3.hpp"
 
 #include <algorithm>
