@@ -495,6 +495,8 @@ def test_parallel_lines_singularity(robot):
     ((0.2, 0.05, 0.15, 0.08), [-0.05101960568996092, -0.056000981990985466, -0.3968591576762872], (1, -1, -1)),
     ((0.1, 0.09, 0.07, 0.14), [-0.09038067992523888, 0.06430037069568303, -0.06692229484557988], (-1, -1, -1)),
     ((13.0, 7.0, 12.0, 12.0), [6.6476266403898165, 11.45175562658715, -1.053853915485965], (-1, -1, 1)),
+    # Two tangencies of F within one scan step (the first one found hid the other).
+    ((0.2, 0.05, 0.15, 0.08), [0.0259206776139195, 0.07586139422058419, -0.031512351772624125], (-1, -1, 1)),
 ])
 def test_fk_all_hard_cases_from_a_sweep(geometry, pose, mode):
     # Misses of earlier versions in a sweep of 200,000 random (pose, mode) pairs over 5 geometries.

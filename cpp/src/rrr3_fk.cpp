@@ -172,6 +172,13 @@ void search(const TrigPoly& p, double curvature, double jerk, double lo, double 
     const double fm = p.value(m);
     if (fm == 0 || std::abs(fm) < 1e-13) {
       roots.push_back(m);  // a double root (tangency): the closure test in fk_all decides
+      // p' may have had other roots in [lo, hi] (another tangency nearby): search on either side.
+      if (fm == 0 || depth == 0) return;
+      for (int half = 0; half < 2; ++half) {
+        const double a = half ? m : lo, b = half ? hi : m, fa = half ? fm : flo, fb = half ? fhi : fm;
+        if ((fa < 0) != (fb < 0)) search_change(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+        else search(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+      }
       return;
     }
     if ((fm < 0) != (flo < 0)) {
