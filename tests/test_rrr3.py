@@ -178,6 +178,79 @@ def test_fk_all_misses_nothing_an_independent_search_finds(robot, rng):
     assert total > 10  # the random actuations did produce assembly modes
 
 
+def near_singular_poses(robot, rng, count, mode, offsets=(1e-5, 1e-4, 1e-3, 3e-3)):
+    """Poses a little off a parallel singularity: a root of det A along phi (bisected on the seed's
+    det A in numpy), then moved along phi by a small offset. Their assembly modes come in close pairs."""
+    def det(p):
+        try:
+            return np.linalg.det(seed_jacobians(robot, p, robot.ik(p, mode))[0])
+        except rk.UnreachableError:
+            return np.nan
+    out = []
+    while len(out) < count:
+        x, y = rng.uniform(-0.08, 0.08, 2)
+        phis = rng.uniform(-np.pi, np.pi) + np.linspace(0, 2 * np.pi, 121)
+        d = np.array([det(np.array([x, y, p])) for p in phis])
+        k = np.nonzero(np.isfinite(d[:-1]) & np.isfinite(d[1:]) & (np.sign(d[:-1]) != np.sign(d[1:])))[0]
+        if len(k) == 0:
+            continue
+        lo, hi = phis[k[0]], phis[k[0] + 1]
+        for _ in range(50):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if np.sign(det(np.array([x, y, mid]))) == np.sign(d[k[0]]) else (lo, mid)
+        for off in offsets:
+            for sign in (1, -1):
+                p = np.array([x, y, np.angle(np.exp(1j * (lo + sign * off)))])
+                if np.isfinite(det(p)):
+                    out.append(p)
+    return out
+
+
+def assert_fk_all_finds(robot, pose, mode, dense=False):
+    alpha = robot.ik(pose, mode)
+    sols = robot.fk_all(alpha)
+    assert len(sols) >= 1, f"pose={pose!r} mode={mode}: fk_all found nothing"
+    for sol in sols:
+        assert np.max(closure(robot, alpha, sol)) < 1e-10
+        assert -np.pi <= sol[2] < np.pi
+    gap = np.linalg.norm(np.column_stack((sols[:, :2] - pose[:2], np.angle(np.exp(1j * (sols[:, 2] - pose[2]))))),
+                         axis=1)
+    assert gap.min() < 1e-6, f"pose={pose!r} mode={mode}: fk_all missed the pose itself"  # ill-conditioned near det A = 0
+    if dense:
+        for phi in independent_fk_phis(robot, alpha):
+            assert np.abs(np.angle(np.exp(1j * (sols[:, 2] - phi)))).min() < 1e-3, f"alpha={alpha!r}: missed {phi}"
+
+
+def test_fk_all_near_parallel_singularities(robot, rng):
+    # Review repro: two roots in phi within one scan step; r.fk closes the pose but fk_all missed it.
+    assert_fk_all_finds(robot, np.array([-0.0182793, -0.02691826, 0.80348873]), (-1, -1, 1), dense=True)
+    # Poses just off parallel singularities (|det_a_norm| down to ~1e-6) in every working mode.
+    local = np.random.default_rng(11)
+    count = 0
+    for mode in robot.modes:
+        for k, pose in enumerate(near_singular_poses(robot, local, 24, mode)):
+            assert_fk_all_finds(robot, pose, mode, dense=k % 8 == 0)
+            count += 1
+    assert count >= 8 * 24
+
+
+def test_fk_all_over_random_poses_without_a_singularity_filter(robot):
+    # Unlike random_poses, no |det| filter: near-singular poses are drawn as they come.
+    local = np.random.default_rng(12)
+    count = near = 0
+    while count < 3000:
+        pose = np.array([*local.uniform(-0.1, 0.1, 2), local.uniform(-np.pi, np.pi)])
+        mode = robot.modes[local.integers(8)]
+        try:
+            robot.ik(pose, mode)
+        except rk.UnreachableError:
+            continue
+        near += abs(robot.singularity(pose, mode).det_a_norm) < 0.01
+        assert_fk_all_finds(robot, pose, mode, dense=count % 300 == 0)
+        count += 1
+    assert near >= 10
+
+
 def test_fk_all_finds_six_modes_on_a_known_case():
     # Over random actuations the seed's robot shows several assembly modes at once.
     robot = rk.RRR3(0.13, 0.07, 0.12, 0.12)
@@ -351,3 +424,89 @@ def test_ik_is_periodic_in_phi_for_any_orientation(robot, rng):
         np.testing.assert_allclose(np.angle(np.exp(1j * (got - want))), 0, atol=tol)
         for p, row in zip(shifted, got):
             np.testing.assert_array_equal(robot.ik(p, (1, -1, 1)), row)
+
+
+def parallel_lines_pose(robot, theta, signs, start):
+    """A pose whose lines A_iB_i are all parallel to u(theta): A_i = B_i - s_i l2 u(theta) on the
+    circle (O_i, l1). Newton on the three circle equations in (x, y, phi) from start; None if it fails."""
+    o, d = base(robot), robot.l2 * u(theta)
+    x = np.array(start, float)
+    for _ in range(60):
+        b = platform(robot, x)
+        r = b - np.outer(signs, d) - o  # O_iA_i
+        f = np.sum(r * r, axis=1) - robot.l1**2
+        db = (b - x[:2]) @ np.array([[0, 1], [-1, 0]])  # dB_i/dphi = perp(B_i - E)
+        jac = 2 * np.column_stack((r[:, 0], r[:, 1], np.sum(r * db, axis=1)))
+        try:
+            step = np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:
+            return None
+        x = x - step
+        if not np.all(np.isfinite(x)):
+            return None
+    return np.array([x[0], x[1], np.angle(np.exp(1j * x[2]))]) if np.max(np.abs(f)) < 1e-14 else None
+
+
+def test_parallel_lines_singularity(robot):
+    # With every s_i = 1 there is a closed form: E = l2 u(theta) puts A_i = R(phi) b_i, on the
+    # circle (O_i, l1) when |O_i - R(phi) b_i| = l1, i.e. cos phi = (R_b^2 + R_e^2 - l1^2) / (2 R_b R_e)
+    # (phi = +-66 deg for the seed's robot). Other sign triples come from a root search.
+    phi0 = math.acos((robot.base_radius**2 + robot.platform_radius**2 - robot.l1**2) /
+                     (2 * robot.base_radius * robot.platform_radius))
+    poses = [(np.array([robot.l2 * math.cos(t), robot.l2 * math.sin(t), sgn * phi0]), t, np.ones(3))
+             for t in (0.3, 2.0, -2.5) for sgn in (1, -1)]
+    rng = np.random.default_rng(4)
+    while len(poses) < 20:
+        theta, signs = rng.uniform(-np.pi, np.pi), rng.choice([-1, 1], 3)
+        pose = parallel_lines_pose(robot, theta, signs, [*rng.uniform(-0.1, 0.1, 2), rng.uniform(-np.pi, np.pi)])
+        if pose is not None:
+            poses.append((pose, theta, signs))
+    checked = 0
+    for pose, theta, signs in poses:
+        b = platform(robot, pose)
+        a = b - np.outer(signs, robot.l2 * u(theta))
+        np.testing.assert_allclose(np.linalg.norm(a - base(robot), axis=1), robot.l1, atol=1e-13)
+        mode = tuple(int(v) for v in np.sign(cross(a - base(robot), b - a)))
+        np.testing.assert_allclose(elbows(robot, robot.ik(pose, mode)), a, atol=1e-12)
+        sa, _ = seed_jacobians(robot, pose, robot.ik(pose, mode))
+        assert abs(np.linalg.det(sa)) < 1e-12  # (cos g_i, sin g_i) all collinear: A is singular
+        s = robot.singularity(pose, mode)
+        if s.kind == "serial":
+            continue  # a stretched or folded leg as well
+        checked += 1
+        assert s.kind == "parallel" and abs(s.det_a_norm) < 1e-12 and s.distance < 1e-6, (pose, mode)
+        assert s.lines == "parallel", (pose, mode)
+        # Turned away from it the lines are no longer parallel: at most a concurrent singularity.
+        t = robot.singularity(pose + [0, 0, 0.05], mode)
+        assert t.kind != "parallel" or t.lines == "concurrent"
+    assert checked >= 10
+
+
+@pytest.mark.parametrize("geometry, pose, mode", [
+    # Two assembly modes at (nearly) the same phi: c_0, c_1, c_2 collinear, det M = 0, N / D = 0 / 0.
+    ((0.15, 0.0866, 0.1, 0.1), [-0.11210236524486471, -0.01674159504742448, 0.32668011224636606], (1, 1, 1)),
+    ((0.2, 0.05, 0.15, 0.08), [-0.07603874214982485, 0.02385199211094924, -0.0586967902403992], (1, -1, -1)),
+    ((0.13, 0.07, 0.12, 0.12), [-0.11989577701054777, -0.00792209681894901, 1.1516178773222334], (1, 1, -1)),
+    # Three roots of F within one scan step (a sign change hiding two more roots).
+    ((0.13, 0.07, 0.12, 0.12), [0.06634909065521899, -0.09234243044567052, 1.1103930395561186], (-1, 1, 1)),
+    ((0.13, 0.07, 0.12, 0.12), [0.0055549583776657585, -0.07314090889654673, 1.4136550870365436], (1, 1, -1)),
+    ((0.15, 0.0866, 0.1, 0.1), [0.04553210246852732, -0.011481287899902493, 0.8765751012293439], (-1, -1, 1)),
+    ((0.2, 0.05, 0.15, 0.08), [0.012019405956752577, 0.07088462600119894, 0.46224416209596475], (1, -1, -1)),
+    ((0.2, 0.05, 0.15, 0.08), [-0.05101960568996092, -0.056000981990985466, -0.3968591576762872], (1, -1, -1)),
+    ((0.1, 0.09, 0.07, 0.14), [-0.09038067992523888, 0.06430037069568303, -0.06692229484557988], (-1, -1, -1)),
+    ((13.0, 7.0, 12.0, 12.0), [6.6476266403898165, 11.45175562658715, -1.053853915485965], (-1, -1, 1)),
+    # Two tangencies of F within one scan step (the first one found hid the other).
+    ((0.2, 0.05, 0.15, 0.08), [0.0259206776139195, 0.07586139422058419, -0.031512351772624125], (-1, -1, 1)),
+])
+def test_fk_all_hard_cases_from_a_sweep(geometry, pose, mode):
+    # Misses of earlier versions in a sweep of 200,000 random (pose, mode) pairs over 5 geometries.
+    robot = rk.RRR3(*geometry)
+    pose = np.array(pose)
+    alpha = robot.ik(pose, mode)
+    sols = robot.fk_all(alpha)
+    scale = geometry[0] / 0.13
+    gap = np.linalg.norm(np.column_stack(((sols[:, :2] - pose[:2]) / scale, np.angle(np.exp(1j * (sols[:, 2] - pose[2]))))),
+                         axis=1)
+    assert gap.min() < 1e-6
+    for sol in sols:
+        assert np.max(closure(robot, alpha, sol)) < 1e-10 * scale

@@ -128,3 +128,28 @@ def test_plan_bad_input(robot):
     assert robot.plan(np.zeros((0, 2))).poses.shape == (0, 3)
     far = robot.plan(np.array([[1.0, 1.0], [1.0, 1.01]]))  # unreachable everywhere: no crash
     assert not far.feasible and np.isnan(far.alpha).all()
+
+
+def test_plan_sizes_are_bounded(robot):
+    # Review repro: max_step / resolution = 2e6 grid steps (never returned before; w is now <= m - 1).
+    import time
+    pts = rk.paths.circle(50)
+    t0 = time.perf_counter()
+    big = robot.plan(pts, max_step=1e4, resolution=0.005)
+    assert time.perf_counter() - t0 < 5.0
+    ref = robot.plan(pts, max_step=2.0, resolution=0.005)  # the same grid: any step is allowed
+    assert np.array_equal(big.poses, ref.poses) and big.feasible == ref.feasible
+    # inf / 1e-300 was cast to long (undefined behaviour); now clamped: span = 0 leaves one orientation.
+    one = robot.plan(pts, max_step=1e300, resolution=1e-300, span=0)
+    assert np.all(one.poses[:, 2] == 0)
+    for name, value in [("max_step", 0.0), ("max_step", -1.0), ("max_step", float("inf")), ("max_step", float("nan")),
+                        ("resolution", 0.0), ("resolution", -0.01), ("resolution", float("nan")),
+                        ("span", -0.1), ("span", float("inf")), ("margin", float("nan")), ("margin", -1.0),
+                        ("serial_margin", -1.0), ("smoothing", float("inf")), ("smoothing", -1.0)]:
+        with pytest.raises(ValueError, match=name):
+            robot.plan(pts, **{name: value})
+    # Work count * m * (2 w + 1) and memory are bounded with a clear message, before any allocation.
+    with pytest.raises(ValueError, match="max_step"):
+        robot.plan(np.zeros((2_000, 2)), span=1.0, resolution=0.001, max_step=1.0)  # 2e3 x 2001 x 4001
+    with pytest.raises(ValueError, match="MiB"):
+        robot.plan(np.zeros((2_000_000, 2)), span=1.0, resolution=0.005)  # 8e8 cells

@@ -118,3 +118,58 @@ def test_plots_render(tmp_path, robot):
     fig.savefig(tmp_path / "design.png")
     plt.close("all")
     assert all((tmp_path / f).stat().st_size > 1000 for f in ("robot.png", "ws.png", "design.png"))
+
+
+def test_map_cells_agree_with_singularity_everywhere(robot):
+    # The map's determinants come from the robot's own inverse model and Jacobians (one
+    # implementation): every reachable cell is classified as RRR3.singularity classifies its centre,
+    # apart from cells marked for a sign change of det A with a neighbour.
+    rng = np.random.default_rng(5)
+    for phi, mode in [(0.0, (1, 1, 1)), (0.4, (1, -1, 1)), (-1.0, (-1, -1, -1))]:
+        w = robot.workspace(phi=phi, mode=mode, n=90, tol=1e-2)
+        cells = np.asarray(w.cells)
+        code = {"none": 1, "parallel": 2, "serial": 3}
+        checked = 0
+        for j, i in zip(rng.integers(0, 90, 1500), rng.integers(0, 90, 1500)):
+            pose = np.array([w.x[i], w.y[j], phi])
+            try:
+                s = robot.singularity(pose, mode, tol=1e-2)
+            except rk.UnreachableError:
+                assert cells[j, i] == 0
+                continue
+            checked += 1
+            if cells[j, i] == 2 and s.kind == "none":
+                continue  # a sign change of det A with a neighbour
+            assert cells[j, i] == code[s.kind], (phi, mode, pose)
+        assert checked > 300
+
+
+def test_base_joints_from_the_core(robot):
+    o = robot.base_joints
+    assert o.shape == (3, 2)
+    np.testing.assert_allclose(o, base(robot), atol=1e-15)
+    np.testing.assert_allclose(o, robot.points([0.0, 0.0, 0.0])["O"], atol=1e-15)
+    with pytest.raises(ValueError):
+        o[0, 0] = 1.0  # read-only
+    assert rk.RRR3(0.2, 0.05, 0.1, 0.1).base_joints[0, 1] == pytest.approx(-0.2)
+
+
+def test_plot_design_titles_follow_the_curve(tmp_path):
+    mpl = pytest.importorskip("matplotlib")
+    mpl.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import robokin.plots_rrr3 as plots
+
+    curve = design.area_vs_platform_radius(np.linspace(0.03, 0.1, 3), base_radius=0.2, l1=0.12, l2=0.08, n=30)
+    assert (curve.base_radius, curve.l1, curve.l2) == (0.2, 0.12, 0.08)
+    best = design.best_l2([0.08, 0.1], [0.05, 0.1], base_radius=0.18, platform_radius=0.06, n=30)
+    fig, (ax1, ax2) = plots.plot_design(curve, best)
+    assert "R_b = 20 cm" in ax1.get_title() and "l1 = 12 cm, l2 = 8 cm" in ax1.get_title()
+    assert "15 cm" not in ax1.get_title()
+    assert "R_b = 18 cm" in ax2.get_title() and "R_e = 6 cm" in ax2.get_title()
+    plt.close("all")
+    fig, (ax1, _) = plots.plot_design(design.area_vs_platform_radius(np.linspace(0.03, 0.12, 3), n=30),
+                                      design.best_l2([0.1], [0.1], n=30))
+    assert "R_b = 15 cm, l1 = l2 = 10 cm" in ax1.get_title()
+    plt.close("all")

@@ -156,11 +156,7 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   if (o.serial_margin < 0) fail("serial_margin: must be >= 0");
   if (o.smoothing < 0) fail("smoothing: must be >= 0");
   const long count = static_cast<long>(pts.shape(0));
-  // The planner keeps one evaluated cell per point and grid orientation.
-  const double cells = static_cast<double>(count) * (2 * std::floor(o.span / o.resolution) + 1);
-  if (o.avoid && cells > 5e7)
-    fail("points: too many points for span / resolution (" + std::to_string(cells) +
-         " orientation cells, at most 5e7); use a coarser resolution or fewer points");
+  // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
   py::gil_scoped_release release;
   return plan_path(r, pts.data(), count, o);
 }
@@ -317,6 +313,16 @@ void bind_rrr3(py::module_& m) {
       .def_property_readonly("platform_radius", &RRR3::platform_radius)
       .def_property_readonly("l1", &RRR3::l1)
       .def_property_readonly("l2", &RRR3::l2)
+      .def_property_readonly(
+          "base_joints",
+          [](const RRR3& r) {
+            Elbows o;
+            for (int i = 0; i < 3; ++i) o.row(i) = r.base_joint(i).transpose();
+            py::array_t<double> out = rows32(o);
+            out.attr("setflags")(py::arg("write") = false);
+            return out;
+          },
+          "(3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only).")
       .def_property_readonly_static("modes", [](py::object) {
         py::list modes;
         for (int k = 0; k < 8; ++k) {

@@ -6,9 +6,14 @@
 //   F(phi) = |N + D c_0|^2 - D^2 l2^2,
 // has no poles and is a trigonometric polynomial of degree 6 in phi (c_i, M are of degree 1,
 // D and N of degree 2). Its 13 coefficients come exactly from 16 samples (a DFT); a fine scan of
-// the polynomial brackets every sign change, and every local minimum of |F| between samples is
-// refined too, so that a pair of close roots or a double root is not missed. Each root is
-// polished by Newton on the three loop equations and kept only if it closes them to 1e-10 m.
+// the polynomial (1 deg steps) is then searched interval by interval without any condition on
+// neighbouring samples: an interval with a sign change holds one root when F' keeps its sign
+// (certified by a bound on the third derivative), else it is bisected; an interval without one is
+// certified free of roots by a bound on F'' (linear interpolation error), or its minimum of |F| is
+// refined (a pair of close roots or a double root), or it is bisected. Each root phi is polished
+// by Newton on the three loop equations from E = N / D and, where D is nearly 0 (two assembly
+// modes at nearly the same phi, N / D = 0 / 0), from both points where the line M E = r cuts
+// leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m.
 #include "robokin/rrr3.hpp"
 
 #include <algorithm>
@@ -19,7 +24,7 @@ namespace {
 
 constexpr int kDegree = 6;
 constexpr int kFit = 16;    // samples for the exact coefficients (> 2 * kDegree + 1)
-constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by the dip test
+constexpr int kScan = 360;  // scan step 1 deg; close pairs of roots are caught by search()
 
 struct TrigPoly {
   double a[kDegree + 1];  // F = a_0 + sum_k a_k cos(k phi) + b_k sin(k phi)
@@ -72,7 +77,13 @@ struct Elimination {
   const Eigen::Vector2d* b;  // platform joints in the effector frame
   double l2;
 
-  double F(double phi, Eigen::Vector2d* N = nullptr, double* D = nullptr) const {
+  struct Detail {
+    Eigen::Vector2d N, c0, r;
+    Eigen::Matrix2d M;
+    double D;
+  };
+
+  double F(double phi, Detail* detail = nullptr) const {
     const double c = std::cos(phi), s = std::sin(phi);
     Eigen::Vector2d ci[3];
     for (int i = 0; i < 3; ++i)
@@ -83,8 +94,7 @@ struct Elimination {
     const Eigen::Vector2d r(ci[0].squaredNorm() - ci[1].squaredNorm(), ci[0].squaredNorm() - ci[2].squaredNorm());
     const double det = M.determinant();
     const Eigen::Vector2d n(M(1, 1) * r(0) - M(0, 1) * r(1), -M(1, 0) * r(0) + M(0, 0) * r(1));
-    if (N) *N = n;
-    if (D) *D = det;
+    if (detail) *detail = Detail{n, ci[0], r, M, det};
     return (n + det * ci[0]).squaredNorm() - det * det * l2 * l2;
   }
 };
@@ -118,6 +128,81 @@ double extremum(const TrigPoly& p, double lo, double hi) {
   return refine(d, lo, hi);
 }
 
+
+// Roots of p in [lo, hi] where p(lo) = flo and p(hi) = fhi are non-zero with the same sign.
+void search(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi, int depth,
+            std::vector<double>& roots);
+
+// Roots of p in [lo, hi] where p(lo) = flo and p(hi) = fhi are non-zero with opposite signs: one
+// root when p' keeps its sign (certified by |p'| >= min(|p'(lo)|, |p'(hi)|) - max|p^(3)| h^2 / 8),
+// else the interval is bisected (three roots may hide in it).
+void search_change(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi,
+                   int depth, std::vector<double>& roots) {
+  const double h = hi - lo;
+  double f, dlo, dhi, dd;
+  p.eval(lo, f, dlo, dd);
+  p.eval(hi, f, dhi, dd);
+  if (depth == 0 || ((dlo < 0) == (dhi < 0) && std::min(std::abs(dlo), std::abs(dhi)) > jerk * h * h / 8)) {
+    roots.push_back(refine(p, lo, hi));
+    return;
+  }
+  const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
+  if (fmid == 0) {
+    roots.push_back(mid);
+    return;
+  }
+  for (int half = 0; half < 2; ++half) {
+    const double a = half ? mid : lo, b = half ? hi : mid, fa = half ? fmid : flo, fb = half ? fhi : fmid;
+    if ((fa < 0) != (fb < 0)) search_change(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+    else search(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+  }
+}
+
+void search(const TrigPoly& p, double curvature, double jerk, double lo, double hi, double flo, double fhi, int depth,
+            std::vector<double>& roots) {
+  const double h = hi - lo;
+  if (std::min(std::abs(flo), std::abs(fhi)) > curvature * h * h / 8) return;  // certified: no root
+  double f, dlo, dhi, dd;
+  p.eval(lo, f, dlo, dd);
+  p.eval(hi, f, dhi, dd);
+  const double sign = flo < 0 ? -1.0 : 1.0;
+  if (sign * dlo < 0 && sign * dhi > 0) {
+    // |F| falls then rises: its minimum decides between no root, a double root and a pair.
+    const double m = extremum(p, lo, hi);
+    const double fm = p.value(m);
+    if (fm == 0 || std::abs(fm) < 1e-13) {
+      roots.push_back(m);  // a double root (tangency): the closure test in fk_all decides
+      // p' may have had other roots in [lo, hi] (another tangency nearby): search on either side.
+      if (fm == 0 || depth == 0) return;
+      for (int half = 0; half < 2; ++half) {
+        const double a = half ? m : lo, b = half ? hi : m, fa = half ? fm : flo, fb = half ? fhi : fm;
+        if ((fa < 0) != (fb < 0)) search_change(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+        else search(p, curvature, jerk, a, b, fa, fb, depth - 1, roots);
+      }
+      return;
+    }
+    if ((fm < 0) != (flo < 0)) {
+      search_change(p, curvature, jerk, lo, m, flo, fm, depth, roots);
+      search_change(p, curvature, jerk, m, hi, fm, fhi, depth, roots);
+      return;
+    }
+    // F'(m) = 0, so |F(x) - F(m)| <= max|F''| (x - m)^2 / 2: no root in [lo, hi] when |F(m)| beats that
+    // (whatever other extrema the interval holds).
+    const double reach = std::max(m - lo, hi - m);
+    if (std::abs(fm) > curvature * reach * reach / 2) return;
+  }
+  if (depth == 0) return;
+  const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
+  if (fmid == 0) {
+    roots.push_back(mid);
+  } else if ((fmid < 0) != (flo < 0)) {
+    search_change(p, curvature, jerk, lo, mid, flo, fmid, depth - 1, roots);
+    search_change(p, curvature, jerk, mid, hi, fmid, fhi, depth - 1, roots);
+  } else {
+    search(p, curvature, jerk, lo, mid, flo, fmid, depth - 1, roots);
+    search(p, curvature, jerk, mid, hi, fmid, fhi, depth - 1, roots);
+  }
+}
 }  // namespace
 
 std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
@@ -148,49 +233,65 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     f[j] = v;
   }
 
+  // Every interval of the scan either has a sign change (one root, refined), or is certified free
+  // of roots by |F| >= min(|F(lo)|, |F(hi)|) - max|F''| h^2 / 8 (the error bound of linear
+  // interpolation), or is searched: a minimum of |F| inside (F' turns towards zero then away from
+  // it) is refined and checked for a pair of roots or a double root; otherwise it is bisected.
+  // No condition on neighbouring samples: two roots closer than a scan step are found wherever
+  // they fall (issue: 5 of 24,000 near-singular assemblies were missed by the former dip test).
+  double curvature = 0, jerk = 0;  // max |F''| and max |F'''| over phi
+  for (int k = 1; k <= kDegree; ++k) {
+    curvature += k * k * std::hypot(p.a[k], p.b[k]);
+    jerk += k * k * k * std::hypot(p.a[k], p.b[k]);
+  }
   std::vector<double> roots;
   for (int j = 0; j < kScan; ++j) {
-    const int prev = (j + kScan - 1) % kScan, next = (j + 1) % kScan;
+    const int next = (j + 1) % kScan;
     const double lo = t.scan_phi[j], hi = t.scan_phi[j + 1];  // hi = pi for the last interval
     if (f[j] == 0) {
       roots.push_back(lo);
     } else if ((f[j] < 0) != (f[next] < 0) && f[next] != 0) {
-      roots.push_back(refine(p, lo, hi));
-    } else if ((f[prev] < 0) == (f[j] < 0) && (f[next] < 0) == (f[j] < 0) && std::abs(f[j]) < std::abs(f[prev]) &&
-               std::abs(f[j]) <= std::abs(f[next])) {
-      // |F| dips between samples without a sign change: look at the bottom of the dip.
-      const double a = lo - 2 * M_PI / kScan, b = hi;
-      double fa, da, dda, fb, db, ddb;
-      p.eval(a, fa, da, dda);
-      p.eval(b, fb, db, ddb);
-      if ((da < 0) == (db < 0)) continue;
-      const double m = extremum(p, a, b);
-      const double fm = p.value(m);
-      if ((fm < 0) != (f[j] < 0) && fm != 0) {
-        roots.push_back(refine(p, a, m));
-        roots.push_back(refine(p, m, b));
-      } else if (std::abs(fm) < 1e-13) {
-        roots.push_back(m);  // a double root (tangency): the closure test below decides
-      }
+      search_change(p, curvature, jerk, lo, hi, f[j], f[next], 8, roots);
+    } else if (f[next] != 0) {
+      search(p, curvature, jerk, lo, hi, f[j], f[next], 8, roots);
     }
   }
 
-  for (double phi : roots) {
-    Eigen::Vector2d N;
-    double D;
-    elim.F(phi, &N, &D);
-    const Pose guess(N.x() / D, N.y() / D, phi);
-    if (!guess.allFinite()) continue;
+  // Each root phi gives E = N / D. Where D = det M is (nearly) zero, c_0, c_1, c_2 are (nearly)
+  // collinear: M E = r only fixes a line, which leg 0's circle cuts in two points, possibly two
+  // assembly modes at (nearly) the same phi (then F has a double root and N / D is 0 / 0). Both
+  // intersections are tried as well there.
+  const double size = rb_ + re_ + l1_ + l2_;
+  auto add = [&](const Pose& guess, double phi) {
+    if (!guess.allFinite()) return;
     const RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
-    if (!(polished.error < 1e-10)) continue;
-    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-6) continue;  // slid to another root
+    if (!(polished.error < 1e-10)) return;
+    // Slid far to another root: that one is polished from its own phi. Near a double root the two
+    // assembly modes may lie some 1e-5 rad on either side of the phi found.
+    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-3) return;
     Pose q = polished.pose;
+    q(2) = std::remainder(q(2), 2 * M_PI);
     if (q(2) >= M_PI) q(2) -= 2 * M_PI;
-    bool duplicate = false;
     for (const Pose& o : out)
-      duplicate = duplicate || ((o.head<2>() - q.head<2>()).norm() < 1e-9 &&
-                                std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-9);
-    if (!duplicate) out.push_back(q);
+      if ((o.head<2>() - q.head<2>()).norm() < 1e-8 * size && std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-8)
+        return;  // the same assembly mode (near a singularity Newton's end point is ill-conditioned)
+    out.push_back(q);
+  };
+  for (double phi : roots) {
+    Elimination::Detail d;
+    elim.F(phi, &d);
+    add(Pose(d.N.x() / d.D, d.N.y() / d.D, phi), phi);
+    if (!(std::abs(d.D) < 1e-3 * d.M.squaredNorm())) continue;
+    const int k = d.M.row(0).squaredNorm() >= d.M.row(1).squaredNorm() ? 0 : 1;
+    const Eigen::Vector2d g = d.M.row(k).transpose();
+    if (!(g.squaredNorm() > 0)) continue;
+    const Eigen::Vector2d e0 = g * (d.r(k) / g.squaredNorm()), n = Eigen::Vector2d(-g.y(), g.x()).normalized();
+    const Eigen::Vector2d w = e0 + d.c0;  // |e0 + t n + c_0| = l2
+    const double bq = n.dot(w), disc = std::max(0.0, bq * bq - (w.squaredNorm() - l2_ * l2_));
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Vector2d e = e0 + (-bq + sign * std::sqrt(disc)) * n;
+      add(Pose(e.x(), e.y(), phi), phi);
+    }
   }
   std::sort(out.begin(), out.end(), [](const Pose& a, const Pose& b) { return a(2) < b(2); });
   return out;

@@ -4,7 +4,9 @@
 
 #include "robokin/parallel.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <limits>
 #include <stdexcept>
 
@@ -14,6 +16,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kForbidden = 1e12;  // cost of an unreachable, serial or wrong-sign orientation
 constexpr double kShortfall = 1e8;   // weight of (margin - distance)^2 below the margin: nearly a constraint
+constexpr double kMaxHalf = 1e5;     // orientations on each side of the nominal one
+constexpr double kMaxBytes = 1024.0 * 1024 * 1024;  // memory of the grid (cells and back pointers)
+constexpr double kMaxWork = 1e9;     // count * m * (2 w + 1) transitions of the dynamic programme
 
 struct Cell {
   bool reachable = false;
@@ -41,18 +46,44 @@ int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 }  // namespace
 
 RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& o) {
-  if (!(o.max_step > 0) || !(o.resolution > 0) || o.resolution > o.max_step)
-    throw std::invalid_argument("resolution: must be positive and at most max_step");
-  if (!(o.span >= 0) || !(o.margin >= 0) || !(o.serial_margin >= 0) || !(o.smoothing >= 0))
-    throw std::invalid_argument("span, margin, serial_margin and smoothing must be >= 0");
+  auto check = [](bool ok, const std::string& message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  check(count >= 0, "points: negative count");
+  check(std::isfinite(o.phi), "phi: must be finite");
+  check(o.max_step > 0 && std::isfinite(o.max_step), "max_step: must be positive and finite");
+  check(o.resolution > 0 && std::isfinite(o.resolution), "resolution: must be positive and finite");
+  check(o.resolution <= o.max_step, "resolution: must be positive and at most max_step");
+  check(o.span >= 0 && std::isfinite(o.span), "span: must be >= 0 and finite");
+  check(o.margin >= 0 && std::isfinite(o.margin), "margin: must be >= 0 and finite");
+  check(o.serial_margin >= 0 && std::isfinite(o.serial_margin), "serial_margin: must be >= 0 and finite");
+  check(o.smoothing >= 0 && std::isfinite(o.smoothing), "smoothing: must be >= 0 and finite");
   RRR3Plan plan;
   plan.poses.resize(count, 3);
   for (long k = 0; k < count; ++k) plan.poses.row(k) << points[2 * k], points[2 * k + 1], o.phi;
 
   if (o.avoid && count > 0) {
-    const long half = static_cast<long>(std::floor(o.span / o.resolution + 1e-9));
+    // Every size is bounded in floating point before any cast to an integer.
+    const double half_d = std::floor(o.span / o.resolution + 1e-9);
+    check(half_d <= kMaxHalf, "resolution: too fine for span (more than " + std::to_string(static_cast<long>(2 * kMaxHalf + 1)) +
+                                  " orientations)");
+    const long half = static_cast<long>(half_d);
     const long m = 2 * half + 1;  // orientation grid, the nominal one in the middle
-    const long w = static_cast<long>(std::floor(o.max_step / o.resolution + 1e-9));
+    // A step of more than m - 1 grid cells reaches nothing more: w <= m - 1 (max_step / resolution
+    // may be huge, even inf).
+    const double w_d = std::min(std::floor(o.max_step / o.resolution + 1e-9), static_cast<double>(m - 1));
+    const long w = std::max(0L, static_cast<long>(w_d));
+    const double cells_d = static_cast<double>(count) * m;
+    const double bytes = cells_d * (sizeof(Cell) + sizeof(int));
+    check(bytes <= kMaxBytes, "points: " + std::to_string(count) + " points x " + std::to_string(m) +
+                                  " orientations need " + std::to_string(static_cast<long>(bytes / (1 << 20))) +
+                                  " MiB (at most " + std::to_string(static_cast<long>(kMaxBytes / (1 << 20))) +
+                                  "); use fewer points, a smaller span or a coarser resolution");
+    const double work = cells_d * static_cast<double>(2 * w + 1);
+    check(work <= kMaxWork, "max_step: " + std::to_string(count) + " points x " + std::to_string(m) +
+                                " orientations x " + std::to_string(2 * w + 1) +
+                                " steps exceed the planner's bound (1e9); use a smaller max_step / resolution "
+                                "ratio, fewer points or a smaller span");
     auto phi_at = [&](long j) { return o.phi + (j - half) * o.resolution; };
 
     std::vector<Cell> cells(count * m);
@@ -84,9 +115,8 @@ RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RR
     for (long k = 1; k < count; ++k) {
       for (long j = 0; j < m; ++j) {
         double best = std::numeric_limits<double>::infinity();
-        for (long d = -w; d <= w; ++d) {
-          const long i = j + d;
-          if (i < 0 || i >= m) continue;
+        for (long i = std::max(0L, j - w), last = std::min(m - 1, j + w); i <= last; ++i) {
+          const long d = i - j;
           const double step = d * o.resolution;
           // Ties go to the smallest step, so flat stretches do not wander.
           const double v = prev[i] + o.smoothing * step * step;

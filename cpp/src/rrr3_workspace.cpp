@@ -9,31 +9,16 @@
 namespace robokin {
 namespace {
 
-// det A / R_e and det B / l1^3 at one pose, or false when a leg cannot reach. Specialised for the
-// map: no angles, the elbow comes from rotating the unit O_iB_i (as in RRR3::ik), and the
-// direction columns of A are taken in the base frame (a rotation of them keeps det A).
-bool dets(const Eigen::Vector2d o[3], const Eigen::Vector2d bw[3], double ex, double ey, const Mode& mode,
-          double l1, double l2, double re, double& det_a, double& det_b) {
-  double rows[3][3], e[3];
-  const double lo = std::abs(l1 - l2), hi = l1 + l2;
-  for (int i = 0; i < 3; ++i) {
-    const double bx = ex + bw[i].x(), by = ey + bw[i].y();
-    const double dx = bx - o[i].x(), dy = by - o[i].y();
-    const double r = std::sqrt(dx * dx + dy * dy);
-    if (!(r >= lo && r <= hi) || r == 0) return false;
-    const double ct = std::min(1.0, std::max(-1.0, (l1 * l1 + r * r - l2 * l2) / (2 * l1 * r)));
-    const double st = mode[i] * std::sqrt(1 - ct * ct);
-    const double ax = o[i].x() + l1 * (ct * dx + st * dy) / r, ay = o[i].y() + l1 * (ct * dy - st * dx) / r;
-    const double abx = bx - ax, aby = by - ay;
-    rows[i][0] = abx / l2;
-    rows[i][1] = aby / l2;
-    rows[i][2] = (abx * (ey - ay) - aby * (ex - ax)) / l2;
-    e[i] = (abx * (o[i].y() - ay) - aby * (o[i].x() - ax)) / l2;
-  }
-  det_a = (rows[0][0] * (rows[1][1] * rows[2][2] - rows[1][2] * rows[2][1]) -
-           rows[0][1] * (rows[1][0] * rows[2][2] - rows[1][2] * rows[2][0]) +
-           rows[0][2] * (rows[1][0] * rows[2][1] - rows[1][1] * rows[2][0])) / re;
-  det_b = e[0] * e[1] * e[2] / (l1 * l1 * l1);
+// det A / R_e and det B / l1^3 at one pose, or false when a leg cannot reach: the robot's own
+// inverse model (leg_alpha, via RRR3::ik) and Jacobians (RRR3::jacobians_at), one implementation
+// for the map, RRR3::singularity and the planner.
+bool dets(const RRR3& robot, const Pose& pose, const Mode& mode, double& det_a, double& det_b) {
+  Eigen::Vector3d alpha;
+  if (robot.ik(pose, mode, alpha.data()) >= 0) return false;
+  Eigen::Matrix3d A, B;
+  robot.jacobians_at(pose, robot.elbows(alpha), A, B);
+  det_a = A.determinant() / robot.platform_radius();
+  det_b = B.determinant() / (robot.l1() * robot.l1() * robot.l1());
   return true;
 }
 
@@ -43,12 +28,9 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
   RRR3Workspace w;
   w.n = n;
   const double reach = robot.l1() + robot.l2();
-  Eigen::Vector2d o[3], bw[3];
   double xl = -1e300, xh = 1e300, yl = -1e300, yh = 1e300;
   for (int i = 0; i < 3; ++i) {
-    o[i] = robot.base_joint(i);
-    bw[i] = robot.platform_joint(Pose(0, 0, phi), i);  // R(phi) b_i
-    const Eigen::Vector2d c = o[i] - bw[i];
+    const Eigen::Vector2d c = robot.base_joint(i) - robot.platform_joint(Pose(0, 0, phi), i);  // O_i - R(phi) b_i
     xl = std::max(xl, c.x() - reach), xh = std::min(xh, c.x() + reach);
     yl = std::max(yl, c.y() - reach), yh = std::min(yh, c.y() + reach);
   }
@@ -60,13 +42,12 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
   w.y0 = 0.5 * (yl + yh) - half;
 
   std::vector<double> det_a(n * n, 0.0);
-  const double l1 = robot.l1(), l2 = robot.l2(), re = robot.platform_radius();
   parallel_for(n, 16, [&](long j0, long j1) {
     for (long j = j0; j < j1; ++j) {
       const double y = w.y0 + (j + 0.5) * w.h;
       for (long i = 0; i < n; ++i) {
         double da, db;
-        if (!dets(o, bw, w.x0 + (i + 0.5) * w.h, y, mode, l1, l2, re, da, db)) continue;
+        if (!dets(robot, Pose(w.x0 + (i + 0.5) * w.h, y, phi), mode, da, db)) continue;
         det_a[j * n + i] = da;
         w.cells[j * n + i] = static_cast<std::uint8_t>(
             std::abs(db) < tol ? WorkspaceCell::Serial : std::abs(da) < tol ? WorkspaceCell::Parallel : WorkspaceCell::Regular);

@@ -245,6 +245,9 @@ class RRR3:
     def l1(self) -> float: ...
     @property
     def l2(self) -> float: ...
+    @property
+    def base_joints(self) -> NDArray:
+        """(3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only)."""
     def ik(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
         """Actuated angles (3,); ``UnreachableError`` (with ``.leg``) when a leg cannot reach."""
     def ik_all(self, pose: ArrayLike) -> NDArray:

@@ -69,7 +69,7 @@ def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: f
     fig, ax = _axes(ax)
     w = robot.workspace(phi, mode, n, tol)
     ax.imshow(CELL_COLOURS[w.cells], origin="lower", extent=w.extent, interpolation="nearest")
-    o = robot.points([0.0, 0.0, phi], mode)["O"] if _reachable(robot, phi, mode) else _base(robot)
+    o = robot.base_joints
     ax.plot(*o.T, "ks", ms=7)
     ax.set_title(f"workspace at phi = {np.degrees(phi):.1f} deg, mode {tuple(mode)}\n"
                  f"reachable {w.reachable_area * 1e4:.0f} cm^2, largest singularity-free region "
@@ -84,19 +84,15 @@ def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: f
     return fig, ax, w
 
 
-def _reachable(robot, phi, mode):
-    return not np.isnan(robot.ik_batch(np.array([[0.0, 0.0, phi]]), mode)).any()
-
-
-def _base(robot):
-    t = np.radians(-90.0 + 120.0 * np.arange(3))
-    return robot.base_radius * np.column_stack((np.cos(t), np.sin(t)))
+def _links(l1: float, l2: float) -> str:
+    return f"l1 = l2 = {l1 * 100:g} cm" if l1 == l2 else f"l1 = {l1 * 100:g} cm, l2 = {l2 * 100:g} cm"
 
 
 def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design.BestL2 | None" = None):
     """The design study: area against platform radius, and the best l2 for each l1.
 
-    Computes the seed's studies (0.15 m base radius, 0.10 m links) when not given.
+    Computes the seed's studies (0.15 m base radius, 0.10 m links) when not given; the titles give
+    the geometry the curve was computed for.
 
     Returns:
         (figure, (axes_area, axes_l2)).
@@ -113,13 +109,15 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     ax1.legend(fontsize=8, loc="upper left")
     ax1.set_xlabel("platform radius R_e (cm)")
     ax1.set_ylabel("largest singularity-free area (cm^2)")
-    ax1.set_title("area vs platform size (R_b = 15 cm, l1 = l2 = 10 cm)", fontsize=10)
+    ax1.set_title(f"area vs platform size (R_b = {curve.base_radius * 100:g} cm, "
+                  f"{_links(curve.l1, curve.l2)})", fontsize=10)
     ax1.grid(alpha=0.3)
     ax2.plot(best.l1 * 100, best.best_l2 * 100, "o-", ms=4, label="best l2")
     ax2.plot(best.l1 * 100, best.l1 * 100, color="0.6", ls="--", lw=1, label="l2 = l1")
     ax2.set_xlabel("l1 (cm)")
     ax2.set_ylabel("best l2 (cm)")
-    ax2.set_title("best l2 for a given l1 (max of area / pi (l1 + l2)^2)", fontsize=10)
+    ax2.set_title(f"best l2 for a given l1 (max of area / pi (l1 + l2)^2)\n"
+                  f"R_b = {best.base_radius * 100:g} cm, R_e = {best.platform_radius * 100:.3g} cm", fontsize=10)
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
     fig.tight_layout()

@@ -17,6 +17,9 @@ class AreaCurve:
 
     values: np.ndarray  # the parameter (m)
     area: np.ndarray    # largest singularity-free region at the orientation studied (m^2)
+    base_radius: float = 0.15  # the geometry the curve was computed for (m)
+    l1: float = 0.10
+    l2: float = 0.10
 
     @property
     def best(self) -> float:
@@ -34,6 +37,8 @@ class BestL2:
     index: np.ndarray     # area / (pi (l1 + l2)^2): the share of one leg's reach disk that is usable
     best_l2: np.ndarray   # (len(l1),) the l2 of the largest index
     best_area: np.ndarray  # the area there
+    base_radius: float = 0.15  # the geometry the study was computed for (m)
+    platform_radius: float = 0.0866
 
 
 def _values(values, name: str) -> np.ndarray:
@@ -54,7 +59,8 @@ def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: 
     """
     radii = _values(np.linspace(0.01, base_radius, 30) if platform_radii is None else platform_radii, "platform_radii")
     robots = np.column_stack((np.full_like(radii, base_radius), radii, np.full_like(radii, l1), np.full_like(radii, l2)))
-    return AreaCurve(radii, _core.rrr3_region_areas(robots, phi, mode, n, tol))
+    return AreaCurve(radii, _core.rrr3_region_areas(robots, phi, mode, n, tol), float(base_radius), float(l1),
+                     float(l2))
 
 
 def best_l2(l1_values, l2_values, base_radius: float = 0.15, platform_radius: float = 0.0866, phi: float = 0.0,
@@ -72,4 +78,5 @@ def best_l2(l1_values, l2_values, base_radius: float = 0.15, platform_radius: fl
     area = _core.rrr3_region_areas(robots, phi, mode, n, tol).reshape(g1.shape)
     index = area / (np.pi * (g1 + g2) ** 2)
     k = np.argmax(index, axis=1)
-    return BestL2(l1s, l2s, area, index, l2s[k], area[np.arange(len(l1s)), k])
+    return BestL2(l1s, l2s, area, index, l2s[k], area[np.arange(len(l1s)), k], float(base_radius),
+                  float(platform_radius))
