@@ -1,5 +1,6 @@
 // Closed-form inverse kinematics: the planar arms of seed 003 and the PUMA-type 6R arm.
 #include "robokin/ik_closed.hpp"
+#include "robokin/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,14 +12,12 @@ constexpr double kPi = M_PI;
 // |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
 constexpr double kCosEps = 1e-12;
 
-double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
-
 // Wraps revolute angles to (-pi, pi] and fits them into the limits (shifting by 2 pi when that
 // helps); false when a joint cannot be brought within its limits.
 bool fit_limits(double* q, int n, const JointLimits& lim) {
   for (int i = 0; i < n; ++i) {
     const bool prismatic = !lim.prismatic.empty() && lim.prismatic[i];
-    if (!prismatic) q[i] = wrap(q[i]);
+    if (!prismatic) q[i] = wrap_angle(q[i]);
     if (lim.lower.size() == 0) continue;
     const double lo = lim.lower(i), hi = lim.upper(i);
     // A hair of tolerance: a solution exactly at a limit must not be lost to rounding.

@@ -1,5 +1,6 @@
 // Numerical inverse kinematics: LM, GN, NR and Halley with joint limits and seeded restarts.
 #include "robokin/ik.hpp"
+#include "robokin/angles.hpp"
 
 #include "robokin/parallel.hpp"
 
@@ -428,7 +429,7 @@ void IkSolver::finalise(const Target& target, IkResult& r) const {
   for (int i = 0; i < n_; ++i) {
     double& v = r.q(i);
     if (!chain_->prismatic(i) && std::isfinite(v)) {
-      const double w = std::remainder(v, kTwoPi);
+      const double w = wrap_angle(v);
       if (w >= chain_->lower()(i) && w <= chain_->upper()(i)) v = w;
     }
     if (!fit(i, v)) v = clamp(i, v);

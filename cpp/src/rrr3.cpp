@@ -1,5 +1,6 @@
 // 3-RRR: geometry, analytic and numerical inverse models, the seed's Jacobians, singularities.
 #include "robokin/rrr3.hpp"
+#include "robokin/angles.hpp"
 
 #include "robokin/parallel.hpp"
 
@@ -14,8 +15,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-double wrap(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 void check_length(double v, const char* name) {
   if (!(std::isfinite(v) && v > 0))
@@ -102,8 +101,8 @@ RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, cons
       a -= step(0);
       b -= step(1);
     }
-    a = wrap(a);
-    b = wrap(b);
+    a = wrap_angle(a);
+    b = wrap_angle(b);
     res.iterations = std::max(res.iterations, it);
     if (!(err < tol)) res.converged = false;
     res.error = std::max(res.error, err);
@@ -144,7 +143,7 @@ RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, d
     const double scale = std::max({1.0, std::abs(step(2)) / 0.3, step.head<2>().norm() / (0.3 * l2_)});
     x -= step / scale;
   }
-  x(2) = wrap(x(2));
+  x(2) = wrap_angle(x(2));
   res.pose = x;
   return res;
 }

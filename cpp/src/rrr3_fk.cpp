@@ -15,6 +15,7 @@
 // modes at nearly the same phi, N / D = 0 / 0), from both points where the line M E = r cuts
 // leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m.
 #include "robokin/rrr3.hpp"
+#include "robokin/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -268,12 +269,12 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     if (!(polished.error < 1e-10)) return;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two
     // assembly modes may lie some 1e-5 rad on either side of the phi found.
-    if (std::abs(std::remainder(polished.pose(2) - phi, 2 * M_PI)) > 1e-3) return;
+    if (std::abs(wrap_angle(polished.pose(2) - phi)) > 1e-3) return;
     Pose q = polished.pose;
-    q(2) = std::remainder(q(2), 2 * M_PI);
+    q(2) = wrap_angle(q(2));
     if (q(2) >= M_PI) q(2) -= 2 * M_PI;
     for (const Pose& o : out)
-      if ((o.head<2>() - q.head<2>()).norm() < 1e-8 * size && std::abs(std::remainder(o(2) - q(2), 2 * M_PI)) < 1e-8)
+      if ((o.head<2>() - q.head<2>()).norm() < 1e-8 * size && std::abs(wrap_angle(o(2) - q(2))) < 1e-8)
         return;  // the same assembly mode (near a singularity Newton's end point is ill-conditioned)
     out.push_back(q);
   };

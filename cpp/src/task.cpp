@@ -1,4 +1,5 @@
 #include "robokin/task.hpp"
+#include "robokin/angles.hpp"
 
 #include <Eigen/Geometry>
 
@@ -66,7 +67,7 @@ void task_error(const Target& t, const Rigid& T, double* e) {
     case Task::XYPhi:
       e[0] = t.value(0) - T.p(0);
       e[1] = t.value(1) - T.p(1);
-      e[2] = std::remainder(t.value(2) - planar_angle(T), 2.0 * M_PI);
+      e[2] = wrap_angle(t.value(2) - planar_angle(T));
       return;
   }
 }
