@@ -5,7 +5,7 @@ VPY    := $(VENV)/bin/python
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr test test-asan bench clean
+.PHONY: setup run demo-rpr test fuzz test-asan bench clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -32,6 +32,10 @@ demo-rpr: setup
 test: setup
 	$(VPY) -m pytest -q
 
+# The property tests only, with ten times as many examples as `make test`, freshly random each run.
+fuzz: setup
+	HYPOTHESIS_PROFILE=fuzz $(VPY) -m pytest -q -k fuzz --hypothesis-show-statistics
+
 # The whole suite against a sanitizer build (its own venv and build directory). The ASan runtime
 # must be loaded before Python (with libstdc++, so that its exception interceptor finds __cxa_throw);
 # Python's own allocations are not leak-checked.
@@ -45,7 +49,7 @@ $(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES) scripts/install-system-de
 test-asan: $(ASAN_VENV)/.installed
 	LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libstdc++.so)" \
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
+	HYPOTHESIS_PROFILE=asan $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
 
 bench: setup
 	scripts/install-system-deps.sh python3-pykdl

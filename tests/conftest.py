@@ -1,5 +1,18 @@
+import os
+
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, settings
+
+# How many examples each property test runs. `make test` (CI) uses "ci": a fixed sequence, so that
+# a landing is reproducible; `make fuzz` uses "fuzz": ten times as many, freshly random each run;
+# `make test-asan` uses "asan": fewer, since the sanitizer build is several times slower.
+_COMMON = dict(deadline=None, print_blob=True,
+               suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much])
+settings.register_profile("ci", max_examples=300, derandomize=True, **_COMMON)
+settings.register_profile("fuzz", max_examples=3000, **_COMMON)
+settings.register_profile("asan", max_examples=60, derandomize=True, **_COMMON)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 
 @pytest.fixture
