@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 namespace robokin::bind {
+void bind_errors(pybind11::module_& m);  // first: translators for the core's and KDL's exceptions
 void bind_chain(pybind11::module_& m);
 void bind_reach(pybind11::module_& m);
 void bind_rpr(pybind11::module_& m);
@@ -11,4 +12,5 @@ void bind_rrr3(pybind11::module_& m);
 void bind_ik_closed(pybind11::module_& m);
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // after bind_chain: adds Chain.from_urdf
+void bind_testing(pybind11::module_& m);  // hooks for the test suite
 }  // namespace robokin::bind

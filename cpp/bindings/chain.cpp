@@ -1,6 +1,7 @@
 // robokin.Chain: serial chains from DH tables or plain segments; FK, Jacobians, frames.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 
 #include "robokin/chain.hpp"
 #include "robokin/task.hpp"
@@ -147,9 +148,10 @@ py::array fk(const Chain& c, py::handle q_obj) {
   const py::ssize_t shape[3] = {count, 4, 4};
   py::array out = new_float64(3, shape);
   double* dst = float64_data(out);
+  PythonProgress progress("Chain.fk");
   {
     py::gil_scoped_release release;
-    c.fk_batch(q.data, count, dst);
+    c.fk_batch(q.data, count, dst, &progress);
   }
   return out;
 }

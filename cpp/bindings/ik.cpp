@@ -1,6 +1,7 @@
 // Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 #include "targets.hpp"
 
 #include "robokin/ik.hpp"
@@ -134,9 +135,11 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
   double *q = r.q.mutable_data(), *ep = r.error_p.mutable_data(), *er = r.error_r.mutable_data();
   bool* success = r.success.mutable_data();
   int *it = r.iterations.mutable_data(), *at = r.attempts.mutable_data();
+  PythonProgress progress("ik_batch");
   {
     py::gil_scoped_release release;
-    robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, q, success, it, at, ep, er);
+    robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, q, success, it, at, ep, er,
+                      &progress);
   }
   return r;
 }

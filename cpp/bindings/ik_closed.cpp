@@ -1,6 +1,7 @@
 // Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
 
@@ -95,9 +96,10 @@ py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, dou
   py::array_t<bool> ok(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();
   bool* okd = ok.mutable_data();
+  PythonProgress progress("spherical wrist path");
   {
     py::gil_scoped_release release;
-    ik_spherical_wrist_path(g, tool, targets.data(), count, q0.data(), lim, qd, okd);
+    ik_spherical_wrist_path(g, tool, targets.data(), count, q0.data(), lim, qd, okd, &progress);
   }
   return py::make_tuple(q, ok);
 }

@@ -2,6 +2,7 @@
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "robokin's C++ core (Eigen + Orocos KDL). Use it through the robokin package.";
+  robokin::bind::bind_errors(m);
   robokin::bind::bind_chain(m);
   robokin::bind::bind_reach(m);
   robokin::bind::bind_rpr(m);
@@ -9,4 +10,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_ik_closed(m);
   robokin::bind::bind_ik(m);
   robokin::bind::bind_urdf(m);
+  robokin::bind::bind_testing(m);
 }

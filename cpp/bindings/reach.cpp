@@ -1,6 +1,7 @@
 // The Reach loop and path tracking (seed 000, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 #include "targets.hpp"
 
 #include "robokin/reach.hpp"
@@ -60,9 +61,10 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
   double *q = r.q.mutable_data(), *err = r.error.mutable_data();
   bool* conv = r.converged.mutable_data();
   int* iters = r.iterations.mutable_data();
+  PythonProgress progress("track");
   {
     py::gil_scoped_release release;
-    reacher.track(targets.data(), count, q0, q, err, conv, iters);
+    reacher.track(targets.data(), count, q0, q, err, conv, iters, &progress);
   }
   return r;
 }

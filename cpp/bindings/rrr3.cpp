@@ -1,6 +1,7 @@
 // robokin.RRR3: the planar 3-RRR parallel robot of seed 002.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 
 #include "robokin/rrr3.hpp"
 #include "robokin/rrr3_plan.hpp"
@@ -53,9 +54,10 @@ py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mod
   py::array_t<double> out = new_array({n, 3});
   double* dst = out.mutable_data();
   const double* src = poses.data();
+  PythonProgress progress("RRR3.ik_batch");
   {
     py::gil_scoped_release release;
-    r.ik_batch(src, n, mode, dst);
+    r.ik_batch(src, n, mode, dst, &progress);
   }
   return out;
 }
@@ -157,8 +159,9 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   if (o.smoothing < 0) fail("smoothing: must be >= 0");
   const long count = static_cast<long>(pts.shape(0));
   // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
+  PythonProgress progress("RRR3.plan");
   py::gil_scoped_release release;
-  return plan_path(r, pts.data(), count, o);
+  return plan_path(r, pts.data(), count, o, &progress);
 }
 
 long grid_size(long n) {
@@ -171,8 +174,9 @@ RRR3Workspace workspace_map(const RRR3& r, double phi, py::handle mode_obj, long
   finite_option(phi, "phi");
   grid_size(n);
   positive_tol(tol);
+  PythonProgress progress("RRR3.workspace");
   py::gil_scoped_release release;
-  return workspace(r, phi, mode, n, tol);
+  return workspace(r, phi, mode, n, tol, &progress);
 }
 
 py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mode_obj, long n, double tol) {
@@ -193,9 +197,10 @@ py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mo
   grid_size(n);
   positive_tol(tol);
   std::vector<double> areas;
+  PythonProgress progress("design study");
   {
     py::gil_scoped_release release;
-    areas = region_areas(robots, phi, mode, n, tol);
+    areas = region_areas(robots, phi, mode, n, tol, &progress);
   }
   return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
 }

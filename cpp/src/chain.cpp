@@ -416,7 +416,7 @@ __attribute__((target("avx512f"), optimize("fp-contract=off"))) void Chain::batc
 }
 #endif
 
-void Chain::fk_batch(const double* q, long count, double* out) const {
+void Chain::fk_batch(const double* q, long count, double* out, Progress* progress) const {
   // A large output (beyond the caches) is faulted in at once and then streamed to memory.
   const bool large = count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
 #ifdef ROBOKIN_AVX2
@@ -434,7 +434,7 @@ void Chain::fk_batch(const double* q, long count, double* out) const {
 #ifdef __SSE2__
     if (stream) _mm_sfence();  // the streamed stores are visible before the batch returns
 #endif
-  });
+  }, progress);
 }
 
 Matrix4 Chain::fk_kdl(const Vector& q) const {

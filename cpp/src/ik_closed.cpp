@@ -263,10 +263,12 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
 }
 
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
-                             const double* q0, const JointLimits& limits, double* q_out, bool* ok) {
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok,
+                             Progress* progress) {
   double prev[6];
   std::copy(q0, q0 + 6, prev);
   for (long k = 0; k < count; ++k) {
+    if (k % 256 == 0) report(progress, k, count);
     ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
     // Each solution's angles shifted by the whole turns that bring them nearest the previous
     // joints, as far as the limits allow (v itself is within them, so 0 turns always is).

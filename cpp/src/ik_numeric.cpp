@@ -440,7 +440,7 @@ void IkSolver::finalise(const Target& target, IkResult& r) const {
 
 void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count, const double* q0,
               long q0_stride, bool path, std::uint64_t seed, double* q_out, bool* success, int* iterations,
-              int* attempts, double* error_p, double* error_r) {
+              int* attempts, double* error_p, double* error_r, Progress* progress) {
   const int n = chain.dof();
   auto store = [&](long k, const IkResult& r) {
     Eigen::Map<Vector>(q_out + k * n, n) = r.q;
@@ -453,6 +453,7 @@ void ik_batch(const Chain& chain, const IkOptions& options, const Target* target
   if (path) {
     IkSolver solver(chain, options);
     for (long k = 0; k < count; ++k) {
+      report(progress, k, count);
       const double* start = k == 0 ? q0 : q_out + (k - 1) * n;
       store(k, solver.solve(targets[k], start, seed + static_cast<std::uint64_t>(k)));
     }
@@ -462,7 +463,7 @@ void ik_batch(const Chain& chain, const IkOptions& options, const Target* target
     IkSolver solver(chain, options);
     for (long k = begin; k < end; ++k)
       store(k, solver.solve(targets[k], q0 + k * q0_stride, seed + static_cast<std::uint64_t>(k)));
-  });
+  }, progress);
 }
 
 }  // namespace robokin

@@ -196,10 +196,11 @@ ReachResult Reacher::reach(const Target& target, const Vector& q0) {
 }
 
 void Reacher::track(const Target* targets, long count, const Vector& q0, double* q_out,
-                    double* err_out, bool* converged_out, int* iterations_out) {
+                    double* err_out, bool* converged_out, int* iterations_out, Progress* progress) {
   q_ = q0;
   chain_.fk_jacobian(q_.data(), T_, J6_.data());
   for (long k = 0; k < count; ++k) {
+    if (k % 256 == 0) report(progress, k, count);
     double error = 0.0;
     iterations_out[k] = run(targets[k], error);
     err_out[k] = error;

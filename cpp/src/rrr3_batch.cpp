@@ -36,7 +36,7 @@ __attribute__((target_clones("avx2", "default"))) void ik_block(const double* p,
 
 }  // namespace
 
-void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out) const {
+void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out, Progress* progress) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double o[6], b[6], m[3];
   for (int i = 0; i < 3; ++i) o[2 * i] = o_[i].x(), o[2 * i + 1] = o_[i].y(), b[2 * i] = b_[i].x(), b[2 * i + 1] = b_[i].y(), m[i] = mode[i];
@@ -51,7 +51,7 @@ void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* o
         if (!simd::sincos_in_range(p[3 * k + 2]) && ik(Pose(p[3 * k], p[3 * k + 1], p[3 * k + 2]), mode, dst + 3 * k) >= 0)
           dst[3 * k] = dst[3 * k + 1] = dst[3 * k + 2] = nan;
     }
-  });
+  }, progress);
 }
 
 }  // namespace robokin

@@ -45,7 +45,8 @@ int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 }  // namespace
 
-RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& o) {
+RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& o,
+                   Progress* progress) {
   auto check = [](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(message);
   };
@@ -87,10 +88,11 @@ RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RR
     auto phi_at = [&](long j) { return o.phi + (j - half) * o.resolution; };
 
     std::vector<Cell> cells(count * m);
+    PartProgress evaluation(progress, 0, 2);  // the grid, then the dynamic programme: half each
     parallel_for(count * m, 2048, [&](long begin, long end) {
       for (long c = begin; c < end; ++c)
         cells[c] = evaluate(robot, Pose(points[2 * (c / m)], points[2 * (c / m) + 1], phi_at(c % m)), o.mode);
-    });
+    }, progress ? &evaluation : nullptr);
 
     // Keep the sign of det A at the first point: at the nominal orientation when it is usable,
     // else where the first point is farthest from a parallel singularity.
@@ -113,6 +115,7 @@ RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RR
     std::vector<int> from(count * m, 0);
     for (long j = 0; j < m; ++j) prev[j] = cost(0, j);
     for (long k = 1; k < count; ++k) {
+      report(progress, count + k, 2 * count);
       for (long j = 0; j < m; ++j) {
         double best = std::numeric_limits<double>::infinity();
         for (long i = std::max(0L, j - w), last = std::min(m - 1, j + w); i <= last; ++i) {

@@ -24,7 +24,7 @@ bool dets(const RRR3& robot, const Pose& pose, const Mode& mode, double& det_a, 
 
 }  // namespace
 
-RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol) {
+RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol, Progress* progress) {
   RRR3Workspace w;
   w.n = n;
   const double reach = robot.l1() + robot.l2();
@@ -53,7 +53,7 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
             std::abs(db) < tol ? WorkspaceCell::Serial : std::abs(da) < tol ? WorkspaceCell::Parallel : WorkspaceCell::Regular);
       }
     }
-  });
+  }, progress);
   // A sign change of det A between two reachable neighbours: mark the cell of smaller |det A|.
   auto reachable = [&](long c) { return w.cells[c] != static_cast<std::uint8_t>(WorkspaceCell::Unreachable); };
   std::vector<long> crossing;
@@ -74,6 +74,7 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
   std::vector<char> seen(n * n, 0);
   std::vector<long> stack;
   for (long c = 0; c < n * n; ++c) {
+    if (c % n == 0) report(progress, n, n);  // the map is done; Ctrl-C is still heard while labelling
     reachable_count += reachable(c);
     if (w.cells[c] != static_cast<std::uint8_t>(WorkspaceCell::Regular)) continue;
     ++regular_count;
@@ -101,10 +102,14 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
 }
 
 std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
-                                 long n, double tol) {
+                                 long n, double tol, Progress* progress) {
   std::vector<double> out;
   out.reserve(robots.size());
-  for (const RRR3& r : robots) out.push_back(workspace(r, phi, mode, n, tol).region_area);
+  const long parts = static_cast<long>(robots.size());
+  for (long k = 0; k < parts; ++k) {
+    PartProgress part(progress, k, parts);
+    out.push_back(workspace(robots[k], phi, mode, n, tol, progress ? &part : nullptr).region_area);
+  }
   return out;
 }
 

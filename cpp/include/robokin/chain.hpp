@@ -2,6 +2,8 @@
 // specialised evaluation path for the hot calls (forward kinematics and the Jacobian).
 #pragma once
 
+#include "robokin/progress.hpp"
+
 #include <Eigen/Dense>
 #include <kdl/chain.hpp>
 
@@ -61,7 +63,7 @@ class Chain {
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
   void fk(const double* q, Rigid& out) const;
   void fk_jacobian(const double* q, Rigid& out, double* jac_colmajor_6xn) const;
-  void fk_batch(const double* q, long count, double* out_4x4_rowmajor) const;
+  void fk_batch(const double* q, long count, double* out_4x4_rowmajor, Progress* progress = nullptr) const;
 
   // KDL's recursive solvers: the reference, and the frames of every joint segment.
   Matrix4 fk_kdl(const Vector& q) const;

@@ -101,7 +101,8 @@ class IkSolver {
 // in parallel on every core with seeds seed + k. The caller releases the GIL.
 void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count,
               const double* q0, long q0_stride, bool path, std::uint64_t seed, double* q_out,
-              bool* success, int* iterations, int* attempts, double* error_p, double* error_r);
+              bool* success, int* iterations, int* attempts, double* error_p, double* error_r,
+              Progress* progress = nullptr);
 
 // References for the benchmark: KDL's ChainIkSolverPos_LMA ("lma", KDL's default weights) and
 // ChainIkSolverPos_NR_JL ("nr_jl", with ChainIkSolverVel_pinv and the chain's limits), built once

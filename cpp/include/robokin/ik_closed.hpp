@@ -67,7 +67,8 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
 // joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value within the
 // limits: no branch jumps. ok[k] false (row k = previous joints) where the frame has no solution.
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
-                             const double* q0, const JointLimits& limits, double* q_out, bool* ok);
+                             const double* q0, const JointLimits& limits, double* q_out, bool* ok,
+                             Progress* progress = nullptr);
 
 // Row of `solutions` nearest to q (Euclidean distance between joint vectors); -1 when empty.
 int nearest_solution(const ClosedFormSolutions& solutions, const double* q);

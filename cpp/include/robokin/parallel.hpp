@@ -1,10 +1,16 @@
-// Splits a batch over the machine's cores. Callers release the GIL before; the body must not throw.
+// Splits a batch over the machine's cores. Callers release the GIL before.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
+
+#include "robokin/progress.hpp"
 
 namespace robokin {
 
@@ -19,23 +25,45 @@ inline long max_threads() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-// Calls body(begin, end) on contiguous slices of [0, count); one slice when the batch is small.
+// Calls body(begin, end) on contiguous blocks of [0, count), about min_per_thread items each (the
+// least work worth a thread), on one thread when the batch is small. Blocks are handed out from a
+// shared counter, so the calling thread reports to `progress` between its blocks, and every thread
+// stops taking blocks once the caller asks to stop or a body throws. The exception (Interrupted,
+// or the body's own) is rethrown here after all threads have joined: it never escapes a thread.
 template <class Body>
-void parallel_for(long count, long min_per_thread, Body body) {
-  const long cores = max_threads();
-  const long threads = std::min(cores, count / std::max(1L, min_per_thread));
-  if (threads <= 1) {
-    body(0L, count);
-    return;
-  }
+void parallel_for(long count, long min_per_thread, Body body, Progress* progress = nullptr) {
+  if (count <= 0) return;
+  const long block = std::max(1L, min_per_thread);
+  const long blocks = (count + block - 1) / block;
+  const long threads = std::min(max_threads(), count / block);
+  std::atomic<long> next{0}, finished{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&](bool caller) {
+    try {
+      for (long b; !stop.load(std::memory_order_relaxed) && (b = next.fetch_add(1)) < blocks;) {
+        body(b * block, std::min(count, (b + 1) * block));
+        const long done = finished.fetch_add(1) + 1;
+        if (caller) report(progress, std::min(count, done * block), count);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      stop = true;
+    }
+  };
   std::vector<std::thread> pool;
-  const long chunk = (count + threads - 1) / threads;
   for (long t = 1; t < threads; ++t) {
-    const long begin = t * chunk, end = std::min(count, begin + chunk);
-    if (begin < end) pool.emplace_back([=] { body(begin, end); });
+    try {
+      pool.emplace_back(work, false);
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had: the ones running (and this one) do the rest
+    }
   }
-  body(0L, std::min(count, chunk));
+  work(true);
   for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace robokin

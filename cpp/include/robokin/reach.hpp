@@ -46,7 +46,7 @@ class Reacher {
   ReachResult reach(const Target& target, const Vector& q0);
   // Follows targets in order, each Reach starting from the previous joints. q_out: count x dof.
   void track(const Target* targets, long count, const Vector& q0, double* q_out, double* err_out,
-             bool* converged_out, int* iterations_out);
+             bool* converged_out, int* iterations_out, Progress* progress = nullptr);
 
  private:
   const Chain& chain_;

@@ -7,6 +7,8 @@
 // (m_0, m_1, m_2), m_i = sign(beta_i) = +-1. A pose is (x_E, y_E, phi).
 #pragma once
 
+#include "robokin/progress.hpp"
+
 #include <Eigen/Dense>
 
 #include <array>
@@ -79,7 +81,7 @@ class RRR3 {
   Eigen::Vector3d ik_or_throw(const Pose& pose, const Mode& mode) const;
   // count poses (count x 3, row-major) -> alpha rows, NaN rows where a leg cannot reach. Uses
   // every core; call without the GIL.
-  void ik_batch(const double* poses, long count, const Mode& mode, double* out) const;
+  void ik_batch(const double* poses, long count, const Mode& mode, double* out, Progress* progress = nullptr) const;
 
   // The seed's numerical inverse model: Newton-Raphson on the 6 loop-closure equations
   // O_i + l1 u(alpha_i) + l2 u(alpha_i + beta_i) - B_i = 0 in (alpha_i, beta_i) from guess.

@@ -32,6 +32,7 @@ struct RRR3Plan {
 // reachable in the mode, |det B| / l1^3 >= serial_margin, det A of the sign it has at the first
 // point, |phi_k - phi_{k-1}| <= max_step. A distance to parallel singularities below margin is
 // penalised heavily rather than forbidden, so a path always comes back; `feasible` tells.
-RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& options);
+RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& options,
+                   Progress* progress = nullptr);
 
 }  // namespace robokin

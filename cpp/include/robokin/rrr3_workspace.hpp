@@ -25,11 +25,12 @@ struct RRR3Workspace {
 // radius l1 + l2). A reachable cell is "serial" when |det B| / l1^3 < tol and "parallel" when
 // |det A| / R_e < tol or det A has the opposite sign in a 4-neighbour (a singular curve crosses
 // between the two cell centres, so the curve shows without gaps however fine it is). Uses every core.
-RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol);
+RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol,
+                        Progress* progress = nullptr);
 
 // The largest singularity-free region area of each robot of a design study, at orientation phi
 // in mode.
 std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
-                                 long n, double tol);
+                                 long n, double tol, Progress* progress = nullptr);
 
 }  // namespace robokin

@@ -1,0 +1,158 @@
+"""Long calls: Ctrl-C stops them within a second, an interactive terminal shows a progress bar
+after a couple of seconds, and exceptions of the core (on any thread) reach Python as exceptions.
+
+Each call below is sized to run for many seconds on one thread (ROBOKIN_NUM_THREADS=1), and a
+SIGINT arrives after 0.2 s. The SIGINT handler raises its own exception, so that a signal that
+came late could never abort the test session.
+"""
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+import warnings
+from contextlib import contextmanager
+
+import numpy as np
+import pytest
+
+import robokin as rk
+from robokin import _core, _progress, rrr3_design
+
+SIGNAL_AFTER = 0.2
+
+
+class Stop(Exception):
+    """What the test's SIGINT handler raises."""
+
+
+@contextmanager
+def sigint_after(seconds):
+    def handler(signum, frame):
+        raise Stop
+
+    old = signal.signal(signal.SIGINT, handler)
+    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, old)
+
+
+UR5 = rk.robots.ur5()
+ROBOT = rk.RRR3()
+
+
+def _ik_targets(n):
+    return UR5.fk(np.random.default_rng(1).uniform(-3, 3, (n, 6)))[:, :3, 3]
+
+
+LONG_CALLS = {
+    "RRR3.workspace": lambda: ROBOT.workspace(n=5000),
+    "rrr3_design.area_vs_platform_radius": lambda: rrr3_design.area_vs_platform_radius(
+        np.linspace(0.02, 0.14, 200), n=2000),
+    # few points (small memory), many orientations and wide steps (much work per point)
+    "RRR3.plan": lambda: ROBOT.plan(rk.paths.clover(500), span=3.0, resolution=0.001, max_step=0.1),
+    "ik_batch": lambda: rk.ik_batch(UR5, _ik_targets(300_000), np.zeros(6), task="position"),
+    "ik_batch(path=True)": lambda: rk.ik_batch(UR5, _ik_targets(300_000), np.zeros(6), task="position", path=True),
+    # far-away targets: every point runs its max_iter iterations
+    "track": lambda: rk.track(rk.robots.planar_3r(), np.full((200_000, 2), 10.0), np.zeros(3), max_iter=1000),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LONG_CALLS))
+def test_ctrl_c_stops_a_long_call_within_a_second(name, monkeypatch):
+    monkeypatch.setenv("ROBOKIN_NUM_THREADS", "1")
+    call = LONG_CALLS[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rk.PrecisionWarning)
+        start = time.monotonic()
+        with pytest.raises(Stop), sigint_after(SIGNAL_AFTER):
+            call()
+        late = time.monotonic() - start - SIGNAL_AFTER
+    assert late < 1.0, f"{name} stopped {late:.2f} s after Ctrl-C"
+
+
+def test_a_real_keyboard_interrupt_in_a_fresh_interpreter():
+    script = (
+        "import os, signal, threading, numpy as np\nfrom robokin import rrr3_design\n"
+        "threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT)).start()\n"
+        "rrr3_design.area_vs_platform_radius(np.linspace(0.02, 0.14, 200), n=2000)\n"
+    )
+    env = dict(os.environ, ROBOKIN_NUM_THREADS="1")
+    start = time.monotonic()
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode != 0 and "KeyboardInterrupt" in done.stderr
+    assert time.monotonic() - start < 10
+
+
+class FakeTerminal:
+    def __init__(self, tty=True):
+        self.text, self.tty = "", tty
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+    def isatty(self):
+        return self.tty
+
+
+def test_progress_bar_on_an_interactive_terminal(monkeypatch):
+    monkeypatch.setattr(_progress, "DELAY", 0.0)
+    terminal = FakeTerminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    monkeypatch.setenv("ROBOKIN_NUM_THREADS", "1")
+    ROBOT.workspace(n=1200)
+    lines = terminal.text.split("\r")
+    assert len(lines) >= 3, terminal.text  # drawn while running, then at the end
+    assert all(line.startswith("RRR3.workspace: [") for line in lines[1:])
+    assert re.fullmatch(r"RRR3.workspace: \[#{30}\] 100% \(\d+ s\)\n", lines[-1]), lines[-1]
+    assert terminal.text.endswith("\n") and terminal.text.count("\n") == 1
+
+
+def test_no_progress_bar_when_not_a_terminal_or_short(monkeypatch):
+    captured = FakeTerminal(tty=False)
+    monkeypatch.setattr(sys, "stderr", captured)
+    monkeypatch.setattr(_progress, "DELAY", 0.0)
+    ROBOT.workspace(n=1200)
+    monkeypatch.setattr(sys, "stderr", terminal := FakeTerminal())
+    monkeypatch.setattr(_progress, "DELAY", 2.0)
+    ROBOT.workspace(n=200)
+    assert captured.text == "" and terminal.text == ""
+
+
+def test_interrupted_bar_ends_its_line_where_it_stood(monkeypatch):
+    monkeypatch.setattr(_progress, "DELAY", 0.0)
+    monkeypatch.setattr(sys, "stderr", terminal := FakeTerminal())
+    monkeypatch.setenv("ROBOKIN_NUM_THREADS", "1")
+    with pytest.raises(Stop), sigint_after(0.3):
+        LONG_CALLS["rrr3_design.area_vs_platform_radius"]()
+    last = terminal.text.split("\r")[-1]
+    assert terminal.text.endswith("\n") and "100%" not in last
+
+
+@pytest.mark.parametrize("on_caller", [True, False])
+def test_exception_on_any_thread_of_a_batch_reaches_python(on_caller, monkeypatch):
+    monkeypatch.setenv("ROBOKIN_NUM_THREADS", "2")
+    with pytest.raises(RuntimeError, match="thrown on purpose"):
+        _core._parallel_for_throwing(200, on_caller)
+
+
+@pytest.mark.parametrize("kind, error, text", [
+    ("kdl", RuntimeError, "Orocos KDL"),
+    ("bad_alloc", MemoryError, None),
+    ("logic", RuntimeError, "a logic error"),
+    ("interrupted", KeyboardInterrupt, None),
+    ("int", RuntimeError, "unknown"),
+])
+def test_core_exceptions_become_python_exceptions(kind, error, text):
+    with pytest.raises(error, match=text):
+        _core._throw(kind)
