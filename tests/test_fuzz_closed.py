@@ -126,7 +126,7 @@ def test_planar_2r_any_arguments(target, a1, a2, limits, q):
     if s is not None:
         p = np.asarray(target, dtype=float)
         size = a1 + a2
-        check_solutions(s, 2, limits, lambda row: np.linalg.norm(fk_planar((a1, a2), row)[0] - p) <= MARGIN * TOL_P * size)
+        check_solutions(s, 2, limits, lambda row: math.hypot(*(fk_planar((a1, a2), row)[0] - p)) <= MARGIN * TOL_P * size)
         check_nearest(s, q)
 
 
