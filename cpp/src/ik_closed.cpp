@@ -42,8 +42,46 @@ bool fit_limits(double* q, int n, const JointLimits& lim) {
   return true;
 }
 
-void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture) {
-  if (fit_limits(q, out.dof, lim)) out.add(q, posture);
+// Every solution is checked against the forward model before it is returned: the closed forms
+// clamp cosines within kCosEps of +-1 and fix a free joint at a singularity, so a pose a hair out of
+// reach, or lost to rounding, must not pass as a solution. Position error at most kTolP times the
+// arm's size (the sum of its lengths), orientation error (any rotation-matrix entry) at most kTolR.
+constexpr double kTolP = 1e-9, kTolR = 1e-8;
+
+// Adds q when it fits the limits and `reaches(q)` (the forward model puts the tool on the target).
+template <class Reaches>
+void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture,
+                       Reaches&& reaches) {
+  if (fit_limits(q, out.dof, lim) && reaches(q)) out.add(q, posture);
+}
+
+// The tip of a planar 2R (links a1, a2) at (t1, t2) is within tol of (x, y).
+bool planar_tip_near(double a1, double a2, double t1, double t2, double x, double y, double tol) {
+  return std::hypot(a1 * std::cos(t1) + a2 * std::cos(t1 + t2) - x, a1 * std::sin(t1) + a2 * std::sin(t1 + t2) - y) <=
+         tol;
+}
+
+// One standard DH transform A = Rz(theta) Tz(d) Tx(a) Rx(alpha), for the checks.
+Rigid dh_standard(double a, double alpha, double d, double theta) {
+  const double ct = std::cos(theta), st = std::sin(theta), ca = std::cos(alpha), sa = std::sin(alpha);
+  Rigid A;
+  A.R << ct, -st * ca, st * sa, st, ct * ca, -ct * sa, 0, sa, ca;
+  A.p << a * ct, a * st, d;
+  return A;
+}
+
+// Tool frame of the arm of ArmGeometry (standard DH, the PUMA layout) with a spherical wrist and a
+// tool offset d6; with wrist = false, frame 3 of the anthropomorphic arm (rows (0, pi/2, d1),
+// (a2, 0, 0), (a3, 0, 0)).
+Rigid arm_fk(const ArmGeometry& g, double d6, const double* q, bool wrist) {
+  Rigid T = dh_standard(0, kPi / 2, g.d1, q[0]) * dh_standard(g.a2, 0, 0, q[1]);
+  if (!wrist) return T * dh_standard(g.a3, 0, 0, q[2]);
+  return T * dh_standard(g.a3, -kPi / 2, g.d3, q[2]) * dh_standard(0, kPi / 2, g.d4, q[3]) *
+         dh_standard(0, -kPi / 2, 0, q[4]) * dh_standard(0, 0, d6, q[5]);
+}
+
+double arm_size(const ArmGeometry& g, double d6) {
+  return std::abs(g.d1) + g.a2 + std::abs(g.a3) + std::abs(g.d3) + std::abs(g.d4) + std::abs(d6);
 }
 
 // Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
@@ -76,6 +114,10 @@ const char* singular_elbow(double c) { return c > 0 ? "elbow straight" : "elbow 
 // s2 = +sqrt (elbow down) then -sqrt (elbow up); one when singular. Returns the count.
 int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], const char* label[2],
                     bool& singular) {
+  // In units of the longer link (the angles do not change): the squares below neither overflow
+  // for huge arms nor underflow for tiny ones.
+  const double unit = std::max(a1, a2);
+  a1 /= unit, a2 /= unit, x /= unit, y /= unit;
   double c2 = (x * x + y * y - a1 * a1 - a2 * a2) / (2.0 * a1 * a2);
   singular = false;
   if (!elbow_cosine(c2, singular)) return 0;
@@ -120,13 +162,16 @@ struct ArmSolution {
 // a planar 2R in (r, pz - d1) with links a2 and L = |(a3, d4)| at an angle offset psi = atan2(d4, a3).
 std::vector<ArmSolution> arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular) {
   std::vector<ArmSolution> out;
-  const double rho2 = p.x() * p.x() + p.y() * p.y();
-  const double disc = rho2 - g.d3 * g.d3;
-  if (disc < -kCosEps * std::max(1.0, rho2)) return out;
-  const double rmag = std::sqrt(std::max(0.0, disc));
-  // r = 0: both shoulders coincide (and with d3 = 0, q1 is free: 0 is returned).
-  const bool shoulder_singular = rmag < 1e-12;
   const double L = std::hypot(g.a3, g.d4), psi = std::atan2(g.d4, g.a3);
+  // In units of the arm's longest length, as in planar_2r_solve (no overflow or underflow).
+  const double unit = std::max({g.a2, L, std::abs(g.d3)});
+  const double px = p.x() / unit, py = p.y() / unit, d3 = g.d3 / unit;
+  const double rho2 = px * px + py * py;
+  const double disc = rho2 - d3 * d3;
+  if (!(disc >= -kCosEps * std::max(1.0, rho2))) return out;  // also when rho2 overflowed to inf - inf
+  const double rmag = std::sqrt(std::max(0.0, disc)) * unit;
+  // r = 0: both shoulders coincide (and with d3 = 0, q1 is free: 0 is returned).
+  const bool shoulder_singular = rmag < 1e-12 * unit;
   const double z = p.z() - g.d1;
   for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
     const double r = side == 0 ? rmag : -rmag;
@@ -163,16 +208,20 @@ ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits
   JointLimits lim = limits;
   if (lim.prismatic.empty()) lim.prismatic = {false, true};
   const double d = std::hypot(px, py);
-  if (d < 1e-15) {
+  const auto reaches = [&](const double* q) {
+    return std::hypot(q[1] * std::cos(q[0]) - px, q[1] * std::sin(q[0]) - py) <= kTolP * d;
+  };
+  // Only the origin itself leaves theta1 free: any other point, however near, has its direction.
+  if (d == 0) {
     double q[2] = {0.0, 0.0};
     out.singular = true;
-    add_if_admissible(out, q, lim, "origin (theta1 free)");
+    add_if_admissible(out, q, lim, "origin (theta1 free)", reaches);
     return out;
   }
   const double th = std::atan2(py, px);
   double fwd[2] = {th, d}, back[2] = {th + kPi, -d};
-  add_if_admissible(out, fwd, lim, "stroke forward");
-  add_if_admissible(out, back, lim, "stroke backward");
+  add_if_admissible(out, fwd, lim, "stroke forward", reaches);
+  add_if_admissible(out, back, lim, "stroke backward", reaches);
   return out;
 }
 
@@ -182,7 +231,8 @@ ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, con
   double th[2][2];
   const char* lab[2];
   const int n = planar_2r_solve(a1, a2, px, py, th, lab, out.singular);
-  for (int k = 0; k < n; ++k) add_if_admissible(out, th[k], limits, lab[k]);
+  const auto reaches = [&](const double* q) { return planar_tip_near(a1, a2, q[0], q[1], px, py, kTolP * (a1 + a2)); };
+  for (int k = 0; k < n; ++k) add_if_admissible(out, th[k], limits, lab[k], reaches);
   return out;
 }
 
@@ -190,27 +240,42 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
                                  bool geometric, const JointLimits& limits) {
   ClosedFormSolutions out;
   out.dof = 3;
+  // phi as the forward model sees it, through its cosine and sine: for a huge phi (1e300),
+  // remainder by the double 2 pi and cos/sin's exact reduction disagree.
+  phi = std::atan2(std::sin(phi), std::cos(phi));
   // The wrist point W, origin of frame 2 (seed 003): p_W = p - a3 (cos phi, sin phi).
   const double wx = px - a3 * std::cos(phi), wy = py - a3 * std::sin(phi);
+  const auto reaches = [&](const double* q) {
+    const double t = q[0] + q[1] + q[2];
+    return planar_tip_near(a1, a2, q[0], q[1], px - a3 * std::cos(t), py - a3 * std::sin(t),
+                           kTolP * (a1 + a2 + std::abs(a3))) &&
+           std::abs(std::cos(t) - std::cos(phi)) <= kTolR && std::abs(std::sin(t) - std::sin(phi)) <= kTolR;
+  };
   if (!geometric) {
     double th[2][2];
     const char* lab[2];
     const int n = planar_2r_solve(a1, a2, wx, wy, th, lab, out.singular);
     for (int k = 0; k < n; ++k) {
       double q[3] = {th[k][0], th[k][1], phi - th[k][0] - th[k][1]};
-      add_if_admissible(out, q, limits, lab[k]);
+      add_if_admissible(out, q, limits, lab[k], reaches);
     }
     return out;
   }
-  // Geometric method: law of cosines in the triangle (O, elbow, W), then theta1 = alpha -+ beta.
-  const double w2 = wx * wx + wy * wy, w = std::sqrt(w2);
-  double c2 = (w2 - a1 * a1 - a2 * a2) / (2.0 * a1 * a2);
+  // Geometric method: law of cosines in the triangle (O, elbow, W), then theta1 = alpha -+ beta;
+  // in units of the longer link, as planar_2r_solve.
+  const double unit = std::max(a1, a2), b1 = a1 / unit, b2 = a2 / unit;
+  const double ux = wx / unit, uy = wy / unit, w2 = ux * ux + uy * uy, w = std::sqrt(w2);
+  double c2 = (w2 - b1 * b1 - b2 * b2) / (2.0 * b1 * b2);
   bool elbow_singular = false;
   if (!elbow_cosine(c2, elbow_singular)) return out;
-  const double alpha = std::atan2(wy, wx);
+  const double alpha = std::atan2(uy, ux);
   double beta = 0.0;
-  if (w > 1e-12) {
-    const double cb = (w2 + a1 * a1 - a2 * a2) / (2.0 * a1 * w);
+  if (w > 1e-12 && elbow_singular) {
+    // W on the line of link 1: beta is 0 or pi. acos of the rounded cosine near -+1 would be off
+    // by up to ~1e-6 (acos(1 - e) ~ sqrt(2 e)).
+    beta = b1 + b2 * c2 < 0 ? kPi : 0.0;
+  } else if (w > 1e-12) {
+    const double cb = (w2 + b1 * b1 - b2 * b2) / (2.0 * b1 * w);
     beta = std::acos(std::min(1.0, std::max(-1.0, cb)));
   }
   // W on the first axis (a1 = a2): theta1 is free, 0 is returned.
@@ -221,7 +286,8 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
     const double theta2 = k == 0 ? t2 : -t2;
     const double theta1 = w > 1e-12 ? (k == 0 ? alpha - beta : alpha + beta) : 0.0;
     double q[3] = {theta1, theta2, phi - theta1 - theta2};
-    add_if_admissible(out, q, limits, elbow_singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"));
+    add_if_admissible(out, q, limits, elbow_singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"),
+                      reaches);
   }
   return out;
 }
@@ -230,7 +296,11 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
                                        const JointLimits& limits) {
   ClosedFormSolutions out;
   out.dof = 3;
-  for (ArmSolution& s : arm_solve(arm, p, out.singular)) add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0));
+  const auto reaches = [&](const double* q) {
+    return (arm_fk(arm, 0, q, false).p - p).norm() <= kTolP * arm_size(arm, 0);
+  };
+  for (ArmSolution& s : arm_solve(arm, p, out.singular))
+    add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0), reaches);
   return out;
 }
 
@@ -242,6 +312,10 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   out.postures.reserve(8);
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
   const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
+  const auto reaches = [&](const double* q) {
+    const Rigid F = arm_fk(arm, d6, q, true);
+    return (F.p - T.p).norm() <= kTolP * arm_size(arm, d6) && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR;
+  };
   for (ArmSolution& s : arm_solve(arm, pw, out.singular)) {
     const Eigen::Matrix3d R03 = rot_z(s.q[0]) * rx_p * rot_z(s.q[1]) * rot_z(s.q[2]) * rx_m;
     // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
@@ -256,7 +330,7 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
       if (flip) q4 += kPi;
       const Eigen::Matrix3d N = rot_z(-q4) * M;
       double q[6] = {s.q[0], s.q[1], s.q[2], q4, std::atan2(-N(0, 2), N(2, 2)), std::atan2(N(1, 0), N(1, 1))};
-      add_if_admissible(out, q, limits, arm_label(s.shoulder, s.elbow, flip ? 2 : 1));
+      add_if_admissible(out, q, limits, arm_label(s.shoulder, s.elbow, flip ? 2 : 1), reaches);
     }
   }
   return out;

@@ -7,8 +7,12 @@ import math
 import numpy as np
 
 
+#: Most points a path may have (a typo such as ``step=1e-12`` must not allocate terabytes).
+MAX_POINTS = 10_000_000
+
+
 def _point(value, name: str) -> np.ndarray:
-    p = np.asarray(value, dtype=float)
+    p = _float_array(value, name)
     if p.ndim != 1 or p.shape[0] not in (2, 3):
         raise ValueError(f"{name}: expected a 2-D or 3-D point, got shape {p.shape}")
     if not np.all(np.isfinite(p)):
@@ -16,14 +20,30 @@ def _point(value, name: str) -> np.ndarray:
     return p
 
 
+def _float_array(value, name: str) -> np.ndarray:
+    """``value`` as a float array; complex numbers, strings, None and ragged lists are refused by name."""
+    try:
+        a = np.asarray(value)
+        if value is None or a.dtype.kind not in "biuf":  # no None, strings, complex or objects
+            raise TypeError(f"a {a.dtype} array")
+        return a.astype(float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name}: expected real numbers, got {value!r} ({exc})") from None
+
+
 def _count(n, name: str = "n") -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"{name}: expected a positive integer, got {n!r}")
+    if n > MAX_POINTS:
+        raise ValueError(f"{name}: at most {MAX_POINTS} points, got {n}")
     return int(n)
 
 
 def _positive(value, name: str) -> float:
-    v = float(value)
+    v = _float_array(value, name)
+    if v.ndim != 0:
+        raise TypeError(f"{name}: expected a number, got shape {v.shape}")
+    v = float(v)
     if not (math.isfinite(v) and v > 0):
         raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
     return v
@@ -35,13 +55,24 @@ def line(p1, p2, step: float) -> np.ndarray:
     Returns:
         (K, 2) or (K, 3) array, K = max(2, ceil(|p2 - p1| / step) + 1) (two equal points when
         p1 == p2).
+
+    Raises:
+        ValueError: naming ``step`` when K would exceed :data:`MAX_POINTS`.
     """
     a, b = _point(p1, "p1"), _point(p2, "p2")
     if a.shape != b.shape:
         raise ValueError(f"p2: expected the dimension of p1 ({a.shape[0]}), got {b.shape[0]}")
     step = _positive(step, "step")
-    k = int(math.ceil(np.linalg.norm(b - a) / step)) + 1
-    return a + np.linspace(0.0, 1.0, max(k, 2))[:, None] * (b - a)
+    with np.errstate(over="ignore"):  # an overflow is reported below, by name
+        d = b - a
+    length = math.hypot(*d)  # no overflow in the squares
+    if not math.isfinite(length):
+        raise ValueError("p1, p2: too far apart (their distance overflows)")
+    # Count in floating point first: length / step may be far beyond any integer size.
+    k = math.ceil(length / step) + 1 if length / step < MAX_POINTS else MAX_POINTS + 1
+    if k > MAX_POINTS:
+        raise ValueError(f"step: {step!r} over a length of {length:g} gives more than {MAX_POINTS} points")
+    return a + np.linspace(0.0, 1.0, max(k, 2))[:, None] * d
 
 
 def _center(center) -> np.ndarray:
@@ -58,7 +89,8 @@ def circle(n: int, radius: float = 0.1, center=(0.0, 0.0)) -> np.ndarray:
     """
     n, radius, c = _count(n), _positive(radius, "radius"), _center(center)
     t = 2.0 * np.pi * np.arange(n) / n
-    return c + radius * np.column_stack((np.cos(t), np.sin(t)))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by _finite, by name
+        return _finite(c + radius * np.column_stack((np.cos(t), np.sin(t))), "radius, center")
 
 
 def clover(n: int, k: float = 0.02, center=(0.0, 0.0)) -> np.ndarray:
@@ -68,5 +100,12 @@ def clover(n: int, k: float = 0.02, center=(0.0, 0.0)) -> np.ndarray:
     """
     n, k, c = _count(n), _positive(k, "k"), _center(center)
     t = 2.0 * np.pi * np.arange(n) / n
-    r = k * (1.0 + np.cos(4 * t) + 2.0 * np.sin(4 * t) ** 2)
-    return c + r[:, None] * np.column_stack((np.cos(t), np.sin(t)))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by _finite, by name
+        r = k * (1.0 + np.cos(4 * t) + 2.0 * np.sin(4 * t) ** 2)
+        return _finite(c + r[:, None] * np.column_stack((np.cos(t), np.sin(t))), "k, center")
+
+
+def _finite(points, names: str) -> np.ndarray:
+    if not np.all(np.isfinite(points)):
+        raise ValueError(f"{names}: the points overflow (values too large)")
+    return points

@@ -7,6 +7,7 @@ from typing import Dict, Optional
 import numpy as np
 
 from . import robots
+from .paths import _float_array
 from ._core import Chain, TrackResult, joint_limit_cost
 
 
@@ -27,6 +28,33 @@ def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> Non
     ax.plot(origins[:-1, 0], origins[:-1, 1], "o", color=color, alpha=alpha, ms=3)
 
 
+#: Most samples or snapshots a figure draws (each is a few matplotlib lines).
+MAX_DRAWN = 1000
+
+
+def _count(n, name: str) -> int:
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_DRAWN:
+        raise ValueError(f"{name}: expected a whole number in [1, {MAX_DRAWN}], got {n!r}")
+    return int(n)
+
+
+def _line_figure_arguments(points, tracks):
+    """The path as a finite (K, 2) array and the tracks as a non-empty dict of K-row TrackResults."""
+    p = _float_array(points, "points")
+    if p.ndim != 2 or p.shape[0] < 1 or p.shape[1] != 2:
+        raise ValueError(f"points: expected a (K, 2) array of real numbers, K >= 1, got shape {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError("points: contains NaN or inf")
+    if not isinstance(tracks, dict) or not tracks:
+        raise TypeError("tracks: expected a non-empty dict label -> TrackResult")
+    for label, tr in tracks.items():
+        if not isinstance(tr, TrackResult):
+            raise TypeError(f"tracks: {label!r} is a {type(tr).__name__}, not a TrackResult")
+        if tr.q.shape != (len(p), 3):
+            raise ValueError(f"tracks: {label!r} has joints of shape {tr.q.shape}, expected ({len(p)}, 3) for the points")
+    return p, tracks
+
+
 def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_samples: int = 60,
                     snapshots: int = 8, title: Optional[str] = None):
     """Seed 000's Figure 2 for the RPR arm following a straight line.
@@ -45,6 +73,10 @@ def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_
     Returns:
         The matplotlib Figure.
     """
+    points, tracks = _line_figure_arguments(points, tracks)
+    surface_samples, snapshots = _count(surface_samples, "surface_samples"), _count(snapshots, "snapshots")
+    if title is not None and not isinstance(title, str):
+        raise TypeError(f"title: expected a string or None, got {type(title).__name__}")
     chain = robots.rpr()
     lower, upper = chain.limits
     colors = ["tab:green", "tab:blue", "tab:red", "tab:purple"]

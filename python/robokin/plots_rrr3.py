@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import rrr3_design
+from .paths import _float_array
 
 # Workspace cell codes -> colours: unreachable, regular, parallel singular, serial singular.
 CELL_COLOURS = np.array([[1.0, 1.0, 1.0], [0.68, 0.82, 0.93], [0.85, 0.1, 0.1], [0.95, 0.6, 0.1]])
@@ -21,18 +22,31 @@ def _axes(ax):
     return fig, ax
 
 
+def _path(path):
+    """None, or the path as a finite (K, 2) array."""
+    if path is None:
+        return None
+    p = _float_array(path, "path")
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise ValueError(f"path: expected a (K, 2) array of real numbers, got shape {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError("path: contains NaN or inf")
+    return p
+
+
 def plot_robot(robot, pose, mode=(1, 1, 1), ax=None, path=None):
     """Draws the robot at ``pose`` in ``mode``: base, legs O-A-B, platform; optional (K, 2) path.
 
     Returns:
         (figure, axes).
     """
+    pts = robot.points(pose, mode)  # checks pose and mode
+    pose = np.asarray(pose, dtype=float)
+    path = _path(path)
     fig, ax = _axes(ax)
-    pts = robot.points(pose, mode)
     o, a, b = pts["O"], pts["A"], pts["B"]
     s = robot.singularity(pose, mode)
     if path is not None:
-        path = np.asarray(path, dtype=float)
         ax.plot(path[:, 0], path[:, 1], color="0.6", lw=1, ls="--", label="path")
     ax.fill(*np.vstack((o, o[:1])).T, color="0.92", ec="0.4", lw=1, label="base")
     for i in range(3):
@@ -66,8 +80,8 @@ def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: f
     Returns:
         (figure, axes, RRR3Workspace).
     """
+    w = robot.workspace(phi, mode, n, tol)  # checks phi, mode, n and tol
     fig, ax = _axes(ax)
-    w = robot.workspace(phi, mode, n, tol)
     ax.imshow(CELL_COLOURS[w.cells], origin="lower", extent=w.extent, interpolation="nearest")
     o = robot.base_joints
     ax.plot(*o.T, "ks", ms=7)
@@ -99,6 +113,10 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     """
     import matplotlib.pyplot as plt
 
+    if curve is not None and not isinstance(curve, rrr3_design.AreaCurve):
+        raise TypeError(f"curve: expected an rrr3_design.AreaCurve or None, got {type(curve).__name__}")
+    if best is not None and not isinstance(best, rrr3_design.BestL2):
+        raise TypeError(f"best: expected an rrr3_design.BestL2 or None, got {type(best).__name__}")
     curve = curve or rrr3_design.area_vs_platform_radius()
     best = best or rrr3_design.best_l2(np.linspace(0.05, 0.15, 11), np.linspace(0.02, 0.30, 57))
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))

@@ -118,5 +118,8 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
 
     lower, upper = RPR_LIMITS
     if t1 is None:
+        # num only sizes the default samples: a positive count (not 0, not a typo of 1e12).
+        if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or not 1 <= num <= 10_000_000:
+            raise ValueError(f"num: expected a whole number of samples in [1, 10000000], got {num!r}")
         t1 = np.linspace(lower[0], upper[0], num)
     return _core.rpr_self_motion(point, t1, RPR_L1, RPR_L3, lower, upper)

@@ -7,10 +7,9 @@ exact values the simulator had. The file is written under a temporary name and r
 from __future__ import annotations
 
 import csv
-import os
 from typing import Optional, Sequence
 
-from .recording import _temporary_path
+from robokin._atomic import AtomicPath
 
 
 class CsvLog:
@@ -25,8 +24,9 @@ class CsvLog:
         self.path = path
         self.columns = tuple(columns)
         self.rows = 0
-        self._tmp = _temporary_path(path)
-        self._file = open(self._tmp, "w", newline="", encoding="utf-8")
+        self._out = AtomicPath(path)
+        self._written: Optional[str] = None
+        self._file = open(self._out.tmp, "w", newline="", encoding="utf-8")
         self._writer = csv.writer(self._file, lineterminator="\n")
         self._writer.writerow(self.columns)
 
@@ -37,8 +37,18 @@ class CsvLog:
 
     def close(self) -> Optional[str]:
         """Flushes, renames the file into place and returns its path."""
-        if self._file.closed:
-            return self.path
-        self._file.close()
-        os.replace(self._tmp, self.path)
-        return self.path
+        if self._file.closed:  # closed before (a second close, or after discard)
+            return self._written
+        try:
+            self._file.close()
+            self._written = self._out.commit()
+            return self._written
+        finally:
+            self._out.discard()
+
+    def discard(self) -> None:
+        """Drops the log (an interrupted run): nothing is left under the path, nor a temporary file."""
+        try:
+            self._file.close()
+        finally:
+            self._out.discard()

@@ -91,15 +91,10 @@ class _Keyboard:
 
 
 def _save_png(pygame, surface, path: str) -> str:
-    from .recording import _temporary_path
+    from robokin._atomic import AtomicPath
 
-    tmp = _temporary_path(path)
-    try:
+    with AtomicPath(path) as tmp:
         pygame.image.save(surface, tmp, "png")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
     return path
 
 
@@ -135,11 +130,6 @@ def run(config: Config, render: bool = True) -> RunResult:
         screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
         pygame.display.set_caption(f"robokin-sim: {config.robot}")
     renderer = make_renderer(config.robot, screen.get_size()) if render else None
-    recorder = (
-        Recorder(config.record, fps=min(config.fps, 60), every=config.record_every, width=config.record_width)
-        if config.record else None
-    )
-    log = CsvLog(config.log, scene.columns) if config.log else None
     keyboard = None if config.headless else _Keyboard(pygame)
     script: Iterator[Input] = config.keys.inputs()
     clock = pygame.time.Clock()
@@ -148,7 +138,12 @@ def run(config: Config, render: bool = True) -> RunResult:
     frames = 0
     started = last = time.perf_counter()
     written_record = written_log = written_shot = None
+    recorder = log = None
     try:
+        if config.record:
+            recorder = Recorder(config.record, fps=min(config.fps, 60), every=config.record_every,
+                                width=config.record_width)
+        log = CsvLog(config.log, scene.columns) if config.log else None
         while budget is None or frames < budget:
             inp = next(script, NO_INPUT)
             if keyboard is not None:
@@ -188,11 +183,22 @@ def run(config: Config, render: bool = True) -> RunResult:
                 last = now
         if config.screenshot and renderer is not None:
             written_shot = _save_png(pygame, screen, config.screenshot)
-    finally:
+    except BaseException:
+        # Interrupted (Ctrl-C, an error): the recording and the log would be cut short, so neither
+        # is written under its name (nor is a temporary file left behind).
         if recorder is not None:
-            written_record = recorder.close()
+            recorder.discard()
         if log is not None:
-            written_log = log.close()
+            log.discard()
+        raise
+    else:
+        try:
+            if recorder is not None:
+                written_record = recorder.close()
+        finally:
+            if log is not None:
+                written_log = log.close()
+    finally:
         pygame.display.quit()
     return RunResult(
         frames=frames, steps=scene.steps, record=written_record, log=written_log, screenshot=written_shot,

@@ -7,25 +7,11 @@ so an interrupted run never leaves a half-written recording under the requested 
 from __future__ import annotations
 
 import os
-import tempfile
 import zlib
 from typing import List, Optional
 
 import numpy as np
-
-
-def _temporary_path(path: str) -> str:
-    """A new empty file next to ``path`` (same directory, so renaming is atomic), same extension."""
-    directory = os.path.dirname(os.path.abspath(path))
-    os.makedirs(directory, exist_ok=True)
-    stem, ext = os.path.splitext(os.path.basename(path))
-    fd, tmp = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part" + ext, dir=directory)
-    os.close(fd)
-    # mkstemp makes the file private; give it the permissions a plain open() would.
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)
-    return tmp
+from robokin._atomic import AtomicPath
 
 
 class Recorder:
@@ -49,7 +35,8 @@ class Recorder:
         self.frames_written = 0
         self._count = 0
         self._shape = None
-        self._tmp = _temporary_path(path)
+        self._out = AtomicPath(path)
+        self._tmp = self._out.tmp
         # GIF frames are kept as compressed palette images (a long run stays small in memory);
         # MP4 frames stream straight to ffmpeg.
         self._gif: List[bytes] = []
@@ -106,13 +93,19 @@ class Recorder:
             else:
                 self._writer.close()
                 self._writer = None
-            os.replace(self._tmp, self.path)
-            return self.path
+            return self._out.commit()
         finally:
+            self.discard()
+
+    def discard(self) -> None:
+        """Drops the recording (an interrupted run): nothing is left under the path, nor a temporary file."""
+        self._gif = []
+        try:
             if self._writer is not None:
                 self._writer.close()
-            if os.path.exists(self._tmp):
-                os.remove(self._tmp)
+        finally:
+            self._writer = None
+            self._out.discard()
 
     def _write_gif(self) -> None:
         from PIL import Image

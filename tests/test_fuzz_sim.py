@@ -1,0 +1,136 @@
+"""Property tests of the simulator's user-facing entry points: the command line (any argv gives a
+Config or argparse's exit with a usage message, never a traceback), the ``--keys`` script parser
+(any string gives a KeyScript or a ValueError naming --keys), and the scenes stepped with any
+sequence of key presses and holds (the state and the log row stay finite)."""
+
+import contextlib
+import io
+import math
+
+import numpy as np
+import sim_helpers  # noqa: F401  (SDL dummy drivers before pygame is imported)
+from hypothesis import given
+from hypothesis import strategies as st
+
+from robokin_sim.config import MODES, Config, parse_args
+from robokin_sim.keys import ALIASES, KEYS, MAX_HOLD, KeyScript, parse_script
+from robokin_sim.scene_rpr import RprScene
+from robokin_sim.scene_rrr3 import Rrr3Scene
+
+COVERS = {"sim.parse_args", "sim.parse_script", "sim.KeyScript.inputs", "sim.Rrr3Scene", "sim.RprScene",
+          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.Scene.state"}
+
+OPTIONS = ["--robot", "--mode", "--headless", "--demo", "--frames", "--record", "--record-every", "--record-width",
+           "--log", "--screenshot", "--keys", "--no-avoid", "--size", "--fps", "-h", "--help", "--rob", "--bogus", "--"]
+VALUES = ["rrr3", "rpr", "free", "circle", "clover", "line", "0", "1", "-3", "10", "1e3", "99999999999999999999",
+          "a.gif", "a.mp4", "a.GIF", "a.avi", "", "out/x.csv", "800x600", "10x10", "4096x4096", "1x2x3", "x",
+          "right*20,down*10", "fly*2", "l*0", "esc", "nan"]
+argv_tokens = st.one_of(st.sampled_from(OPTIONS), st.sampled_from(VALUES), st.text(max_size=8))
+
+
+@given(argv=st.lists(argv_tokens, max_size=8))
+def test_parse_args_any_argv(argv):
+    out, err = io.StringIO(), io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            config = parse_args(argv)
+    except SystemExit as exc:
+        assert exc.code in (0, 2), exc.code
+        assert "usage" in (err if exc.code == 2 else out).getvalue()
+        return
+    assert isinstance(config, Config)
+    assert config.robot in MODES and config.mode in MODES[config.robot]
+    assert config.frames is None or (isinstance(config.frames, int) and config.frames >= 1)
+    assert config.record is None or config.record.lower().endswith((".gif", ".mp4"))
+    assert config.record_every >= 1 and config.fps >= 1
+    assert config.record_width is None or config.record_width >= 1
+    assert all(100 <= v <= 4096 for v in config.size) and len(config.size) == 2
+    assert isinstance(config.keys, KeyScript)
+
+
+key_names = st.sampled_from(list(KEYS) + list(ALIASES) + ["ESC", "Right", "jump", ""])
+counts = st.one_of(st.integers(-2, 50), st.sampled_from([MAX_HOLD, MAX_HOLD + 1, 10**30]))
+items = st.one_of(
+    st.tuples(key_names, counts).map(lambda kc: f"{kc[0]}*{kc[1]}"),
+    key_names,
+    st.text(max_size=10),
+)
+
+
+@given(text=st.one_of(st.lists(items, max_size=8).map(",".join), st.text(max_size=30)))
+def test_parse_script_any_string(text):
+    try:
+        script = parse_script(text)
+    except ValueError as exc:
+        assert str(exc).startswith("--keys: ")
+        return
+    assert all(name in KEYS and 1 <= n <= MAX_HOLD for name, n in script.items)
+    assert script.frames == sum(n for _, n in script.items)
+    if script.frames < 2000:
+        inputs = list(script.inputs())
+        assert len(inputs) == script.frames
+        assert sum(bool(i.pressed) for i in inputs) == len(script.items)
+
+
+@given(script=st.lists(st.tuples(st.sampled_from(KEYS), st.integers(1, 100)), max_size=6))
+def test_parse_script_round_trip(script):
+    text = ", ".join(f"{k.upper()}*{n}" for k, n in script)
+    assert parse_script(text).items == tuple(script)
+
+
+# --- scenes ------------------------------------------------------------------------------------
+
+_SCENES = {}
+
+
+def scene_for(robot, mode, avoid):
+    """One scene per (robot, mode, avoid), reset for each example: its orientation plans and
+    workspace maps are caches (planning a path takes ~0.1 s)."""
+    key = (robot, mode, avoid)
+    if key not in _SCENES:
+        _SCENES[key] = (Rrr3Scene if robot == "rrr3" else RprScene)(mode=mode, avoid=avoid)
+    scene = _SCENES[key]
+    scene.reset()
+    scene.steps = 0
+    return scene
+
+
+NUMERIC = {"rrr3": (3, 11), "rpr": (3, 9)}  # the numeric columns of the log row, [start, stop)
+frames = st.tuples(
+    st.frozensets(st.sampled_from(KEYS), max_size=2),  # pressed this frame
+    st.frozensets(st.sampled_from(["left", "right", "up", "down", "k", "l"]), max_size=3),  # held
+    st.integers(1, 25),  # for this many steps
+)
+
+
+@given(robot_mode=st.sampled_from([(r, m) for r in MODES for m in MODES[r]]), avoid=st.booleans(),
+       inputs=st.lists(frames, max_size=12))
+def test_scene_any_key_sequence(robot_mode, avoid, inputs):
+    robot, mode = robot_mode
+    scene = scene_for(robot, mode, avoid)
+    steps = 0
+    for pressed, held, n in inputs:
+        for key in sorted(pressed):
+            scene.press(key)
+        for _ in range(n):
+            scene.step(held | pressed)
+            steps += 1
+            row = scene.row()
+            assert len(row) == len(scene.columns) and row[0] == steps
+            lo, hi = NUMERIC[robot]
+            values = np.array(row[lo:hi], dtype=float)
+            assert np.all(np.isfinite(values)), (row, scene.message)
+        assert isinstance(scene.message, str)
+    state = scene.state()
+    assert scene.steps == steps and math.isclose(scene.time, steps / 60.0)
+    if robot == "rrr3":
+        assert state.mode in ("free", "approach", "circle", "clover")
+        assert np.all(np.isfinite(state.pose)) and np.all(np.isfinite(state.alpha))
+        assert all(np.all(np.isfinite(v)) for v in state.points.values())
+        # the pose the scene shows is one the robot reaches in its working mode
+        assert scene._evaluate(state.pose) is not None
+    else:
+        assert state.mode in ("free", "approach", "line")
+        assert np.all(np.isfinite(state.q)) and np.all(np.isfinite(state.frames))
+        assert np.allclose(state.frames[-1][:2, 3], scene.tip, atol=1e-12)
+        assert np.all(state.q >= state.lower - 1e-9) and np.all(state.q <= state.upper + 1e-9)
