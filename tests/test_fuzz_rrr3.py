@@ -108,7 +108,8 @@ def closure(robot, pose, alpha):
 
 def leg_reach(robot, pose):
     """|O_i B_i| of each leg and whether it lies in [|l1 - l2|, l1 + l2] (with rounding slack both ways)."""
-    r = np.linalg.norm(platform(robot, pose) - base(robot), axis=1)
+    with np.errstate(over="ignore"):  # a pose at 1e300 m is simply out of reach
+        r = np.linalg.norm(platform(robot, pose) - base(robot), axis=1)
     slack = 1e-12 * size(robot, pose)
     lo, hi = abs(robot.l1 - robot.l2), robot.l1 + robot.l2
     surely_in = (r > lo + slack) & (r < hi - slack) & (r > slack)
@@ -545,10 +546,11 @@ def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_m
         A, B = seed_jacobians(robot, pose, alpha)
         assert da == pytest.approx(np.linalg.det(A) / robot.platform_radius, abs=1e-9)
         assert db == pytest.approx(np.linalg.det(B) / robot.l1**3, abs=1e-9)
-        assert dist == pytest.approx(numpy_distance(robot, pose, alpha), abs=1e-9)
+        # The core takes sqrt of the eigenvalues of A^T A: some sqrt(eps) ~ 1.5e-8 near a singularity.
+        assert dist == pytest.approx(numpy_distance(robot, pose, alpha), abs=1e-7)
         sign = np.sign(np.linalg.det(A))
-        ok_strict &= abs(db) >= serial_margin + slack and dist >= margin + slack and sign == plan.sign
-        ok_loose &= abs(db) >= serial_margin - slack and dist >= margin - slack and (sign == plan.sign or abs(da) < slack)
+        ok_strict &= abs(db) >= serial_margin + slack and dist >= margin + 1e-7 and sign == plan.sign
+        ok_loose &= abs(db) >= serial_margin - slack and dist >= margin - 1e-7 and (sign == plan.sign or abs(da) < slack)
     steps = np.abs(np.diff(plan.poses[:, 2]))
     ok_strict &= bool(np.all(steps <= max_step - slack))
     ok_loose &= bool(np.all(steps <= max_step + slack))
