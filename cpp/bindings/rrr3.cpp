@@ -29,13 +29,28 @@ Mode as_mode(py::handle obj) {
   return m;
 }
 
-Pose as_pose(py::handle obj, const char* name = "pose") { return as_vector(obj, name, 3); }
+// A finite pose (x, y, phi) with |x|, |y| <= 1e100 m: squared distances to it stay finite, so the
+// closure errors of ik_newton and fk do (ik_batch gives NaN rows for any farther pose).
+Pose as_pose(py::handle obj, const char* name = "pose") {
+  const Pose p = as_vector(obj, name, 3);
+  if (!(std::abs(p(0)) <= 1e100 && std::abs(p(1)) <= 1e100)) fail(std::string(name) + ": x and y must be within 1e100 m");
+  return p;
+}
+
+// Newton's iteration bound: a run that has not converged in 1e5 steps will not, and a larger
+// bound only makes an unreachable target hang.
+void check_max_iter(int max_iter) {
+  if (max_iter < 0 || max_iter > 100000) fail("max_iter: must be in [0, 100000], got " + std::to_string(max_iter));
+}
 
 std::string short_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
 }
+
+// Python's repr of a float: the shortest text that reads back as the same number.
+std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
 
 py::array_t<double> vec3(const Eigen::Vector3d& v) {
   py::array_t<double> out(3);
@@ -44,6 +59,11 @@ py::array_t<double> vec3(const Eigen::Vector3d& v) {
 }
 
 py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
+
+double positive_tol(double tol) {
+  if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
+  return tol;
+}
 
 py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mode_obj) {
   const Mode mode = as_mode(mode_obj);
@@ -78,8 +98,8 @@ RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, i
   if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
     fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
   require_finite(g.data(), 6, "guess");
-  if (max_iter < 0) fail("max_iter: must be >= 0");
-  if (!(tol > 0)) fail("tol: must be positive");
+  check_max_iter(max_iter);
+  positive_tol(tol);
   return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
                      max_iter, tol);
 }
@@ -87,8 +107,8 @@ RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, i
 RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_iter, double tol) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
-  if (max_iter < 0) fail("max_iter: must be >= 0");
-  if (!(tol > 0)) fail("tol: must be positive");
+  check_max_iter(max_iter);
+  positive_tol(tol);
   return r.fk(alpha, guess, max_iter, tol);
 }
 
@@ -123,11 +143,6 @@ py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
   Eigen::Matrix3d A, B;
   r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
   return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
-}
-
-double positive_tol(double tol) {
-  if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
-  return tol;
 }
 
 double finite_option(double v, const char* name) {
@@ -365,9 +380,8 @@ void bind_rrr3(py::module_& m) {
            py::arg("smoothing") = 10.0,
            "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.")
       .def("__repr__", [](const RRR3& r) {
-        return "RRR3(base_radius=" + std::to_string(r.base_radius()) + ", platform_radius=" +
-               std::to_string(r.platform_radius()) + ", l1=" + std::to_string(r.l1()) + ", l2=" +
-               std::to_string(r.l2()) + ")";
+        return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
+               exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";
       });
 }
 

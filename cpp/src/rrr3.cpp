@@ -7,6 +7,7 @@
 #include "rrr3_leg.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace robokin {
@@ -16,9 +17,17 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Lengths between 1 um and 1000 km: the squares and cubes the models use (|OB|^2, l1^3, cell
+// areas) then neither overflow nor underflow, and closure tolerances of 1e-10 of the size hold.
 void check_length(double v, const char* name) {
-  if (!(std::isfinite(v) && v > 0))
-    throw std::invalid_argument(std::string(name) + ": must be a positive finite length, got " + std::to_string(v));
+  if (!(v >= 1e-6 && v <= 1e6))
+    throw std::invalid_argument(std::string(name) + ": must be a length in [1e-6, 1e6] m, got " + number(v));
 }
 
 }  // namespace
@@ -68,8 +77,8 @@ Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
   if (leg >= 0) {
     const double r = (platform_joint(pose, leg) - o_[leg]).norm();
     throw LegUnreachable(leg, "leg " + std::to_string(leg) + " cannot reach: |O_" + std::to_string(leg) + "B_" +
-                                  std::to_string(leg) + "| = " + std::to_string(r) + " m is outside [" +
-                                  std::to_string(std::abs(l1_ - l2_)) + ", " + std::to_string(l1_ + l2_) + "]");
+                                  std::to_string(leg) + "| = " + number(r) + " m is outside [" +
+                                  number(std::abs(l1_ - l2_)) + ", " + number(l1_ + l2_) + "]");
   }
   return alpha;
 }
@@ -86,23 +95,28 @@ RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, cons
     const Eigen::Vector2d target = platform_joint(pose, i);
     double& a = res.alpha(i);
     double& b = res.beta(i);
-    double err = kNaN;
+    auto residual = [&] {
+      return (o_[i] + Eigen::Vector2d(l1_ * std::cos(a) + l2_ * std::cos(a + b), l1_ * std::sin(a) + l2_ * std::sin(a + b)) -
+              target).norm();
+    };
     int it = 0;
     for (;; ++it) {
       const double c1 = std::cos(a), s1 = std::sin(a), c12 = std::cos(a + b), s12 = std::sin(a + b);
       const Eigen::Vector2d f = o_[i] + Eigen::Vector2d(l1_ * c1 + l2_ * c12, l1_ * s1 + l2_ * s12) - target;
-      err = f.norm();
-      if (err < tol || it >= max_iter) break;
+      if (f.norm() < tol || it >= max_iter) break;
       Eigen::Matrix2d J;
       J << -l1_ * s1 - l2_ * s12, -l2_ * s12, l1_ * c1 + l2_ * c12, l2_ * c12;
       const double det = J.determinant();
       if (!(std::abs(det) > 1e-14 * l1_ * l2_)) break;  // stretched or folded leg: no Newton step
       const Eigen::Vector2d step = J.inverse() * f;
+      if (!step.allFinite()) break;  // keep the last finite iterate
       a -= step(0);
       b -= step(1);
     }
     a = wrap_angle(a);
     b = wrap_angle(b);
+    // The answer is verified where it is returned: wrapping a far-off iterate moves it by rounding.
+    const double err = residual();
     res.iterations = std::max(res.iterations, it);
     if (!(err < tol)) res.converged = false;
     res.error = std::max(res.error, err);
@@ -139,13 +153,24 @@ RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, d
     Eigen::FullPivLU<Eigen::Matrix3d> lu(J);
     if (lu.rank() < 3) break;  // parallel singularity: Newton cannot continue
     Eigen::Vector3d step = lu.solve(f);
+    if (!step.allFinite()) break;  // keep the last finite iterate
     // Keep each step local so Newton stays in the assembly mode it started in.
     const double scale = std::max({1.0, std::abs(step(2)) / 0.3, step.head<2>().norm() / (0.3 * l2_)});
     x -= step / scale;
   }
   x(2) = wrap_angle(x(2));
   res.pose = x;
+  // The answer is verified where it is returned: wrapping a far-off orientation moves it by rounding.
+  res.error = closure_error(alpha, x);
+  res.converged = res.error < tol;
   return res;
+}
+
+double RRR3::closure_error(const Eigen::Vector3d& alpha, const Pose& pose) const {
+  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
+  double err = 0;
+  for (int i = 0; i < 3; ++i) err = std::max(err, std::abs((platform_joint(pose, i) - A.row(i).transpose()).norm() - l2_));
+  return err;
 }
 
 Eigen::Matrix<double, 3, 2> RRR3::elbows(const Eigen::Vector3d& alpha) const {

@@ -13,7 +13,8 @@
 // refined (a pair of close roots or a double root), or it is bisected. Each root phi is polished
 // by Newton on the three loop equations from E = N / D and, where D is nearly 0 (two assembly
 // modes at nearly the same phi, N / D = 0 / 0), from both points where the line M E = r cuts
-// leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m.
+// leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m (1e-10 of R_b + R_e + l1 + l2
+// for a robot larger than that).
 #include "robokin/rrr3.hpp"
 #include "robokin/angles.hpp"
 
@@ -263,10 +264,12 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   // assembly modes at (nearly) the same phi (then F has a double root and N / D is 0 / 0). Both
   // intersections are tried as well there.
   const double size = rb_ + re_ + l1_ + l2_;
+  // 1e-10 m, relative for robots larger than 1 m (rounding alone reaches some 1e-16 of the size).
+  const double close = 1e-10 * std::max(1.0, size);
   auto add = [&](const Pose& guess, double phi) {
     if (!guess.allFinite()) return;
     const RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
-    if (!(polished.error < 1e-10)) return;
+    if (!(polished.error < close)) return;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two
     // assembly modes may lie some 1e-5 rad on either side of the phi found.
     if (std::abs(wrap_angle(polished.pose(2) - phi)) > 1e-3) return;

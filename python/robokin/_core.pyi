@@ -229,7 +229,8 @@ class RRR3:
 
     Base joints ``O_i = R_b u(t_i)``, platform joints ``B_i = E + R_e R(phi) u(t_i)``,
     ``t_i = -90 deg + 120 deg i``. A pose is ``(x, y, phi)``; a working mode ``(m_0, m_1, m_2)``
-    with ``m_i = sign(beta_i)``.
+    with ``m_i = sign(beta_i)``. Every length must lie in [1e-6, 1e6] m; single poses (and fk's
+    guess) must be finite with ``|x|, |y| <= 1e100`` m.
     """
 
     modes: Tuple[Mode, ...]
@@ -255,11 +256,14 @@ class RRR3:
     def ik_batch(self, poses: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> NDArray:
         """(N, 3) for (N, 3) poses, NaN rows where a leg cannot reach; both cores, GIL released."""
     def ik_newton(self, pose: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Newton:
-        """Newton-Raphson on the 6 loop equations from ``guess`` = (alpha, beta), shape (2, 3) or (6,)."""
+        """Newton-Raphson on the 6 loop equations from ``guess`` = (alpha, beta), shape (2, 3) or (6,).
+        ``max_iter`` in [0, 100000]; ``converged`` and ``error`` are those of the returned (wrapped) angles."""
     def fk(self, alpha: ArrayLike, guess: ArrayLike, max_iter: int = 50, tol: float = 1e-12) -> RRR3Fk:
-        """One assembly mode by Newton from a guess pose."""
+        """One assembly mode by Newton from a guess pose. ``max_iter`` in [0, 100000]; ``converged``
+        and ``error`` are those of the returned pose (phi wrapped to [-pi, pi])."""
     def fk_all(self, alpha: ArrayLike) -> NDArray:
-        """(k, 3) every assembly mode, k <= 6, sorted by phi in [-pi, pi); each closes the loops to 1e-10 m."""
+        """(k, 3) every assembly mode, k <= 6, sorted by phi in [-pi, pi); each closes the loops to 1e-10 m
+        (1e-10 of ``base_radius + platform_radius + l1 + l2`` when that exceeds 1 m)."""
     def points(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Dict[str, NDArray]:
         """(3, 2) arrays ``"O"``, ``"A"``, ``"B"`` for drawing."""
     def jacobians(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Tuple[NDArray, NDArray]:

@@ -42,11 +42,28 @@ class BestL2:
 
 
 def _values(values, name: str) -> np.ndarray:
-    v = np.asarray(values, dtype=float)
+    try:
+        v = np.asarray(values)
+        if v.dtype.kind not in "biuf":  # complex would lose its imaginary part in a float cast
+            raise TypeError
+        v = v.astype(float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected an array of real numbers") from None
     if v.ndim != 1 or v.size == 0:
         raise ValueError(f"{name}: expected a non-empty 1-D array, got shape {v.shape}")
     if not np.all(np.isfinite(v)) or np.any(v <= 0):
         raise ValueError(f"{name}: lengths must be positive and finite")
+    return v
+
+
+def _length(value, name: str) -> float:
+    """One length of the geometry as a positive float (the core checks its range)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected a number, got {value!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise ValueError(f"{name}: must be a positive finite length, got {v}")
     return v
 
 
@@ -57,6 +74,7 @@ def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: 
     The area is RRR3Workspace.area: the largest region of the constant-orientation workspace
     (orientation ``phi``, working mode ``mode``) that no singularity crosses, on an n x n grid.
     """
+    base_radius, l1, l2 = _length(base_radius, "base_radius"), _length(l1, "l1"), _length(l2, "l2")
     radii = _values(np.linspace(0.01, base_radius, 30) if platform_radii is None else platform_radii, "platform_radii")
     robots = np.column_stack((np.full_like(radii, base_radius), radii, np.full_like(radii, l1), np.full_like(radii, l2)))
     return AreaCurve(radii, _core.rrr3_region_areas(robots, phi, mode, n, tol), float(base_radius), float(l1),
@@ -72,6 +90,7 @@ def best_l2(l1_values, l2_values, base_radius: float = 0.15, platform_radius: fl
     robot can use without crossing a singularity. The default platform radius is the seed's
     0.15 m equilateral platform (side / sqrt(3)).
     """
+    base_radius, platform_radius = _length(base_radius, "base_radius"), _length(platform_radius, "platform_radius")
     l1s, l2s = _values(l1_values, "l1_values"), _values(l2_values, "l2_values")
     g1, g2 = np.meshgrid(l1s, l2s, indexing="ij")
     robots = np.column_stack((np.full(g1.size, base_radius), np.full(g1.size, platform_radius), g1.ravel(), g2.ravel()))

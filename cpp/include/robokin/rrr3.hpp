@@ -59,7 +59,7 @@ struct RRR3Singularity {
 
 class RRR3 {
  public:
-  // Throws std::invalid_argument naming the length when one is not positive and finite.
+  // Throws std::invalid_argument naming the length when one is not in [1e-6, 1e6] m.
   RRR3(double base_radius, double platform_radius, double l1, double l2);
 
   double base_radius() const { return rb_; }
@@ -90,8 +90,10 @@ class RRR3 {
 
   // Forward model by Newton on |A_i B_i|^2 = l2^2 in (x, y, phi) from a guess pose.
   RRR3Fk fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const;
+  // Largest | |A_i B_i| - l2 | of the actuated angles alpha at pose: how far pose is from closing the loops.
+  double closure_error(const Eigen::Vector3d& alpha, const Pose& pose) const;
   // Every assembly mode of alpha (at most 6), sorted by phi in [-pi, pi). Each closes the loops
-  // to 1e-10 m. See rrr3_fk.cpp for the method.
+  // to 1e-10 m (1e-10 of R_b + R_e + l1 + l2 when that exceeds 1 m). See rrr3_fk.cpp for the method.
   std::vector<Pose> fk_all(const Eigen::Vector3d& alpha) const;
 
   // Elbows A_i for the actuated angles (a 3 x 2 matrix, one row per leg).
