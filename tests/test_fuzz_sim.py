@@ -18,7 +18,7 @@ from robokin_sim.scene_rpr import RprScene
 from robokin_sim.scene_rrr3 import Rrr3Scene
 
 COVERS = {"sim.parse_args", "sim.parse_script", "sim.KeyScript.inputs", "sim.Rrr3Scene", "sim.RprScene",
-          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.Scene.state"}
+          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row"}
 
 OPTIONS = ["--robot", "--mode", "--headless", "--demo", "--frames", "--record", "--record-every", "--record-width",
            "--log", "--screenshot", "--keys", "--no-avoid", "--size", "--fps", "-h", "--help", "--rob", "--bogus", "--"]
