@@ -102,8 +102,9 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
   thread_local IkSolver solver(chain, o);
   solver.reset(chain, o);
   if (may_be_long(o)) {
+    PythonProgress progress("ik");
     py::gil_scoped_release release;
-    return solver.solve(t, q0.data(), s);
+    return solver.solve(t, q0.data(), s, &progress);
   }
   return solver.solve(t, q0.data(), s);
 }
@@ -161,9 +162,10 @@ struct BoundSolver {
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
     if (may_be_long(options)) {
+      PythonProgress progress("IKSolver.solve");
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(busy);  // taken without the GIL: no deadlock with a solve in progress
-      return solver.solve(t, q0.data(), s);
+      return solver.solve(t, q0.data(), s, &progress);
     }
     std::lock_guard<std::mutex> lock(busy);
     return solver.solve(t, q0.data(), s);

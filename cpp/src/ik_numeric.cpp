@@ -276,7 +276,7 @@ void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
 // LM and GN accept only decreasing steps; NR and Halley take every step (they may climb out of a
 // basin), so the lowest-cost point seen is kept in qb_ and restored when the attempt ends.
 bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline,
-                       bool may_stall) {
+                       bool may_stall, Progress* progress) {
   double ep, er;
   double cost = evaluate(target, q, J_, e_, ep, er);
   if (met(ep, er)) return true;
@@ -293,6 +293,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   double window_cost = cost;
   for (int it = 0; it < budget; ++it) {
     if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return give_up();
+    if ((it & 255) == 255) report(progress, it, budget);
     if (may_stall && it > 0 && it % kStallWindow == 0) {
       if (!(cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
       window_cost = cost;
@@ -395,7 +396,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   return give_up();
 }
 
-IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed) {
+IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed, Progress* progress) {
   IkResult r;
   const double start = opt_.timeout > 0 ? now_s() : 0.0;
   const double deadline = opt_.timeout > 0 ? start + opt_.timeout : 0.0;
@@ -411,7 +412,9 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
       random_q(rng, q);
     }
     ++r.attempts;
-    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts);
+    PartProgress this_attempt(progress, k, opt_.restarts + 1);
+    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts,
+                            progress ? &this_attempt : nullptr);
     double ep, er;
     errors(target, q.data(), ep, er);
     const double c = ep * ep + er * er;

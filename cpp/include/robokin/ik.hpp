@@ -60,15 +60,17 @@ class IkSolver {
   // Re-targets the solver (the workspace is kept when the sizes match): the chain must outlive use.
   void reset(const Chain& chain, const IkOptions& options);
 
-  // Solves from q0; restarts draw from a generator seeded with `seed`.
-  IkResult solve(const Target& target, const double* q0, std::uint64_t seed);
+  // Solves from q0; restarts draw from a generator seeded with `seed`. A long solve (many
+  // iterations or restarts) reports to `progress` and stops (Interrupted) when it asks.
+  IkResult solve(const Target& target, const double* q0, std::uint64_t seed, Progress* progress = nullptr);
 
   // Errors (position, orientation) of the tool at q for the target, as used for success.
   void errors(const Target& target, const double* q, double& error_p, double& error_r) const;
 
  private:
   // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
-  bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline, bool may_stall);
+  bool attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline, bool may_stall,
+               Progress* progress);
   double evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep, double& er);
   void errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const;
   void select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const;
