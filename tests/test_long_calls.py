@@ -60,6 +60,11 @@ LONG_CALLS = {
     "RRR3.plan": lambda: ROBOT.plan(rk.paths.clover(500), span=3.0, resolution=0.001, max_step=0.1),
     "ik_batch": lambda: rk.ik_batch(UR5, _ik_targets(300_000), np.zeros(6), task="position"),
     "ik_batch(path=True)": lambda: rk.ik_batch(UR5, _ik_targets(300_000), np.zeros(6), task="position", path=True),
+    # an unreachable target: restart after restart
+    "ik": lambda: rk.ik(UR5, [5.0, 0.0, 0.0], np.zeros(6), task="position", method="nr", max_iter=100_000,
+                        restarts=1_000_000),
+    "IKSolver.solve": lambda: rk.IKSolver(UR5, task="position", method="nr", max_iter=100_000,
+                                          restarts=1_000_000).solve([5.0, 0.0, 0.0], np.zeros(6)),
     # far-away targets: every point runs its max_iter iterations
     "track": lambda: rk.track(rk.robots.planar_3r(), np.full((200_000, 2), 10.0), np.zeros(3), max_iter=1000),
 }

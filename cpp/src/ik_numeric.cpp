@@ -412,6 +412,7 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
       random_q(rng, q);
     }
     ++r.attempts;
+    report(progress, k, opt_.restarts + 1);
     PartProgress this_attempt(progress, k, opt_.restarts + 1);
     const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts,
                             progress ? &this_attempt : nullptr);
