@@ -25,17 +25,20 @@ inline long max_threads() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-// Calls body(begin, end) on contiguous blocks of [0, count), about min_per_thread items each (the
-// least work worth a thread), on one thread when the batch is small. Blocks are handed out from a
+// Calls body(begin, end) on contiguous blocks of [0, count), on one thread when the batch is
+// small (min_per_thread items is the least work worth a thread). Blocks are handed out from a
 // shared counter, so the calling thread reports to `progress` between its blocks, and every thread
 // stops taking blocks once the caller asks to stop or a body throws. The exception (Interrupted,
 // or the body's own) is rethrown here after all threads have joined: it never escapes a thread.
 template <class Body>
 void parallel_for(long count, long min_per_thread, Body body, Progress* progress = nullptr) {
   if (count <= 0) return;
-  const long block = std::max(1L, min_per_thread);
+  const long least = std::max(1L, min_per_thread);
+  const long threads = std::min(max_threads(), count / least);
+  // A few blocks per thread (balance), none above 16 x min_per_thread (progress is heard often);
+  // fewer, larger blocks are faster for the streaming batch FK.
+  const long block = std::clamp(count / (std::max(1L, threads) * 8), least, 16 * least);
   const long blocks = (count + block - 1) / block;
-  const long threads = std::min(max_threads(), count / block);
   std::atomic<long> next{0}, finished{0};
   std::atomic<bool> stop{false};
   std::exception_ptr error;
