@@ -5,6 +5,7 @@
 
 #include "robokin/reach.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace robokin::bind {
@@ -44,7 +45,10 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
   const Target t = one_target(task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
   Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
-  return reacher.reach(t, q);
+  ReachResult r = reacher.reach(t, q);
+  // Finite inputs near 1e308 can still give an error beyond the largest double: no inf returned.
+  if (!std::isfinite(r.error)) fail("target: the task error is not finite (the target is too far away)");
+  return r;
 }
 
 TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
@@ -64,6 +68,7 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
     py::gil_scoped_release release;
     reacher.track(targets.data(), count, q0, q, err, conv, iters);
   }
+  if (!all_finite(err, count)) fail("points: the task error is not finite (a point is too far away)");
   return r;
 }
 
