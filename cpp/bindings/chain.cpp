@@ -115,6 +115,13 @@ Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
   return as_vector(obj, name, c.dof());
 }
 
+// Finite q can still give an overflowing result (lengths or prismatic joints near 1e308): a
+// ValueError naming q rather than inf or NaN in the answer.
+void require_finite_result(const double* data, py::ssize_t size, const char* name = "q") {
+  if (!all_finite(data, size))
+    fail(std::string(name) + ": the result is not finite (the joint values or the chain's lengths are too large)");
+}
+
 void write_rigid(const Rigid& T, double* m) {
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) m[4 * r + k] = T.R(r, k);
@@ -143,6 +150,7 @@ py::array fk(const Chain& c, py::handle q_obj) {
     const py::ssize_t shape[2] = {4, 4};
     py::array out = new_float64(2, shape);
     write_rigid(T, float64_data(out));
+    require_finite_result(float64_data(out), 16);
     return out;
   }
   const py::ssize_t shape[3] = {count, 4, 4};
@@ -153,6 +161,7 @@ py::array fk(const Chain& c, py::handle q_obj) {
     py::gil_scoped_release release;
     c.fk_batch(q.data, count, dst, &progress);
   }
+  require_finite_result(dst, 16 * count);
   return out;
 }
 
@@ -194,6 +203,7 @@ py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
     for (int r = 0; r < rows; ++r)
       for (int j = 0; j < n; ++j) dst[r * n + j] = J[6 * j + row_of[r]];
   }
+  require_finite_result(float64_data(out), batch * rows * n);
   return out;
 }
 
@@ -202,6 +212,7 @@ py::array_t<double> frames(const Chain& c, py::handle q_obj) {
   py::array_t<double> out({static_cast<py::ssize_t>(f.size()), py::ssize_t{4}, py::ssize_t{4}});
   for (size_t i = 0; i < f.size(); ++i)
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * i) = f[i];
+  require_finite_result(out.data(), out.size());
   return out;
 }
 
@@ -214,7 +225,9 @@ py::array_t<double> point_in_frame(const Chain& c, py::handle q_obj, py::handle 
   if (in_frame < 0 || in_frame > last)
     fail("in_frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(in_frame));
   const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
-  return to_numpy(Eigen::VectorXd(rel.topLeftCorner<3, 3>() * p + rel.topRightCorner<3, 1>()));
+  const Eigen::VectorXd out = rel.topLeftCorner<3, 3>() * p + rel.topRightCorner<3, 1>();
+  require_finite_result(out.data(), 3, "q, point");
+  return to_numpy(out);
 }
 
 std::string joint_types(const Chain& c) {

@@ -58,6 +58,28 @@ int int_arg(py::handle obj, const char* name, long long lo, long long hi, const 
   return static_cast<int>(v);
 }
 
+// Finite targets near 1e308 can still be farther from the tool than the largest double: a
+// ValueError naming the target rather than an infinite error in the result.
+void require_finite_errors(const double* error_p, const double* error_r, long count, const char* name) {
+  if (!all_finite(error_p, count) || !all_finite(error_r, count))
+    fail(std::string(name) + ": the error is not finite (the target is too far away)");
+}
+
+IkResult checked(IkResult r) {
+  require_finite_errors(&r.error_p, &r.error_r, 1, "target");
+  return r;
+}
+
+// An optional number (None handled by the caller): a string or a list is a ValueError naming it,
+// not pybind11's RuntimeError "Unable to cast".
+double number_arg(py::handle obj, const char* name) {
+  try {
+    return py::cast<double>(obj);
+  } catch (const py::cast_error&) {
+    fail(std::string(name) + ": expected None or a number");
+  }
+}
+
 // Whether a solve may take long enough for the GIL to be worth releasing (a timeout, or more than
 // ~1700 iterations in all): short solves keep it (releasing costs more than they do).
 bool may_be_long(const IkOptions& o) {
@@ -77,12 +99,12 @@ IkOptions options_arg(const std::string& method, const std::string& task, double
   o.max_iter = max_iter;
   o.restarts = int_arg(restarts, "restarts", 0, kMaxRestarts, " (use timeout to bound the time)");
   if (!timeout.is_none()) {
-    const double t = py::cast<double>(timeout);
+    const double t = number_arg(timeout, "timeout");
     if (!(t > 0) || !std::isfinite(t)) fail("timeout: must be None or a positive number of seconds");
     o.timeout = t;
   }
   if (!damping.is_none()) {
-    const double d = py::cast<double>(damping);
+    const double d = number_arg(damping, "damping");
     if (!(d > 0) || !std::isfinite(d)) fail("damping: must be None or a positive number");
     o.damping = d;
   } else {
@@ -101,12 +123,15 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
   // One solver per thread, kept between calls: no workspace allocation per solve.
   thread_local IkSolver solver(chain, o);
   solver.reset(chain, o);
+  IkResult r;
   if (may_be_long(o)) {
     PythonProgress progress("ik");
     py::gil_scoped_release release;
-    return solver.solve(t, q0.data(), s, &progress);
+    r = solver.solve(t, q0.data(), s, &progress);
+  } else {
+    r = solver.solve(t, q0.data(), s);
   }
-  return solver.solve(t, q0.data(), s);
+  return checked(r);
 }
 
 BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
@@ -142,6 +167,7 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
     robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, q, success, it, at, ep, er,
                       &progress);
   }
+  require_finite_errors(ep, er, count, "targets");
   return r;
 }
 
@@ -161,14 +187,17 @@ struct BoundSolver {
     const Target t = one_target(options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
+    IkResult r;
     if (may_be_long(options)) {
       PythonProgress progress("IKSolver.solve");
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(busy);  // taken without the GIL: no deadlock with a solve in progress
-      return solver.solve(t, q0.data(), s, &progress);
+      r = solver.solve(t, q0.data(), s, &progress);
+    } else {
+      std::lock_guard<std::mutex> lock(busy);
+      r = solver.solve(t, q0.data(), s);
     }
-    std::lock_guard<std::mutex> lock(busy);
-    return solver.solve(t, q0.data(), s);
+    return checked(r);
   }
 };
 

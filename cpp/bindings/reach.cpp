@@ -6,6 +6,7 @@
 
 #include "robokin/reach.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace robokin::bind {
@@ -45,7 +46,10 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
   const Target t = one_target(task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
   Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
-  return reacher.reach(t, q);
+  ReachResult r = reacher.reach(t, q);
+  // Finite inputs near 1e308 can still give an error beyond the largest double: no inf returned.
+  if (!std::isfinite(r.error)) fail("target: the task error is not finite (the target is too far away)");
+  return r;
 }
 
 TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
@@ -66,6 +70,7 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
     py::gil_scoped_release release;
     reacher.track(targets.data(), count, q0, q, err, conv, iters, &progress);
   }
+  if (!all_finite(err, count)) fail("points: the task error is not finite (a point is too far away)");
   return r;
 }
 
@@ -115,9 +120,11 @@ void bind_reach(py::module_& m) {
         if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))
           fail("q: expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) + "), got " + shape_of(q));
         require_finite(q.data(), q.size(), "q");
-        if (q.ndim() == 1) return py::float_(joint_limit_cost(chain, q.data()));
-        py::array_t<double> out(q.shape(0));
-        for (py::ssize_t k = 0; k < q.shape(0); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data() + k * n);
+        py::array_t<double> out(q.ndim() == 1 ? 1 : q.shape(0));
+        for (py::ssize_t k = 0; k < out.size(); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data() + k * n);
+        // A finite q far outside the limits (near 1e300) squares to inf: say so rather than return it.
+        if (!all_finite(out.data(), out.size())) fail("q: the cost is not finite (q is too far from the limits)");
+        if (q.ndim() == 1) return py::float_(out.data()[0]);
         return std::move(out);
       },
       py::arg("chain"), py::arg("q"),

@@ -19,6 +19,12 @@ constexpr double kMuShrink = 0.1;
 // With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
 constexpr int kStallWindow = 6;
 
+// |(x, y, z)|, also when the squares overflow (a target beyond ~1e154): std::hypot only then.
+double norm3(double x, double y, double z) {
+  const double n = std::sqrt(x * x + y * y + z * z);
+  return std::isfinite(n) ? n : std::hypot(x, y, z);
+}
+
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -116,11 +122,11 @@ void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double
   task_error(target, T, e);
   switch (opt_.task) {
     case Task::Pose:
-      ep = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      ep = norm3(e[0], e[1], e[2]);
       er = std::sqrt(e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
       return;
     case Task::Position:
-      ep = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      ep = norm3(e[0], e[1], e[2]);
       er = 0;
       return;
     case Task::XY:

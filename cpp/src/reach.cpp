@@ -120,6 +120,13 @@ void min_norm_solve(const JMap& J, const Eigen::Matrix<double, M, 1>& rhs, doubl
   }
 }
 
+// |e|, also when its squares overflow (a target beyond ~1e154): the scaled norm, only then.
+template <class V>
+double error_norm(const V& e) {
+  const double n = e.norm();
+  return std::isfinite(n) ? n : e.stableNorm();
+}
+
 }  // namespace
 
 // The loop with M task rows and N joints known at compile time (N = Eigen::Dynamic otherwise):
@@ -137,7 +144,7 @@ int Reacher::run_rows(const Target& target, double& error) {
   const bool use_nullspace = opt_.nullspace_weights.size() != 0;
   const double step = opt_.gain / opt_.dt;
   task_error(target, T_, e_);
-  error = e.norm();
+  error = error_norm(e);
   int iterations = 0;
   do {
     for (int r = 0; r < M; ++r) J.row(r) = J6_.row(rows[r]);
@@ -156,14 +163,15 @@ int Reacher::run_rows(const Target& target, double& error) {
       dq += h - correction;
     }
     dq *= opt_.dt;
-    if (!dq.allFinite()) break;  // an absurd gain or target: stop at the last finite joints
+    // An absurd gain or target: stop at the last finite joints (q + dq may overflow too).
+    if (!dq.allFinite() || !(q + dq).allFinite()) break;
     q += dq;
     if (opt_.saturate) q = q.cwiseMax(lower).cwiseMin(upper);
     // Pose and Jacobian at the new joints: the error now, the Jacobian for the next iteration.
     chain_.fk_jacobian(q_.data(), T_, J6_.data());
     task_error(target, T_, e_);
     ++iterations;
-    error = e.norm();
+    error = error_norm(e);
   } while (iterations < opt_.max_iter && !(error < opt_.tol));
   return iterations;
 }

@@ -4,6 +4,7 @@
 #include <kdl_parser/kdl_parser.hpp>
 #include <urdf_parser/urdf_parser.h>
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -31,6 +32,11 @@ Chain chain_from_urdf(const std::string& xml, const std::string& base, const std
     lower(j) = -inf;
     upper(j) = inf;
     const urdf::JointConstSharedPtr joint = model->getJoint(seg.getJoint().getName());
+    // urdfdom accepts <axis xyz="0 0 0">; KDL turns an axis shorter than its epsilon (1e-6) into
+    // NaN poses.
+    const double axis_norm = joint ? std::hypot(joint->axis.x, joint->axis.y, joint->axis.z) : 1.0;
+    if (!(axis_norm > 1e-6) || !std::isfinite(axis_norm))
+      throw std::invalid_argument("path_or_string: joint '" + joint->name + "' has a zero axis (norm <= 1e-6)");
     if (joint && joint->limits && joint->type != urdf::Joint::CONTINUOUS &&
         joint->limits->lower < joint->limits->upper) {
       lower(j) = joint->limits->lower;

@@ -6,6 +6,8 @@ Every function returns a new :class:`robokin.Chain`.
 from __future__ import annotations
 
 import math
+import numbers
+import operator
 
 import numpy as np
 
@@ -19,6 +21,17 @@ RPR_LIMITS = (np.array([0.0, 0.0, 0.0]), np.array([math.pi / 2, RPR_STROKE, math
 #: with t1 = pi/2 (these joints), and ends at point 2 (x, y).
 RPR_LINE_Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
 RPR_LINE_P2 = np.array([1.5, 1.0])
+
+
+def _length(value, name: str, minimum: float = -math.inf) -> float:
+    """A finite real argument as a float; the error names the argument (not the DH row it goes to)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+    value = float(value)
+    if not (math.isfinite(value) and value >= minimum):
+        raise ValueError(f"{name}: must be a finite number" + (f" >= {minimum:g}" if minimum > -math.inf else "")
+                         + f", got {value!r}")
+    return value
 
 
 def _translate_x(length: float) -> np.ndarray:
@@ -47,11 +60,13 @@ def prr(a2: float = 1.0, a3: float = 1.0) -> Chain:
     DH table ``(a, alpha, d, theta)``: ``(0, pi/2, d1, 0)``, ``(a2, 0, 0, theta2)``,
     ``(a3, 0, 0, theta3)``; ``q = (d1, theta2, theta3)``; frame 3 is the tool (the seed omits T_e^3).
     """
+    a2, a3 = _length(a2, "a2"), _length(a3, "a3")
     return Chain.from_dh([(0.0, math.pi / 2, 0.0, 0.0, "P"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R")])
 
 
 def planar_3r(a1: float = 1.0, a2: float = 1.0, a3: float = 1.0) -> Chain:
     """A planar 3R arm (seed 003, example 2): three revolute joints about z, links a1, a2, a3."""
+    a1, a2, a3 = _length(a1, "a1"), _length(a2, "a2"), _length(a3, "a3")
     return Chain.from_dh([(a, 0.0, 0.0, 0.0, "R") for a in (a1, a2, a3)])
 
 
@@ -60,6 +75,7 @@ def rp(stroke: float = 1.0) -> Chain:
 
     The tip is at ``d2 (cos theta1, sin theta1)``; ``d2`` is limited to ``[0, stroke]``.
     """
+    stroke = _length(stroke, "stroke", minimum=0.0)
     return Chain.from_dh(
         [(0.0, math.pi / 2, 0.0, math.pi / 2, "R"), (0.0, 0.0, 0.0, 0.0, "P")],
         limits=([-math.inf, 0.0], [math.inf, stroke]),
@@ -99,6 +115,9 @@ def puma560() -> Chain:
     return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=(lower, upper))
 
 
+_MAX_SAMPLES = 10_000_000
+
+
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
     """Every joint vector of the seed-000 RPR that puts the tip at ``point``, within its limits.
 
@@ -118,8 +137,10 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
 
     lower, upper = RPR_LIMITS
     if t1 is None:
-        # num only sizes the default samples: a positive count (not 0, not a typo of 1e12).
-        if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or not 1 <= num <= 10_000_000:
-            raise ValueError(f"num: expected a whole number of samples in [1, 10000000], got {num!r}")
-        t1 = np.linspace(lower[0], upper[0], num)
+        # num names itself in the error (numpy's messages do not), and cannot ask for absurd sizes.
+        if isinstance(num, bool) or not isinstance(num, numbers.Integral):
+            raise TypeError(f"num: expected an int, got {type(num).__name__}")
+        if not 0 <= num <= _MAX_SAMPLES:
+            raise ValueError(f"num: expected an int in [0, {_MAX_SAMPLES}], got {num}")
+        t1 = np.linspace(lower[0], upper[0], operator.index(num))
     return _core.rpr_self_motion(point, t1, RPR_L1, RPR_L3, lower, upper)
