@@ -200,7 +200,8 @@ def test_rpr_self_motion_closed_form(rng):
         (dict(tol=-1), "tol: must be a positive finite number"),
         (dict(gain=np.nan), "gain: must be a positive finite number"),
         (dict(dt=0), "dt: must be a positive finite number"),
-        (dict(max_iter=0), "max_iter: must be at least 1"),
+        (dict(max_iter=0), r"max_iter: must be in \[1, 100000\], got 0"),
+        (dict(max_iter=100_001), r"max_iter: must be in \[1, 100000\]"),  # one Reach holds the GIL
         (dict(damping=-0.1), "damping: must be a finite number >= 0"),
         (dict(nullspace="limits"), "nullspace: expected None, 'joint_limits' or an array of gains"),
         (dict(nullspace=[1.0, 2.0]), r"nullspace: expected shape \(3,\)"),

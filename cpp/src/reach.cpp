@@ -17,7 +17,11 @@ void check_reach_options(const Chain& chain, const ReachOptions& o) {
     if (!(std::isfinite(v) && v > 0))
       throw std::invalid_argument(std::string(name) + ": must be a positive finite number");
   };
-  if (o.max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
+  // One Reach holds the GIL (it is short); 100,000 iterations take well under a second, so Ctrl-C
+  // is never kept waiting long.
+  if (o.max_iter < 1 || o.max_iter > kMaxReachIterations)
+    throw std::invalid_argument("max_iter: must be in [1, " + std::to_string(kMaxReachIterations) + "], got " +
+                                std::to_string(o.max_iter));
   positive(o.tol, "tol");
   positive(o.gain, "gain");
   positive(o.dt, "dt");
@@ -208,7 +212,7 @@ void Reacher::track(const Target* targets, long count, const Vector& q0, double*
   q_ = q0;
   chain_.fk_jacobian(q_.data(), T_, J6_.data());
   for (long k = 0; k < count; ++k) {
-    if (k % 256 == 0) report(progress, k, count);
+    if (k % 256 == 0 || opt_.max_iter > 1000) report(progress, k, count);  // a point may be slow
     double error = 0.0;
     iterations_out[k] = run(targets[k], error);
     err_out[k] = error;

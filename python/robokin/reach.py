@@ -39,7 +39,7 @@ def reach(
             ``"pose"`` a (4, 4) frame.
         q: Start joints, shape (dof,); the target should be close to the tool at q.
         task: Which rows of the geometric Jacobian are controlled.
-        max_iter: Iterations at most (the seed's n = 25).
+        max_iter: Iterations at most (the seed's n = 25), in [1, 100000].
         tol: Tolerance on the norm of the task error (metres for positions; 1e-5 in the seed).
         gain: The seed's damping factor d.
         dt: The seed's time step.

@@ -39,6 +39,9 @@ Vector joint_limit_weights(const Chain& chain);
 // qbar the middle of each limited joint's range.
 double joint_limit_cost(const Chain& chain, const double* q);
 
+// Iterations one Reach may run at most (max_iter).
+constexpr int kMaxReachIterations = 100000;
+
 // Reuses its buffers across calls: one per thread, no allocation per iteration nor per path point.
 class Reacher {
  public:
