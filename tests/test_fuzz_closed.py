@@ -320,7 +320,9 @@ def test_planar_3r_success_is_reachability(a, scale, q, method, kind, r, angle, 
     margin = 1e-9 * size
     if abs(w - (a[0] + a[1])) > margin and abs(w - abs(a[0] - a[1])) > margin:
         assert (len(s) > 0) == (abs(a[0] - a[1]) <= w <= a[0] + a[1]), (p, phi, a, s)
-    if kind != "random":
+    # Many turns round phi by up to an ulp (1e-9 rad at 1e6 turns): at a stretched or folded arm
+    # that moves the wrist point out of reach, or sqrt(1e-9) away in the elbow, as it should.
+    if kind != "random" and not (turns and abs(math.sin(q[1])) < 1e-3):
         assert len(s) > 0
         if not s.singular:
             assert wrapped(s.q, q).min() < 1e-6, (s, q)

@@ -95,8 +95,13 @@ def assert_verdict(chain, q, converged, error, target, task, tol, fk=None):
     else:
         F = fk(q) if fk is not None else chain._fk_kdl(q)
     truth = reach_error(F, target, task)
-    assert abs(error - truth) <= 1e-9 * (1 + truth), (error, truth)
-    if abs(truth - tol) > 1e-12 * (1 + tol):  # no verdict within the rounding of FK
+    rounding = 1e-9 * (1 + truth)
+    if task == "xyphi":
+        # The planar angle atan2(R10, R00) is only as precise as the tool x axis' projection on the
+        # plane is long: two FKs agreeing to 1e-16 give angles 1e-16 / projection apart.
+        rounding += 1e-14 / max(math.hypot(F[0, 0], F[1, 0]), 1e-300)
+    assert abs(error - truth) <= rounding, (error, truth)
+    if abs(truth - tol) > rounding:  # no verdict within the rounding of FK
         assert converged == (truth < tol), (converged, truth, tol)
 
 

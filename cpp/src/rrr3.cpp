@@ -76,7 +76,7 @@ Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
   const int leg = ik(pose, mode, alpha.data());
   if (leg >= 0) {
     const double r = (platform_joint(pose, leg) - o_[leg]).norm();
-    throw LegUnreachable(leg, "leg " + std::to_string(leg) + " cannot reach: |O_" + std::to_string(leg) + "B_" +
+    throw LegUnreachable(leg, "pose: leg " + std::to_string(leg) + " cannot reach: |O_" + std::to_string(leg) + "B_" +
                                   std::to_string(leg) + "| = " + number(r) + " m is outside [" +
                                   number(std::abs(l1_ - l2_)) + ", " + number(l1_ + l2_) + "]");
   }
