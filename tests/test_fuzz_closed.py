@@ -475,3 +475,20 @@ def test_planar_3r_geometric_folded_elbow_with_a_shorter_first_link():
     s = rk.closed.planar_3r((p[0], p[1], math.atan2(R[1, 0], R[0, 0])), *a, method="geometric")
     assert s.postures == ["elbow folded"] and s.singular
     assert np.linalg.norm(fk_planar(a, s.q[0])[0] - p) < 1e-15
+
+
+@pytest.mark.parametrize("method", ["algebraic", "geometric"])
+def test_nearly_folded_equal_links_reach_a_point_near_the_first_joint(method):
+    """a1 = a2 and the tip (or wrist point) 4e-8 from the first joint: the elbow cosine -1 + 8e-16,
+    rounded and clamped to -1, folded the arm onto the joint, 4e-8 off; the verification rejected it
+    and a reachable point came back with no solution."""
+    s = rk.closed.planar_2r((0.0, 4e-8), 1.0, 1.0)
+    assert len(s) == 1 and s.singular
+    assert np.linalg.norm(fk_planar((1.0, 1.0), s.q[0])[0] - (0.0, 4e-8)) < 1e-15
+    s = rk.closed.planar_3r((0.5, 4e-8, 0.0), 1.0, 1.0, 0.5, method=method)
+    assert len(s) == 1 and s.singular
+    assert np.linalg.norm(fk_planar((1.0, 1.0, 0.5), s.q[0])[0] - (0.5, 4e-8)) < 1e-15
+    p = np.array([0.0, 0.0, 3.97364299e-08])  # on the shoulder axis, too
+    s = rk.closed.anthropomorphic(p, 1.0, 1.0)
+    assert len(s) == 1 and s.singular
+    assert np.linalg.norm(fk_anthropomorphic(1.0, 1.0, 0.0, s.q[0]) - p) < 1e-15

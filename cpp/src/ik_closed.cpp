@@ -100,11 +100,21 @@ const char* arm_label(int shoulder, int elbow, int wrist) {
   return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
 }
 
-// Elbow cosine: returns false when out of reach, clamps and flags the singular case otherwise.
-bool elbow_cosine(double& c, bool& singular) {
-  if (!std::isfinite(c) || std::abs(c) > 1.0 + kCosEps) return false;
-  singular = std::abs(c) >= 1.0 - kCosEps;
-  if (singular) c = c > 0 ? 1.0 : -1.0;
+// The elbow of a 2R with links a1, a2 whose tip is w from the first joint: c = cos, s = |sin| of
+// its angle, from the factored forms
+//   1 - c = ((a1 + a2)^2 - w^2) / (2 a1 a2),   1 + c = (w^2 - (a1 - a2)^2) / (2 a1 a2),
+// which do not cancel near the stretched or folded elbow: c from the squares is off by ~1e-16, and
+// sqrt(1 - c^2) then by ~1e-8 (a1 = a2, the tip 4e-8 from the first joint came out on it). Returns
+// false when out of reach by more than kCosEps; `singular` within kCosEps of |c| = 1 (one
+// solution), where a pose a hair out of reach is clamped onto the stretched or folded arm.
+bool elbow_angle(double a1, double a2, double w, double& c, double& s, bool& singular) {
+  const double d = std::abs(a1 - a2);
+  const double omc = (a1 + a2 - w) * (a1 + a2 + w) / (2.0 * a1 * a2);
+  const double opc = (w - d) * (w + d) / (2.0 * a1 * a2);
+  if (!(omc >= -kCosEps && opc >= -kCosEps)) return false;  // also NaN, and inf from a huge w
+  singular = omc <= kCosEps || opc <= kCosEps;
+  c = omc < opc ? 1.0 - std::max(0.0, omc) : std::max(0.0, opc) - 1.0;
+  s = std::sqrt(std::max(0.0, omc) * std::max(0.0, opc));
   return true;
 }
 
@@ -118,12 +128,12 @@ int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], c
   // for huge arms nor underflow for tiny ones.
   const double unit = std::max(a1, a2);
   a1 /= unit, a2 /= unit, x /= unit, y /= unit;
-  double c2 = (x * x + y * y - a1 * a1 - a2 * a2) / (2.0 * a1 * a2);
+  double c2, sin2;
   singular = false;
-  if (!elbow_cosine(c2, singular)) return 0;
+  if (!elbow_angle(a1, a2, std::hypot(x, y), c2, sin2, singular)) return 0;
   const int count = singular ? 1 : 2;
   for (int k = 0; k < count; ++k) {
-    const double s2 = singular ? 0.0 : (k == 0 ? 1.0 : -1.0) * std::sqrt(1.0 - c2 * c2);
+    const double s2 = k == 0 ? sin2 : -sin2;
     const double k1 = a1 + a2 * c2, k2 = a2 * s2;
     // s1, c1 share the positive denominator x^2 + y^2: atan2 does not need it.
     th[k][0] = std::atan2(k1 * y - k2 * x, k1 * x + k2 * y);
@@ -265,22 +275,22 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
   // in units of the longer link, as planar_2r_solve.
   const double unit = std::max(a1, a2), b1 = a1 / unit, b2 = a2 / unit;
   const double ux = wx / unit, uy = wy / unit, w2 = ux * ux + uy * uy, w = std::sqrt(w2);
-  double c2 = (w2 - b1 * b1 - b2 * b2) / (2.0 * b1 * b2);
+  double c2, s2;
   bool elbow_singular = false;
-  if (!elbow_cosine(c2, elbow_singular)) return out;
+  if (!elbow_angle(b1, b2, w, c2, s2, elbow_singular)) return out;
   const double alpha = std::atan2(uy, ux);
   double beta = 0.0;
   if (w > 1e-12 && elbow_singular) {
-    // W on the line of link 1: beta is 0 or pi. acos of the rounded cosine near -+1 would be off
-    // by up to ~1e-6 (acos(1 - e) ~ sqrt(2 e)).
-    beta = b1 + b2 * c2 < 0 ? kPi : 0.0;
+    // W (nearly) on the line of link 1: acos of the rounded cosine near -+1 would be off by up to
+    // ~1e-6 (acos(1 - e) ~ sqrt(2 e)); the same angle from the elbow's accurate sine instead.
+    beta = std::atan2(b2 * s2, b1 + b2 * c2);
   } else if (w > 1e-12) {
     const double cb = (w2 + b1 * b1 - b2 * b2) / (2.0 * b1 * w);
     beta = std::acos(std::min(1.0, std::max(-1.0, cb)));
   }
   // W on the first axis (a1 = a2): theta1 is free, 0 is returned.
   out.singular = elbow_singular || w <= 1e-12;
-  const double t2 = std::acos(c2);
+  const double t2 = std::atan2(s2, c2);  // not acos: exact near 0 and pi too
   for (int k = 0; k < (elbow_singular ? 1 : 2); ++k) {
     // Elbow down: theta2 in (0, pi), theta1 = alpha - beta; elbow up: theta2 < 0, alpha + beta.
     const double theta2 = k == 0 ? t2 : -t2;
