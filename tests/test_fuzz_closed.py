@@ -492,3 +492,13 @@ def test_nearly_folded_equal_links_reach_a_point_near_the_first_joint(method):
     s = rk.closed.anthropomorphic(p, 1.0, 1.0)
     assert len(s) == 1 and s.singular
     assert np.linalg.norm(fk_anthropomorphic(1.0, 1.0, 0.0, s.q[0]) - p) < 1e-15
+
+
+@pytest.mark.parametrize("q0", [41561584.0, 1e17, -1e300])
+def test_puma560_path_from_a_far_q0_reaches_its_target(q0):
+    """Shifted by whole turns towards q0 = 4.2e7 rad the angles carried 7e-9 rad of rounding, and at
+    1e17 (ulp 16 rad) nothing of the angle: ok was True for joints that missed the target."""
+    T = np.array([[-1.0, 0.0, 0.0, -0.54838059], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    q, ok = rk.closed.puma560_path(T[None], np.full(6, q0), limits=None)
+    assert ok[0] and wrist_reaches(PUMA, T)(q[0])
+    assert np.all(np.abs(q[0]) <= 2.0**20) and np.all(np.abs(q[0]) > 2.0**20 - 2 * math.pi)  # as near q0 as allowed

@@ -349,18 +349,24 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
                              Progress* progress) {
+  // Angles are shifted at most to |v| <= 2^20 rad (~167,000 turns): there a double holds them to
+  // 1.2e-10 rad (and the double 2 pi's error, times the turns, stays below that), so the shifted
+  // joints still reach the target within the verified tolerance. Near 1e17 the rounding of
+  // v + 2 pi k would leave the angle, and the pose, arbitrary.
+  constexpr double kMaxShifted = 1048576.0;
   double prev[6];
   std::copy(q0, q0 + 6, prev);
   for (long k = 0; k < count; ++k) {
     if (k % 256 == 0) report(progress, k, count);
     ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
     // Each solution's angles shifted by the whole turns that bring them nearest the previous
-    // joints, as far as the limits allow (v itself is within them, so 0 turns always is).
+    // joints, as far as the limits and kMaxShifted allow (v itself is within both, so 0 turns
+    // always is).
     for (int r = 0; r < s.count(); ++r)
       for (int i = 0; i < 6; ++i) {
         double& v = s.q[r * 6 + i];
-        const double lo = limits.lower.size() ? limits.lower(i) : -INFINITY;
-        const double hi = limits.upper.size() ? limits.upper(i) : INFINITY;
+        const double lo = std::max(-kMaxShifted, limits.lower.size() ? limits.lower(i) : -INFINITY);
+        const double hi = std::min(kMaxShifted, limits.upper.size() ? limits.upper(i) : INFINITY);
         const double fewest = std::min(0.0, std::ceil((lo - v) / (2 * kPi)));
         const double most = std::max(0.0, std::floor((hi - v) / (2 * kPi)));
         const double turns = std::clamp(std::round((prev[i] - v) / (2 * kPi)), fewest, most);

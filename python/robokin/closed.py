@@ -161,6 +161,11 @@ def puma560_path(targets, q0, limits="default"):
     the previous joints (``q0`` for the first), angles shifted by ``2 pi`` towards the previous
     ones within the limits. The posture never jumps to another branch unless the path forces it.
 
+    Angles are shifted at most to ``|q| <= 2**20`` rad (about 167,000 turns), where a double still
+    holds them to 1.2e-10 rad, so that the joints reach each frame within the verified tolerance;
+    from a ``q0`` farther out the path starts as near it as that allows (at 1e9 rad a double keeps
+    only 1e-7 rad, at 1e17 nothing of the angle), and a joint turning beyond it steps back by 2 pi.
+
     Args:
         targets: (K, 4, 4) tool frames.
         q0: (6,) joints before the first frame.

@@ -65,7 +65,8 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
 
 // Along a path of tool frames: for each, the spherical-wrist solution nearest to the previous
 // joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value within the
-// limits: no branch jumps. ok[k] false (row k = previous joints) where the frame has no solution.
+// limits and |q| <= 2^20 rad (where a double still holds an angle to 1.2e-10 rad): no branch jumps.
+// ok[k] false (row k = previous joints) where the frame has no solution.
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
                              Progress* progress = nullptr);
