@@ -77,6 +77,12 @@ def fk_wrist(g, q):
     return fk_dh(rows, q)
 
 
+def dist(u, v):
+    """Euclidean distance without overflow: np.linalg.norm squares the entries, and a miss of 1e160
+    (within the tolerance of a 1e170 arm) came out inf."""
+    return math.hypot(*(np.asarray(u, dtype=float) - np.asarray(v, dtype=float)))
+
+
 def check_solutions(s, dof, limits, reaches):
     """IKSolutions invariants, limits and the forward model of every row; returns s."""
     assert isinstance(s, rk.closed.IKSolutions)
@@ -144,7 +150,7 @@ def test_planar_3r_any_arguments(target, a, method, limits, q):
 
         def reaches(row):
             p, R = fk_planar(a, row)
-            return (np.linalg.norm(p - (x, y)) <= MARGIN * TOL_P * size
+            return (dist(p, (x, y)) <= MARGIN * TOL_P * size
                     and np.abs(R - [[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]]).max() <= MARGIN * TOL_R)
 
         check_solutions(s, 3, limits, reaches)
@@ -158,7 +164,7 @@ def test_anthropomorphic_any_arguments(target, a2, a3, d1, limits, q):
     if s is not None:
         p = np.asarray(target, dtype=float)
         size = abs(d1) + a2 + abs(a3)
-        check_solutions(s, 3, limits, lambda row: np.linalg.norm(fk_anthropomorphic(a2, a3, d1, row) - p) <= MARGIN * TOL_P * size)
+        check_solutions(s, 3, limits, lambda row: dist(fk_anthropomorphic(a2, a3, d1, row), p) <= MARGIN * TOL_P * size)
         check_nearest(s, q)
 
 
@@ -188,7 +194,7 @@ def wrist_reaches(g, T):
 
     def reaches(row):
         F = fk_wrist(g, row)
-        return (np.linalg.norm(F[:3, 3] - T[:3, 3]) <= MARGIN * TOL_P * size
+        return (dist(F[:3, 3], T[:3, 3]) <= MARGIN * TOL_P * size
                 and np.abs(F[:3, :3] - T[:3, :3]).max() <= MARGIN * TOL_R)
 
     return reaches
