@@ -112,6 +112,10 @@ class RRR3 {
   double distance(const Eigen::Matrix3d& A) const;
 
  private:
+  // fk's loop equations at pose x for the elbows A: f_i = (|A_i B_i|^2 - l2^2) / (2 l2) and their
+  // Jacobian in (x, y, phi). Returns max_i | |A_i B_i| - l2 |.
+  double loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::Vector3d& f, Eigen::Matrix3d& J) const;
+
   double rb_, re_, l1_, l2_;
   std::array<Eigen::Vector2d, 3> o_;  // base joints O_i
   std::array<Eigen::Vector2d, 3> b_;  // platform joints in the effector frame, R_e u(t_i)
