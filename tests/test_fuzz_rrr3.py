@@ -358,7 +358,9 @@ def check_fk(robot, alpha, res, tol):
 
 def check_fk_all(robot, alpha, poses):
     """Every pose fk_all returns closes the loops to 1e-10 m (1e-10 of the size for a robot larger
-    than 1 m: its documented bound), sorted by phi."""
+    than 1 m: its documented bound), sorted by phi; at most 6, for any robot: a double root is given
+    once, and where the assembly modes form a continuum (an alpha where the elbows' triangle is congruent
+    to the platform's, e.g. equal alpha_i with base_radius == platform_radius) only the isolated ones."""
     assert poses.ndim == 2 and poses.shape[1] == 3 and poses.shape[0] <= 6
     assert_finite(poses)
     assert np.all(np.diff(poses[:, 2]) >= 0) and np.all((poses[:, 2] >= -math.pi) & (poses[:, 2] < math.pi))

@@ -263,6 +263,56 @@ def test_fk_all_finds_six_modes_on_a_known_case():
     assert best >= 4
 
 
+def fk_gap(sols, pose):
+    """Distance of each row of sols to pose, phi wrapped."""
+    d = np.column_stack((sols[:, :2] - pose[:2], np.angle(np.exp(1j * (sols[:, 2] - pose[2])))))
+    return np.max(np.abs(d), axis=1)
+
+
+def test_fk_all_gives_a_double_root_once():
+    # Fuzz repro: 8 poses, 4 of them copies of the pose (0, 0, 0) (B_i = O_i, a double root with
+    # det A = 0: legs 1 and 2 give the same row of A), each where Newton stopped within some 1e-7 of it.
+    robot = rk.RRR3(0.1, 0.1, 0.1, 0.1)
+    alpha = np.array([1.0, 0.0, 0.0])
+    sols = robot.fk_all(alpha)
+    assert len(sols) == 5, sols  # F's six roots: the double one and four simple ones
+    assert fk_gap(sols, np.zeros(3)).min() < 1e-6
+    assert fk_gap(sols, np.array([0.1 * (1 + math.cos(1)), 0.1 * math.sin(1), 0.0])).min() < 1e-12
+    for sol in sols:
+        assert np.max(closure(robot, alpha, sol)) < 1e-15
+    # Two distinct modes 2.3e-5 rad apart across a parallel singularity stay two; the copy of one
+    # of them that Newton left closing the loops only to 5e-11 m is dropped (7 poses before).
+    alpha = np.array([2.079234930507397, -2.8658642621553416, 2.1860714805007526])
+    sols = robot.fk_all(alpha)
+    assert len(sols) == 6, sols
+    for pose in ([-0.03006711, -0.02438518, -0.67277114], [-0.03006573, -0.02438528, -0.672748]):
+        assert np.sum(fk_gap(sols, np.array(pose)) < 1e-6) == 1, (pose, sols)
+
+
+def test_fk_all_leaves_out_a_continuum():
+    # Elbows on a triangle congruent to the platform's: the platform turns its parallel legs on a
+    # circle (phi fixed, |E - centre| = l2), which is no assembly mode of its own; only the isolated
+    # ones are returned. With base_radius == platform_radius: any alpha_0 = alpha_1 = alpha_2, the
+    # isolated modes at E = l1 u(alpha), phi = +-60 deg.
+    robot = rk.RRR3(0.1, 0.1, 0.1, 0.1)
+    for a in (0.0, 1.0, -2.5, math.pi):
+        alpha = np.full(3, a)
+        sols = robot.fk_all(alpha)
+        e = 0.1 * u(a)
+        np.testing.assert_allclose(sols, [[*e, -math.pi / 3], [*e, math.pi / 3]], rtol=0, atol=1e-12)
+    # The seed's robot: elbows A_i = R_e R(theta) u(t_i), |R_b - R_e e^(i theta)| = l1, E on the circle |E| = l2.
+    robot = rk.RRR3()
+    theta = math.acos((0.13**2 + 0.07**2 - 0.12**2) / (2 * 0.13 * 0.07))
+    for th in (theta, -theta):
+        d = 0.07 * U @ rot(th).T - 0.13 * U
+        alpha = np.arctan2(d[:, 1], d[:, 0])
+        assert np.max(closure(robot, alpha, np.array([0.12, 0.0, th]))) < 1e-15  # a pose of the continuum
+        sols = robot.fk_all(alpha)
+        assert len(sols) == 2 and np.all(np.abs(sols[:, :2]) < 1e-12), sols  # the isolated modes, E = 0
+        for sol in sols:
+            assert np.max(closure(robot, alpha, sol)) < 1e-15
+
+
 def test_fk_newton_from_a_guess(robot, rng):
     for pose in random_poses(robot, rng, 10):
         alpha = robot.ik(pose)

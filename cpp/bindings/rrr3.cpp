@@ -362,7 +362,12 @@ void bind_rrr3(py::module_& m) {
            py::arg("tol") = 1e-12, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
       .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = 50, py::arg("tol") = 1e-12,
            "One assembly mode by Newton from a guess pose.")
-      .def("fk_all", &fk_all, py::arg("alpha"), "(k, 3) every assembly mode, k <= 6, sorted by phi.")
+      .def("fk_all", &fk_all, py::arg("alpha"),
+           "(k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel\n"
+           "singularity too; modes closer than the loops can tell in floating point, some 1e-7 of the\n"
+           "size, as one). Where the elbows form a triangle congruent to the platform's (e.g. equal\n"
+           "alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi\n"
+           "fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.")
       .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
       .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),

@@ -124,6 +124,20 @@ RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, cons
   return res;
 }
 
+double RRR3::loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::Vector3d& f, Eigen::Matrix3d& J) const {
+  double err = 0;
+  const double c = std::cos(x(2)), s = std::sin(x(2));
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d rb(c * b_[i].x() - s * b_[i].y(), s * b_[i].x() + c * b_[i].y());
+    const Eigen::Vector2d ab = x.head<2>() + rb - A.row(i).transpose();
+    err = std::max(err, std::abs(ab.norm() - l2_));
+    // (|AB|^2 - l2^2) / (2 l2): a length error, well scaled near the solution.
+    f(i) = (ab.squaredNorm() - l2_ * l2_) / (2 * l2_);
+    J.row(i) << ab.x() / l2_, ab.y() / l2_, (ab.y() * rb.x() - ab.x() * rb.y()) / l2_;
+  }
+  return err;
+}
+
 RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const {
   const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
   RRR3Fk res;
@@ -131,17 +145,7 @@ RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, d
   for (int it = 0;; ++it) {
     Eigen::Vector3d f;
     Eigen::Matrix3d J;
-    double err = 0;
-    const double c = std::cos(x(2)), s = std::sin(x(2));
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector2d rb(c * b_[i].x() - s * b_[i].y(), s * b_[i].x() + c * b_[i].y());
-      const Eigen::Vector2d ab = x.head<2>() + rb - A.row(i).transpose();
-      const double len = ab.norm();
-      err = std::max(err, std::abs(len - l2_));
-      // (|AB|^2 - l2^2) / (2 l2): a length error, well scaled near the solution.
-      f(i) = (ab.squaredNorm() - l2_ * l2_) / (2 * l2_);
-      J.row(i) << ab.x() / l2_, ab.y() / l2_, (ab.y() * rb.x() - ab.x() * rb.y()) / l2_;
-    }
+    const double err = loops(A, x, f, J);
     res.iterations = it;
     res.error = err;
     if (!std::isfinite(err)) break;

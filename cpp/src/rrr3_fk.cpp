@@ -14,12 +14,15 @@
 // by Newton on the three loop equations from E = N / D and, where D is nearly 0 (two assembly
 // modes at nearly the same phi, N / D = 0 / 0), from both points where the line M E = r cuts
 // leg 0's circle; a pose is kept only if it closes the loops to 1e-10 m (1e-10 of R_b + R_e + l1 + l2
-// for a robot larger than that).
+// for a robot larger than that), and only once: near a double root (det A = 0) Newton's end points
+// scatter along the singular direction, and copies are told from distinct modes by the loops
+// between them (same() below).
 #include "robokin/rrr3.hpp"
 #include "robokin/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace robokin {
 namespace {
@@ -266,20 +269,55 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   const double size = rb_ + re_ + l1_ + l2_;
   // 1e-10 m, relative for robots larger than 1 m (rounding alone reaches some 1e-16 of the size).
   const double close = 1e-10 * std::max(1.0, size);
+  const double eps = std::numeric_limits<double>::epsilon();
+  // Two poses (within 1e-3) are one assembly mode when the loops close between them as well as at
+  // the worse end, up to rounding: between two distinct modes d apart they open by ~ k d^2 / 4 (the
+  // equations are quadratic), while at a double root (det A = 0), where the loops close to 1e-13 m
+  // anywhere within some sqrt(1e-13 m / k) and Newton stops there, they stay closed. No fixed
+  // distance tells the two cases apart. "Between" is the midpoint moved onto the valley of
+  // near-solutions (it curves: a chord of 1e-5 leaves it by more than the error) by a Newton step
+  // without its least-determined direction (phi scaled by R_e, its lever).
+  auto same = [&](const Pose& p, double ep, const Pose& q, double eq) {
+    const double dphi = wrap_angle(q(2) - p(2));
+    if ((p.head<2>() - q.head<2>()).norm() > 1e-3 * size || std::abs(dphi) > 1e-3) return false;
+    Pose mid(0.5 * (p(0) + q(0)), 0.5 * (p(1) + q(1)), p(2) + 0.5 * dphi);
+    Eigen::Vector3d f;
+    Eigen::Matrix3d J;
+    loops(A, mid, f, J);
+    J.col(2) /= re_;
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 2; ++k) {
+      const double sv = svd.singularValues()(k);
+      if (sv > 0) step += svd.matrixV().col(k) * (svd.matrixU().col(k).dot(f) / sv);
+    }
+    step(2) /= re_;
+    mid -= step;
+    return loops(A, mid, f, J) <= std::max(ep, eq) + 2 * eps * size;
+  };
+  std::vector<double> error;  // closure error of each pose in out
   auto add = [&](const Pose& guess, double phi) {
     if (!guess.allFinite()) return;
-    const RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
+    RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
     if (!(polished.error < close)) return;
+    // Closed to rounding where Newton gets there and stays on the same root (at a double root it
+    // converges only linearly and may jump once at rounding level): two distinct modes close
+    // together then close much better than the loops between them, which same() needs to see.
+    const RRR3Fk finer = fk(alpha, polished.pose, 8, 4 * eps * size);
+    if (finer.error < polished.error && same(polished.pose, polished.error, finer.pose, finer.error)) polished = finer;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two
     // assembly modes may lie some 1e-5 rad on either side of the phi found.
     if (std::abs(wrap_angle(polished.pose(2) - phi)) > 1e-3) return;
     Pose q = polished.pose;
     q(2) = wrap_angle(q(2));
     if (q(2) >= M_PI) q(2) -= 2 * M_PI;
-    for (const Pose& o : out)
-      if ((o.head<2>() - q.head<2>()).norm() < 1e-8 * size && std::abs(wrap_angle(o(2) - q(2))) < 1e-8)
-        return;  // the same assembly mode (near a singularity Newton's end point is ill-conditioned)
+    for (std::size_t k = 0; k < out.size(); ++k)
+      if (same(out[k], error[k], q, polished.error)) {  // found again: keep the copy closing best
+        if (polished.error < error[k]) out[k] = q, error[k] = polished.error;
+        return;
+      }
     out.push_back(q);
+    error.push_back(polished.error);
   };
   for (double phi : roots) {
     Elimination::Detail d;

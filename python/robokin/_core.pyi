@@ -263,7 +263,12 @@ class RRR3:
         and ``error`` are those of the returned pose (phi wrapped to [-pi, pi])."""
     def fk_all(self, alpha: ArrayLike) -> NDArray:
         """(k, 3) every assembly mode, k <= 6, sorted by phi in [-pi, pi); each closes the loops to 1e-10 m
-        (1e-10 of ``base_radius + platform_radius + l1 + l2`` when that exceeds 1 m)."""
+        (1e-10 of ``base_radius + platform_radius + l1 + l2`` when that exceeds 1 m) and is given once, a
+        double root at a parallel singularity too; modes closer than the loops can tell apart in floating
+        point (some 1e-7 of the size) are given as one. Where the elbows form a triangle congruent to the
+        platform's (e.g. equal ``alpha_i`` when ``base_radius == platform_radius``), the platform also moves
+        on a continuum (phi fixed, E on a circle of radius l2, the legs parallel): those poses are not
+        returned, only the isolated modes."""
     def points(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Dict[str, NDArray]:
         """(3, 2) arrays ``"O"``, ``"A"``, ``"B"`` for drawing."""
     def jacobians(self, pose: ArrayLike, mode: Sequence[int] = (1, 1, 1)) -> Tuple[NDArray, NDArray]:

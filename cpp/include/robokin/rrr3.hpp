@@ -93,7 +93,12 @@ class RRR3 {
   // Largest | |A_i B_i| - l2 | of the actuated angles alpha at pose: how far pose is from closing the loops.
   double closure_error(const Eigen::Vector3d& alpha, const Pose& pose) const;
   // Every assembly mode of alpha (at most 6), sorted by phi in [-pi, pi). Each closes the loops
-  // to 1e-10 m (1e-10 of R_b + R_e + l1 + l2 when that exceeds 1 m). See rrr3_fk.cpp for the method.
+  // to 1e-10 m (1e-10 of R_b + R_e + l1 + l2 when that exceeds 1 m) and is given once, a double
+  // root (det A = 0) too; modes closer than the loops can tell in floating point (some 1e-7 of the
+  // size near a parallel singularity) are given as one. Where the elbows form a triangle congruent
+  // to the platform's, the platform also moves on a continuum (phi fixed, E on a circle of radius
+  // l2, the legs parallel; e.g. any equal alpha_i when R_b == R_e): those poses are not returned,
+  // only the isolated modes. See rrr3_fk.cpp for the method.
   std::vector<Pose> fk_all(const Eigen::Vector3d& alpha) const;
 
   // Elbows A_i for the actuated angles (a 3 x 2 matrix, one row per leg).
@@ -112,6 +117,10 @@ class RRR3 {
   double distance(const Eigen::Matrix3d& A) const;
 
  private:
+  // fk's loop equations at pose x for the elbows A: f_i = (|A_i B_i|^2 - l2^2) / (2 l2) and their
+  // Jacobian in (x, y, phi). Returns max_i | |A_i B_i| - l2 |.
+  double loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::Vector3d& f, Eigen::Matrix3d& J) const;
+
   double rb_, re_, l1_, l2_;
   std::array<Eigen::Vector2d, 3> o_;  // base joints O_i
   std::array<Eigen::Vector2d, 3> b_;  // platform joints in the effector frame, R_e u(t_i)
