@@ -6,29 +6,20 @@ import math
 
 import numpy as np
 
+from ._checks import real_array
+
 
 #: Most points a path may have (a typo such as ``step=1e-12`` must not allocate terabytes).
 MAX_POINTS = 10_000_000
 
 
 def _point(value, name: str) -> np.ndarray:
-    p = _float_array(value, name)
+    p = real_array(value, name)
     if p.ndim != 1 or p.shape[0] not in (2, 3):
         raise ValueError(f"{name}: expected a 2-D or 3-D point, got shape {p.shape}")
     if not np.all(np.isfinite(p)):
         raise ValueError(f"{name}: contains NaN or inf")
     return p
-
-
-def _float_array(value, name: str) -> np.ndarray:
-    """``value`` as a float array; complex numbers, strings, None and ragged lists are refused by name."""
-    try:
-        a = np.asarray(value)
-        if value is None or a.dtype.kind not in "biuf":  # no None, strings, complex or objects
-            raise TypeError(f"a {a.dtype} array")
-        return a.astype(float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name}: expected real numbers, got {value!r} ({exc})") from None
 
 
 def _count(n, name: str = "n") -> int:
@@ -40,7 +31,7 @@ def _count(n, name: str = "n") -> int:
 
 
 def _positive(value, name: str) -> float:
-    v = _float_array(value, name)
+    v = real_array(value, name)
     if v.ndim != 0:
         raise TypeError(f"{name}: expected a number, got shape {v.shape}")
     v = float(v)

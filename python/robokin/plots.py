@@ -7,7 +7,7 @@ from typing import Dict, Optional
 import numpy as np
 
 from . import robots
-from .paths import _float_array
+from ._checks import planar_points
 from ._core import Chain, TrackResult, joint_limit_cost
 
 
@@ -40,11 +40,7 @@ def _count(n, name: str) -> int:
 
 def _line_figure_arguments(points, tracks):
     """The path as a finite (K, 2) array and the tracks as a non-empty dict of K-row TrackResults."""
-    p = _float_array(points, "points")
-    if p.ndim != 2 or p.shape[0] < 1 or p.shape[1] != 2:
-        raise ValueError(f"points: expected a (K, 2) array of real numbers, K >= 1, got shape {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError("points: contains NaN or inf")
+    p = planar_points(points, "points")
     if not isinstance(tracks, dict) or not tracks:
         raise TypeError("tracks: expected a non-empty dict label -> TrackResult")
     for label, tr in tracks.items():

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import rrr3_design
-from .paths import _float_array
+from ._checks import planar_points
 
 # Workspace cell codes -> colours: unreachable, regular, parallel singular, serial singular.
 CELL_COLOURS = np.array([[1.0, 1.0, 1.0], [0.68, 0.82, 0.93], [0.85, 0.1, 0.1], [0.95, 0.6, 0.1]])
@@ -24,14 +24,7 @@ def _axes(ax):
 
 def _path(path):
     """None, or the path as a finite (K, 2) array."""
-    if path is None:
-        return None
-    p = _float_array(path, "path")
-    if p.ndim != 2 or p.shape[1] != 2:
-        raise ValueError(f"path: expected a (K, 2) array of real numbers, got shape {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError("path: contains NaN or inf")
-    return p
+    return None if path is None else planar_points(path, "path")
 
 
 def plot_robot(robot, pose, mode=(1, 1, 1), ax=None, path=None):
