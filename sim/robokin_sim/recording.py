@@ -36,7 +36,6 @@ class Recorder:
         self._count = 0
         self._shape = None
         self._out = AtomicPath(path)
-        self._tmp = self._out.tmp
         # GIF frames are kept as compressed palette images (a long run stays small in memory);
         # MP4 frames stream straight to ffmpeg.
         self._gif: List[bytes] = []
@@ -77,7 +76,7 @@ class Recorder:
                 import imageio.v2 as imageio
 
                 self._writer = imageio.get_writer(
-                    self._tmp, format="FFMPEG", mode="I", fps=self.fps, codec="libx264",
+                    self._out.tmp, format="FFMPEG", mode="I", fps=self.fps, codec="libx264",
                     quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
                 )
             self._writer.append_data(np.asarray(image))
@@ -125,7 +124,7 @@ class Recorder:
             frames.append(image)
         duration = int(round(1000.0 * self.every / self.fps))
         frames[0].save(
-            self._tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
+            self._out.tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
             loop=0, optimize=False, disposal=1, transparency=_TRANSPARENT,
         )
 
