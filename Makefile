@@ -2,6 +2,8 @@
 PYTHON ?= python3
 VENV   := .venv
 VPY    := $(VENV)/bin/python
+# The Debian packages robokin needs (compiler, Python's venv and headers, Eigen, KDL), when missing.
+DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
@@ -10,7 +12,7 @@ setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
 %/.base:
-	scripts/install-system-deps.sh
+	$(DEPS)
 	$(PYTHON) -m venv $*
 	$*/bin/python -m pip install -q --upgrade pip
 	$*/bin/python -m pip install -q "scikit-build-core>=0.10" "pybind11>=2.12" cmake ninja
@@ -18,7 +20,7 @@ setup: $(VENV)/.installed
 
 # The system packages are checked again when their list changes (a venv made before keeps working).
 $(VENV)/.installed: $(VENV)/.base $(SOURCES) scripts/install-system-deps.sh
-	scripts/install-system-deps.sh
+	$(DEPS)
 	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test]"
 	touch $@
 
@@ -41,7 +43,7 @@ fuzz: setup
 # Python's own allocations are not leak-checked.
 ASAN_VENV := .venv-asan
 $(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES) scripts/install-system-deps.sh
-	scripts/install-system-deps.sh
+	$(DEPS)
 	$(ASAN_VENV)/bin/python -m pip install -q --no-build-isolation \
 	  -Cbuild-dir=build/asan -Ccmake.define.ROBOKIN_SANITIZE=ON -Ccmake.build-type=RelWithDebInfo ".[sim,plot,test]"
 	touch $@
@@ -52,7 +54,7 @@ test-asan: $(ASAN_VENV)/.installed
 	HYPOTHESIS_PROFILE=asan $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
 
 bench: setup
-	scripts/install-system-deps.sh python3-pykdl
+	$(DEPS) python3-pykdl
 	$(VPY) -m pip install -q pin
 	$(VPY) benchmarks/run_all.py
 

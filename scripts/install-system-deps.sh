@@ -1,15 +1,69 @@
 #!/usr/bin/env bash
-# Installs the Debian packages robokin builds against, only those missing.
-# Usage: scripts/install-system-deps.sh [extra-package ...]
+# Installs the Debian packages that building and testing robokin needs, only those missing.
+#
+#   PYTHON=python3 scripts/install-system-deps.sh [extra-package ...]
+#
+# What a bare Debian lacks is found by trying, not by package name alone, so that a machine whose
+# Python or compiler does not come from Debian (pyenv, conda, a CXX of its own) installs nothing:
+#   - the C++ libraries: libeigen3-dev, liborocos-kdl-dev, libkdl-parser-dev, liburdfdom-dev;
+#   - a C++17 compiler ($CXX, c++ or g++): g++;
+#   - $PYTHON itself (python3), its venv module with ensurepip (python3-venv) and its headers,
+#     Python.h (python3-dev);
+#   - the extra packages named on the command line.
+# It installs with apt-get (one `apt-get update` first), through sudo when not root. When it cannot
+# (no apt-get, or neither root nor sudo) it prints one line naming the packages and exits 1.
 set -euo pipefail
-packages=(libeigen3-dev liborocos-kdl-dev libkdl-parser-dev liburdfdom-dev "$@")
+python=${PYTHON:-python3}
 missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
+
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+need() { installed "$1" || missing+=("$1"); }
+
+for p in libeigen3-dev liborocos-kdl-dev libkdl-parser-dev liburdfdom-dev "$@"; do need "$p"; done
+
+has_compiler() { command -v "${CXX:-c++}" >/dev/null 2>&1 || command -v g++ >/dev/null 2>&1; }
+has_python() { command -v "$python" >/dev/null 2>&1; }
+has_venv() { "$python" -c 'import ensurepip, venv' >/dev/null 2>&1; }
+has_headers() {
+  "$python" -c 'import os, sys, sysconfig
+sys.exit(not os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h")))' >/dev/null 2>&1
+}
+check_python() {
+  has_python || return 1
+  has_venv && has_headers
+}
+
+has_compiler || need g++
+if ! has_python; then
+  need python3; need python3-venv; need python3-dev
+else
+  has_venv || need python3-venv
+  has_headers || need python3-dev
+fi
+
 [ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "robokin needs these Debian packages: ${missing[*]}. Install them as root: apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "robokin needs these Debian packages (or your system's equivalents): ${missing[*]}; apt-get was not found to install them" >&2
+  exit 1
+fi
+
 echo "Installing Debian packages: ${missing[*]}"
-if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+# Debian's packages serve Debian's python3: another interpreter that still lacks venv or headers
+# needs them from wherever it came from.
+if ! check_python; then
+  echo "robokin needs $python with its venv module and headers (Python.h); $(command -v "$python" || echo "$python") still lacks them after the install: use Debian's python3 (make PYTHON=/usr/bin/python3) or install them for that interpreter" >&2
+  exit 1
+fi
