@@ -57,9 +57,14 @@ if ! command -v apt-get >/dev/null 2>&1; then
 fi
 
 echo "Installing Debian packages: ${missing[*]}"
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
 export DEBIAN_FRONTEND=noninteractive
-"${sudo[@]}" apt-get update -qq
-"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if ! { "${sudo[@]}" apt-get update -qq && "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+  tail -20 "$log" >&2
+  echo "robokin could not install the Debian packages ${missing[*]} (apt-get's last lines above)" >&2
+  exit 1
+fi
 
 # Debian's packages serve Debian's python3: another interpreter that still lacks venv or headers
 # needs them from wherever it came from.
