@@ -28,9 +28,12 @@ has_headers() {
   "$python" -c 'import os, sys, sysconfig
 sys.exit(not os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h")))' >/dev/null 2>&1
 }
-check_python() {
-  has_python || return 1
-  has_venv && has_headers
+# Debian's packages serve Debian's python3: another interpreter that lacks venv or headers needs
+# them from wherever it came from.
+python_or_stop() {
+  has_python && has_venv && has_headers && return 0
+  echo "robokin needs $python with its venv module and headers (Python.h); $(command -v "$python" || echo "$python") lacks them: use Debian's python3 (make PYTHON=/usr/bin/python3) or install them for that interpreter" >&2
+  exit 1
 }
 
 has_compiler || need g++
@@ -41,7 +44,7 @@ else
   has_headers || need python3-dev
 fi
 
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then python_or_stop; exit 0; fi
 
 if [ "$(id -u)" -eq 0 ]; then
   sudo=()
@@ -65,10 +68,4 @@ if ! { "${sudo[@]}" apt-get update -qq && "${sudo[@]}" apt-get install -y -qq --
   echo "robokin could not install the Debian packages ${missing[*]} (apt-get's last lines above)" >&2
   exit 1
 fi
-
-# Debian's packages serve Debian's python3: another interpreter that still lacks venv or headers
-# needs them from wherever it came from.
-if ! check_python; then
-  echo "robokin needs $python with its venv module and headers (Python.h); $(command -v "$python" || echo "$python") still lacks them after the install: use Debian's python3 (make PYTHON=/usr/bin/python3) or install them for that interpreter" >&2
-  exit 1
-fi
+python_or_stop
