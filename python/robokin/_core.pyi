@@ -5,6 +5,7 @@ Arrays are float64; bad input raises ValueError naming the argument.
 
 import os
 from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
+from typing import Mapping
 
 import numpy as np
 import numpy.typing as npt
@@ -370,17 +371,20 @@ class IKBatchResult:
     def error_r(self) -> NDArray: ...
     def __len__(self) -> int: ...
 
-# damping None: the C++ default_damping, lm 1e-1 (initial mu relative to max diag(J^T J)),
-# nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by gn. restarts <= 1_000_000
-# (timeout bounds the time); seed in [0, 2**64).
+# The defaults (= ...) are the core's IkOptions{}, readable as IK_DEFAULTS. restarts and timeout
+# None: restart until success within IK_DEFAULTS["timeout"] seconds; an explicit restarts count
+# without a timeout has no time budget. damping None: the C++ default_damping, lm 1e-1 (initial mu
+# relative to max diag(J^T J)), nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by
+# gn. restarts <= 1_000_000; seed in [0, 2**64).
+IK_DEFAULTS: Mapping[str, Union[str, float, int]]
 def ik(
-    chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = "lm", task: str = "pose", tol_p: float = 1e-9,
-    tol_r: float = 1e-9, max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None,
+    chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
+    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
     timeout: Optional[float] = None, damping: Optional[float] = None,
 ) -> IKResult: ...
 def ik_batch(
-    chain: Chain, targets: ArrayLike, q0: ArrayLike, method: str = "lm", task: str = "pose", tol_p: float = 1e-9,
-    tol_r: float = 1e-9, max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None,
+    chain: Chain, targets: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
+    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
     timeout: Optional[float] = None, damping: Optional[float] = None, path: bool = False,
 ) -> IKBatchResult: ...
 class IKSolver:
@@ -391,9 +395,9 @@ class IKSolver:
     solver are serialised.
     """
     def __init__(
-        self, chain: Chain, method: str = "lm", task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9,
-        max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None, timeout: Optional[float] = None,
-        damping: Optional[float] = None,
+        self, chain: Chain, method: str = ..., task: str = ..., tol_p: float = ..., tol_r: float = ...,
+        max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
+        timeout: Optional[float] = None, damping: Optional[float] = None,
     ) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> IKResult: ...
     @property
