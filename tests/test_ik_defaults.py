@@ -4,6 +4,10 @@ checked here by KDL's own FK (chain._fk_kdl), not by the solver's word."""
 
 import inspect
 import math
+import os
+import subprocess
+import sys
+import textwrap
 import time
 
 import numpy as np
@@ -100,3 +104,28 @@ def test_an_unreachable_target_costs_the_budget():
     b = rk.ik_batch(ur5, np.stack([far, far]), np.zeros(6))
     assert not b.success.any() and np.all(b.attempts > 1)
     assert time.perf_counter() - start >= rk.IK_DEFAULTS["timeout"]
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="needs Linux's sched_setaffinity")
+def test_the_budget_is_the_solving_threads_cpu_time():
+    """Four threads on one core, each solving an unreachable target with a 50 ms budget: each gets
+    its 50 ms of computing, so the four take >= 200 ms in all (a wall-clock budget would let all four
+    run out after ~50 ms, as a busy machine used to cut reachable targets short)."""
+    code = textwrap.dedent("""
+        import os, threading, time
+        import numpy as np, robokin as rk
+        os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
+        ur5 = rk.robots.ur5()
+        far = np.eye(4); far[:3, 3] = (5.0, 0, 0)
+        out = []
+        threads = [threading.Thread(target=lambda: out.append(rk.ik(ur5, far, np.zeros(6), timeout=0.05)))
+                   for _ in range(4)]
+        start = time.perf_counter()
+        for t in threads: t.start()
+        for t in threads: t.join()
+        print(time.perf_counter() - start, min(r.attempts for r in out), any(r.success for r in out))
+    """)
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0 and result.stderr == "", result.stderr
+    elapsed, attempts, success = result.stdout.split()
+    assert float(elapsed) >= 0.19 and int(attempts) > 1 and success == "False", result.stdout

@@ -372,8 +372,8 @@ class IKBatchResult:
     def __len__(self) -> int: ...
 
 # The defaults (= ...) are the core's IkOptions{}, readable as IK_DEFAULTS. restarts and timeout
-# None: restart until success within IK_DEFAULTS["timeout"] seconds; an explicit restarts count
-# without a timeout has no time budget. damping None: the C++ default_damping, lm 1e-1 (initial mu
+# None: restart until success within IK_DEFAULTS["timeout"] seconds (of the solving thread's CPU
+# time); an explicit restarts count without a timeout has no time budget. damping None: the C++ default_damping, lm 1e-1 (initial mu
 # relative to max diag(J^T J)), nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by
 # gn. restarts <= 1_000_000; seed in [0, 2**64).
 IK_DEFAULTS: Mapping[str, Union[str, float, int]]

@@ -29,7 +29,8 @@ options once; ``solver.solve(target, q0)`` then costs only the solve.
 Defaults (``IK_DEFAULTS``, read from the C++ core's ``IkOptions``, the one place they are written):
 ``lm``, tolerances 1e-9 m and 1e-9 rad, 100 iterations per attempt, and, with neither ``restarts``
 nor ``timeout`` given, restarts from random configurations within the limits until a solution is
-found or the time budget of ``IK_DEFAULTS["timeout"]`` = 5 ms runs out. A reachable target is then
+found or the time budget of ``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
+that a busy machine does not cut the search short) runs out. A reachable target is then
 solved (>= 99.9 % of random reachable targets of every catalogue arm in
 ``benchmarks/bench_ik_defaults.py``, most within tens of microseconds); an unreachable target costs
 the whole budget (5 ms per target, also per target of ``ik_batch``). An explicit ``restarts=k``
@@ -85,9 +86,11 @@ def ik(
             ``timeout`` is given (on an unreachable target they all run).
         seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
             None draws one. (With a time budget, how many restarts fit depends on the machine.)
-        timeout: Time budget in seconds for all the attempts (checked every few iterations).
-            None: ``IK_DEFAULTS["timeout"]`` (5 ms) when ``restarts`` is None, no budget when
-            ``restarts`` is an int. An unreachable target costs the whole budget.
+        timeout: Time budget in seconds for all the attempts (checked every few iterations),
+            counted in the solving thread's CPU time: a busy machine does not cut a search short
+            (the wall time is then longer). None: ``IK_DEFAULTS["timeout"]`` (5 ms) when
+            ``restarts`` is None, no budget when ``restarts`` is an int. An unreachable target
+            costs the whole budget.
         damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
             ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
             lambda (default 1e-9); unused by ``gn``. None selects the default.
