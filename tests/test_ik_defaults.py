@@ -87,6 +87,19 @@ def test_explicit_restarts_keep_their_meaning():
     assert not r.success and r.attempts == 4
 
 
+def test_a_path_does_not_restart_by_default():
+    """path=True warm-starts each target from the previous solution; a random restart could jump to
+    another branch, so the defaults do not restart there (restarts=k does)."""
+    puma = rk.robots.puma560()
+    far = np.eye(4)
+    far[:3, 3] = (5.0, 0, 0)
+    targets = np.stack([puma.fk(np.full(6, 0.3)), far, puma.fk(np.full(6, 0.31))])
+    r = rk.ik_batch(puma, targets, np.full(6, 0.29), path=True)
+    assert np.all(r.attempts == 1) and list(r.success) == [True, False, True]
+    r = rk.ik_batch(puma, targets, np.full(6, 0.29), path=True, restarts=2, max_iter=5)
+    assert r.attempts[1] == 3
+
+
 def test_an_unreachable_target_costs_the_budget():
     ur5 = rk.robots.ur5()
     far = np.eye(4)

@@ -143,7 +143,14 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
 BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
                         const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts,
                         py::handle seed, py::handle timeout, py::handle damping, bool path) {
-  const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  if (path && restarts.is_none()) {
+    // A path warm-starts each target from the previous solution: a random restart could land on
+    // another branch (a jump of the joints between neighbouring points), so by default it does not
+    // restart (restarts=k allows it).
+    o.restarts = 0;
+    if (timeout.is_none()) o.timeout = 0.0;
+  }
   const int n = chain.dof();
   const std::vector<Target> targets = many_targets(o.task, targets_obj, "targets", "N");
   const long count = static_cast<long>(targets.size());

@@ -131,7 +131,10 @@ def ik_batch(
             (``timeout`` applies to each target; ``damping`` None: the method's default).
         seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
         path: The targets are a path: each starts from the previous solution (warm start, no
-            branch jumps; sequential). Otherwise the targets are solved in parallel on every core.
+            branch jumps; sequential). With ``restarts`` None a path does not restart (a random
+            restart could jump to another branch): a target the warm start misses is reported
+            unsolved; ``restarts=k`` allows restarts. Otherwise the targets are solved in
+            parallel on every core.
 
     Returns:
         IKBatchResult with ``q`` (N, dof), ``success``, ``iterations``, ``attempts``, ``error_p``,
