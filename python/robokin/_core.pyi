@@ -44,7 +44,10 @@ class Chain:
     @staticmethod
     def from_urdf(path_or_string: Union[str, os.PathLike], base: str, tip: str) -> "Chain":
         """Builds the chain from link ``base`` to link ``tip`` of a URDF (a file path or the XML
-        itself) through kdl_parser; joint limits come from the file (continuous joints unlimited)."""
+        itself; urdfdom parses it, robokin builds the KDL tree); joint limits come from the file
+        (continuous joints unlimited). A bad file is a ValueError saying why (urdfdom's reason, two
+        parents, lower > upper, mimic / floating / planar joints in the chain, origins beyond 1e9 m,
+        ...); equal lower and upper limits load unlimited with a robokin.URDFWarning."""
     @property
     def dof(self) -> int: ...
     @property
