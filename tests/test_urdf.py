@@ -1,5 +1,6 @@
-"""Chains from URDF (kdl_parser): forward kinematics against hand-written transforms and against
-the DH catalogue; joint limits read from the file."""
+"""Chains from URDF (urdfdom parses, robokin builds the KDL tree as kdl_parser did): forward
+kinematics against hand-written transforms and against the DH catalogue; joint limits read from the
+file."""
 
 import math
 
@@ -134,7 +135,7 @@ def test_bad_urdf_input():
 
 
 def test_fast_path_equals_kdl_with_joint_origins(rng):
-    """kdl_parser gives joints a non-zero KDL origin (pose(q) = Frame(Rot(axis, q), origin)): the
+    """URDF joints get a non-zero KDL origin, as kdl_parser gave them (pose(q) = Frame(Rot(axis, q), origin)): the
     specialised evaluation path must agree with KDL's solvers on such chains too."""
     ur5 = rk.robots.ur5()
     for xml, base in ((SMALL, "base_link"), (urdf_from_dh("ur5", UR5_DH, *ur5.limits), "l0")):

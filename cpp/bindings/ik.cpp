@@ -86,6 +86,9 @@ bool may_be_long(const IkOptions& o) {
   return o.timeout > 1e-3 || (static_cast<long long>(o.restarts) + 1) * o.max_iter > 1700;
 }
 
+// The options of a call. Left out (None), `restarts` and `timeout` are IkOptions{}'s: restarts
+// until success within the default time budget. An explicit `restarts` keeps its contract from
+// before the defaults had a budget: that many restarts, no time budget unless `timeout` is given.
 IkOptions options_arg(const std::string& method, const std::string& task, double tol_p, double tol_r, int max_iter,
                       py::handle restarts, py::handle timeout, py::handle damping) {
   IkOptions o;
@@ -97,7 +100,10 @@ IkOptions options_arg(const std::string& method, const std::string& task, double
   o.tol_p = tol_p;
   o.tol_r = o.task == Task::Pose || o.task == Task::XYPhi ? tol_r : INFINITY;
   o.max_iter = max_iter;
-  o.restarts = int_arg(restarts, "restarts", 0, kMaxRestarts, " (use timeout to bound the time)");
+  if (!restarts.is_none()) {
+    o.restarts = int_arg(restarts, "restarts", 0, kMaxRestarts, " (use timeout to bound the time)");
+    o.timeout = 0.0;  // no budget unless one is given
+  }
   if (!timeout.is_none()) {
     const double t = number_arg(timeout, "timeout");
     if (!(t > 0) || !std::isfinite(t)) fail("timeout: must be None or a positive number of seconds");
@@ -137,7 +143,14 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
 BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
                         const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts,
                         py::handle seed, py::handle timeout, py::handle damping, bool path) {
-  const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+  if (path && restarts.is_none()) {
+    // A path warm-starts each target from the previous solution: a random restart could land on
+    // another branch (a jump of the joints between neighbouring points), so by default it does not
+    // restart (restarts=k allows it).
+    o.restarts = 0;
+    if (timeout.is_none()) o.timeout = 0.0;
+  }
   const int n = chain.dof();
   const std::vector<Target> targets = many_targets(o.task, targets_obj, "targets", "N");
   const long count = static_cast<long>(targets.size());
@@ -245,14 +258,27 @@ void bind_ik(py::module_& m) {
                       n, ok, n, worst_p, worst_r);
         return std::string(buf);
       });
-  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("method") = "lm",
-        py::arg("task") = "pose", py::arg("tol_p") = 1e-9, py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100,
-        py::arg("restarts") = 0, py::arg("seed") = py::none(), py::arg("timeout") = py::none(),
-        py::arg("damping") = py::none(), "Numerical IK. Use robokin.ik.");
-  m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::arg("method") = "lm",
-        py::arg("task") = "pose", py::arg("tol_p") = 1e-9, py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100,
-        py::arg("restarts") = 0, py::arg("seed") = py::none(), py::arg("timeout") = py::none(),
-        py::arg("damping") = py::none(), py::arg("path") = false, "Numerical IK of many targets. Use robokin.ik_batch.");
+  // Every default below is IkOptions{}'s (restarts and timeout: None selects it).
+  const IkOptions d;
+  const std::string method_d = ik_method_name(d.method), task_d = task_name(d.task);
+  py::dict defaults;
+  defaults["method"] = method_d;
+  defaults["task"] = task_d;
+  defaults["tol_p"] = d.tol_p;
+  defaults["tol_r"] = d.tol_r;
+  defaults["max_iter"] = d.max_iter;
+  defaults["restarts"] = d.restarts;
+  defaults["timeout"] = d.timeout;
+  m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
+  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("method") = method_d,
+        py::arg("task") = task_d, py::arg("tol_p") = d.tol_p, py::arg("tol_r") = d.tol_r,
+        py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(), py::arg("seed") = py::none(),
+        py::arg("timeout") = py::none(), py::arg("damping") = py::none(), "Numerical IK. Use robokin.ik.");
+  m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::arg("method") = method_d,
+        py::arg("task") = task_d, py::arg("tol_p") = d.tol_p, py::arg("tol_r") = d.tol_r,
+        py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(), py::arg("seed") = py::none(),
+        py::arg("timeout") = py::none(), py::arg("damping") = py::none(), py::arg("path") = false,
+        "Numerical IK of many targets. Use robokin.ik_batch.");
   m.def(
       "_hessian_times",
       [](const Chain& chain, py::handle q_obj, py::handle a_obj) {
@@ -276,17 +302,21 @@ void bind_ik(py::module_& m) {
              return std::make_unique<BoundSolver>(
                  chain, options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), seed);
            }),
-           py::arg("chain"), py::arg("method") = "lm", py::arg("task") = "pose", py::arg("tol_p") = 1e-9,
-           py::arg("tol_r") = 1e-9, py::arg("max_iter") = 100, py::arg("restarts") = 0, py::arg("seed") = py::none(),
-           py::arg("timeout") = py::none(), py::arg("damping") = py::none(), py::keep_alive<1, 2>())
+           py::arg("chain"), py::arg("method") = method_d, py::arg("task") = task_d, py::arg("tol_p") = d.tol_p,
+           py::arg("tol_r") = d.tol_r, py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(),
+           py::arg("seed") = py::none(), py::arg("timeout") = py::none(), py::arg("damping") = py::none(),
+           py::keep_alive<1, 2>())
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
       .def("__repr__", [](const BoundSolver& b) {
         char buf[200];
-        std::snprintf(buf, sizeof buf, "IKSolver(method='%s', task='%s', tol_p=%g, tol_r=%g, max_iter=%d, restarts=%d)",
+        char timeout[32] = "None";
+        if (b.options.timeout > 0) std::snprintf(timeout, sizeof timeout, "%g", b.options.timeout);
+        std::snprintf(buf, sizeof buf,
+                      "IKSolver(method='%s', task='%s', tol_p=%g, tol_r=%g, max_iter=%d, restarts=%d, timeout=%s)",
                       ik_method_name(b.options.method), task_name(b.options.task), b.options.tol_p, b.options.tol_r,
-                      b.options.max_iter, b.options.restarts);
+                      b.options.max_iter, b.options.restarts, timeout);
         return std::string(buf);
       });
   py::class_<KdlIkReference>(m, "_KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")

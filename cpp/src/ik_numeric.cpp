@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -25,11 +26,45 @@ double norm3(double x, double y, double z) {
   return std::isfinite(n) ? n : std::hypot(x, y, z);
 }
 
-double now_s() {
+double wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+double thread_cpu_s() {
+  timespec ts;
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0) return wall_s();
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 }  // namespace
+
+// The time budget (IkOptions::timeout) is the solving thread's CPU time: a thread descheduled on a
+// busy machine (other processes, more threads than cores) does not see its search cut short (on a
+// loaded 2-core machine a wall-clock budget of 5 ms ran out after 3 iterations now and then). The
+// thread's CPU clock costs a system call (~1 us), so it is read only once the wall clock, which a
+// thread's CPU time never exceeds, says the budget may be spent.
+class IkSolver::Budget {
+ public:
+  explicit Budget(double seconds) : seconds_(seconds) {
+    if (seconds_ > 0) {
+      cpu0_ = thread_cpu_s();
+      check_at_ = wall_s() + seconds_;
+    }
+  }
+  bool limited() const { return seconds_ > 0; }
+  bool spent() {
+    if (!(seconds_ > 0)) return false;
+    const double now = wall_s();
+    if (now < check_at_) return false;
+    const double left = seconds_ - (thread_cpu_s() - cpu0_);
+    if (!(left > 0)) return true;
+    check_at_ = now + left;
+    return false;
+  }
+
+ private:
+  double seconds_, cpu0_ = 0.0, check_at_ = 0.0;
+};
 
 IkMethod parse_ik_method(const std::string& name) {
   if (name == "lm") return IkMethod::LM;
@@ -281,7 +316,7 @@ void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
 // One attempt from q (within limits) for at most `budget` iterations; q is left at the best point.
 // LM and GN accept only decreasing steps; NR and Halley take every step (they may climb out of a
 // basin), so the lowest-cost point seen is kept in qb_ and restored when the attempt ends.
-bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, double deadline,
+bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, Budget& clock,
                        bool may_stall, Progress* progress) {
   double ep, er;
   double cost = evaluate(target, q, J_, e_, ep, er);
@@ -298,7 +333,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   }
   double window_cost = cost;
   for (int it = 0; it < budget; ++it) {
-    if (deadline > 0 && (it & 3) == 3 && now_s() > deadline) return give_up();
+    if ((it & 3) == 3 && clock.spent()) return give_up();
     if ((it & 255) == 255) report(progress, it, budget);
     if (may_stall && it > 0 && it % kStallWindow == 0) {
       if (!(cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
@@ -404,8 +439,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
 
 IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed, Progress* progress) {
   IkResult r;
-  const double start = opt_.timeout > 0 ? now_s() : 0.0;
-  const double deadline = opt_.timeout > 0 ? start + opt_.timeout : 0.0;
+  Budget clock(opt_.timeout);
   Vector q = Eigen::Map<const Vector>(q0, n_);
   for (int i = 0; i < n_; ++i)
     if (!fit(i, q(i))) q(i) = clamp(i, q(i));
@@ -414,13 +448,13 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
   std::mt19937_64 rng(seed);
   for (int k = 0; k <= opt_.restarts; ++k) {
     if (k > 0) {
-      if (deadline > 0 && now_s() > deadline) break;
+      if (clock.spent()) break;
       random_q(rng, q);
     }
     ++r.attempts;
     report(progress, k, opt_.restarts + 1);
     PartProgress this_attempt(progress, k, opt_.restarts + 1);
-    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, deadline, k < opt_.restarts,
+    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, clock, k < opt_.restarts,
                             progress ? &this_attempt : nullptr);
     double ep, er;
     errors(target, q.data(), ep, er);

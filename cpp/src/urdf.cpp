@@ -1,49 +1,251 @@
+// URDF -> KDL chain. urdfdom parses the document; the KDL tree is built here, without recursion:
+// kdl_parser's treeFromUrdfModel recurses once per link and overflows the stack (SIGSEGV) on
+// chains of about 10,000 joints, and it prints through console_bridge (ROS colour codes on stderr).
 #include "robokin/urdf.hpp"
 
+#include <console_bridge/console.h>
 #include <kdl/tree.hpp>
-#include <kdl_parser/kdl_parser.hpp>
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
+#include <unordered_set>
 #include <utility>
 
 namespace robokin {
+namespace {
 
-Chain chain_from_urdf(const std::string& xml, const std::string& base, const std::string& tip) {
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
-  if (!model) throw std::invalid_argument("path_or_string: not a valid URDF document");
-  if (!model->getLink(base)) throw std::invalid_argument("base: no link named '" + base + "' in the URDF");
-  if (!model->getLink(tip)) throw std::invalid_argument("tip: no link named '" + tip + "' in the URDF");
-  KDL::Tree tree;
-  if (!kdl_parser::treeFromUrdfModel(*model, tree))
-    throw std::invalid_argument("path_or_string: kdl_parser could not build a tree from the URDF");
+[[noreturn]] void bad(const std::string& message) { throw std::invalid_argument(message); }
+
+// console_bridge's output while urdfdom parses: kept for the error message or the warnings, never
+// printed. console_bridge's handler is global, so one parse at a time holds it.
+class Capture : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    std::string line = text;
+    while (!line.empty() && (line.back() == '\n' || line.back() == ' ')) line.pop_back();
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
+      errors.push_back(line);
+    else if (level == console_bridge::CONSOLE_BRIDGE_LOG_WARN)
+      warnings.push_back(line);
+  }
+  std::vector<std::string> errors, warnings;
+};
+
+std::mutex console_mutex;
+
+urdf::ModelInterfaceSharedPtr parse(const std::string& xml, Capture& capture) {
+  std::lock_guard<std::mutex> lock(console_mutex);
+  console_bridge::useOutputHandler(&capture);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    capture.errors.push_back(e.what());
+    model.reset();
+  }
+  console_bridge::restorePreviousOutputHandler();
+  return model;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& line : lines) s += (s.empty() ? "" : "; ") + line;
+  return s;
+}
+
+// The deepest nesting of elements in an XML text, scanned in one pass without recursion (comments,
+// CDATA, declarations and quoted attribute values skipped); stops once past `limit`.
+int xml_depth(const std::string& s, int limit) {
+  int depth = 0, worst = 0;
+  const size_t n = s.size();
+  size_t i = 0;
+  while ((i = s.find('<', i)) != std::string::npos) {
+    const char* end_mark = nullptr;
+    if (s.compare(i, 4, "<!--") == 0) end_mark = "-->";
+    else if (s.compare(i, 9, "<![CDATA[") == 0) end_mark = "]]>";
+    else if (i + 1 < n && (s[i + 1] == '?' || s[i + 1] == '!')) end_mark = ">";
+    if (end_mark) {
+      i = s.find(end_mark, i + 1);
+      if (i == std::string::npos) break;
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    char quote = 0;
+    for (; j < n; ++j) {
+      const char c = s[j];
+      if (quote) {
+        if (c == quote) quote = 0;
+      } else if (c == '"' || c == '\'') {
+        quote = c;
+      } else if (c == '>') {
+        break;
+      }
+    }
+    if (j >= n) break;
+    if (s[i + 1] == '/') {
+      --depth;
+    } else if (s[j - 1] != '/') {
+      worst = std::max(worst, ++depth);
+      if (worst > limit) return worst;
+    }
+    i = j + 1;
+  }
+  return worst;
+}
+
+const char* type_name(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string joint_label(const urdf::Joint& j) { return "joint '" + j.name + "'"; }
+
+KDL::Frame origin_of(const urdf::Joint& j) {
+  const urdf::Pose& p = j.parent_to_joint_origin_transform;
+  const double xyz[3] = {p.position.x, p.position.y, p.position.z};
+  const double q[4] = {p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w};
+  for (double v : xyz) {
+    if (!std::isfinite(v)) bad("path_or_string: " + joint_label(j) + " has a non-finite origin");
+    if (std::abs(v) > kMaxUrdfLength)
+      bad("path_or_string: " + joint_label(j) + " has an origin farther than 1e9 m (" + number(v) + ")");
+  }
+  for (double v : q)
+    if (!std::isfinite(v)) bad("path_or_string: " + joint_label(j) + " has a non-finite origin rotation");
+  return KDL::Frame(KDL::Rotation::Quaternion(q[0], q[1], q[2], q[3]), KDL::Vector(xyz[0], xyz[1], xyz[2]));
+}
+
+// The KDL joint and segment of a URDF joint, as kdl_parser builds them: the joint's origin and axis
+// are expressed in the parent link's frame, the segment's tip is the joint frame. Floating and
+// planar joints become fixed in the tree (KDL has no such joints); the chain refuses them.
+KDL::Segment segment_of(const urdf::Joint& j) {
+  const KDL::Frame F = origin_of(j);
+  switch (j.type) {
+    case urdf::Joint::REVOLUTE:
+    case urdf::Joint::CONTINUOUS:
+    case urdf::Joint::PRISMATIC: {
+      const KDL::Vector axis(j.axis.x, j.axis.y, j.axis.z);
+      const double norm = axis.Norm();
+      if (!std::isfinite(norm)) bad("path_or_string: " + joint_label(j) + " has a non-finite axis");
+      // urdfdom accepts <axis xyz="0 0 0">; KDL turns an axis shorter than its epsilon (1e-6) into
+      // NaN poses.
+      if (!(norm > 1e-6)) bad("path_or_string: " + joint_label(j) + " has a zero axis (norm <= 1e-6)");
+      const auto kind = j.type == urdf::Joint::PRISMATIC ? KDL::Joint::TransAxis : KDL::Joint::RotAxis;
+      return KDL::Segment(j.child_link_name, KDL::Joint(j.name, F.p, F.M * axis, kind), F);
+    }
+    default:
+      return KDL::Segment(j.child_link_name, KDL::Joint(j.name, KDL::Joint::Fixed), F);
+  }
+}
+
+// Every joint of the file: one parent per link (urdfdom keeps the last joint naming a child and
+// drops the others without a word).
+void check_tree(const urdf::ModelInterface& model) {
+  for (const auto& [name, joint] : model.joints_) {
+    if (!joint) continue;
+    const urdf::LinkConstSharedPtr child = model.getLink(joint->child_link_name);
+    if (child && child->parent_joint && child->parent_joint->name != name)
+      bad("path_or_string: link '" + joint->child_link_name + "' has two parents (joints '" +
+          child->parent_joint->name + "' and '" + name + "'): a URDF is a tree");
+  }
+}
+
+KDL::Tree tree_of(const urdf::ModelInterface& model) {
+  const urdf::LinkConstSharedPtr root = model.getRoot();
+  if (!root) bad("path_or_string: the URDF has no root link");
+  KDL::Tree tree(root->name);
+  std::vector<urdf::LinkConstSharedPtr> stack{root};
+  std::unordered_set<std::string> seen{root->name};
+  while (!stack.empty()) {
+    const urdf::LinkConstSharedPtr link = stack.back();
+    stack.pop_back();
+    for (const urdf::LinkSharedPtr& child : link->child_links) {
+      if (!child || !child->parent_joint) continue;
+      if (!seen.insert(child->name).second)
+        bad("path_or_string: link '" + child->name + "' is reached twice (a loop or two parents)");
+      if (!tree.addSegment(segment_of(*child->parent_joint), link->name))
+        bad("path_or_string: could not add link '" + child->name + "' to the tree");
+      stack.push_back(child);
+    }
+  }
+  return tree;
+}
+
+}  // namespace
+
+Chain chain_from_urdf(const std::string& xml, const std::string& base, const std::string& tip,
+                      std::vector<std::string>* warnings) {
+  if (xml.find_first_not_of(" \t\r\n") == std::string::npos) bad("path_or_string: the URDF document is empty");
+  if (xml_depth(xml, kMaxXmlDepth) > kMaxXmlDepth)
+    bad("path_or_string: XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels (not a URDF)");
+  Capture capture;
+  const urdf::ModelInterfaceSharedPtr model = parse(xml, capture);
+  if (!model) {
+    const std::string why = capture.errors.empty() ? joined(capture.warnings) : joined(capture.errors);
+    bad("path_or_string: not a valid URDF document: " + (why.empty() ? std::string("urdfdom gives no reason") : why));
+  }
+  check_tree(*model);
+  if (!model->getLink(base)) bad("base: no link named '" + base + "' in the URDF");
+  if (!model->getLink(tip)) bad("tip: no link named '" + tip + "' in the URDF");
+  const KDL::Tree tree = tree_of(*model);
   KDL::Chain chain;
   if (!tree.getChain(base, tip, chain))
-    throw std::invalid_argument("base, tip: no chain from '" + base + "' to '" + tip + "'");
+    bad("base, tip: no chain from '" + base + "' to '" + tip + "'");
   const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::string> notes = capture.warnings;
   const int n = static_cast<int>(chain.getNrOfJoints());
-  if (n == 0) throw std::invalid_argument("base, tip: no moving joint between '" + base + "' and '" + tip + "'");
-  Vector lower(n), upper(n);
-  int j = 0;
+  Vector lower(std::max(n, 0)), upper(std::max(n, 0));
+  int k = 0;
   for (const KDL::Segment& seg : chain.segments) {
-    if (seg.getJoint().getType() == KDL::Joint::Fixed) continue;
-    lower(j) = -inf;
-    upper(j) = inf;
+    // Joints between base and tip, also fixed ones (a floating or planar joint became fixed).
     const urdf::JointConstSharedPtr joint = model->getJoint(seg.getJoint().getName());
-    // urdfdom accepts <axis xyz="0 0 0">; KDL turns an axis shorter than its epsilon (1e-6) into
-    // NaN poses.
-    const double axis_norm = joint ? std::hypot(joint->axis.x, joint->axis.y, joint->axis.z) : 1.0;
-    if (!(axis_norm > 1e-6) || !std::isfinite(axis_norm))
-      throw std::invalid_argument("path_or_string: joint '" + joint->name + "' has a zero axis (norm <= 1e-6)");
-    if (joint && joint->limits && joint->type != urdf::Joint::CONTINUOUS &&
-        joint->limits->lower < joint->limits->upper) {
-      lower(j) = joint->limits->lower;
-      upper(j) = joint->limits->upper;
+    if (joint) {
+      if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR)
+        bad("path_or_string: " + joint_label(*joint) + " is " + type_name(joint->type) +
+            ": a serial chain has revolute, continuous, prismatic and fixed joints only");
+      if (joint->mimic)
+        bad("path_or_string: " + joint_label(*joint) + " mimics joint '" + joint->mimic->joint_name +
+            "': mimic joints are not supported in a chain (it would move independently)");
     }
-    ++j;
+    if (seg.getJoint().getType() == KDL::Joint::Fixed) continue;
+    lower(k) = -inf;
+    upper(k) = inf;
+    if (joint && joint->limits && joint->type != urdf::Joint::CONTINUOUS) {
+      const double lo = joint->limits->lower, hi = joint->limits->upper;
+      if (!std::isfinite(lo) || !std::isfinite(hi))
+        bad("path_or_string: " + joint_label(*joint) + " has a non-finite limit");
+      if (lo > hi)
+        bad("path_or_string: " + joint_label(*joint) + " has its lower limit " + number(lo) +
+            " above its upper limit " + number(hi));
+      if (lo < hi) {
+        lower(k) = lo;
+        upper(k) = hi;
+      } else {
+        notes.push_back(joint_label(*joint) + " has lower == upper limit (" + number(lo) +
+                        "): taken as unlimited (URDF's default when lower and upper are left out)");
+      }
+    }
+    ++k;
   }
+  if (n == 0) bad("base, tip: no moving joint between '" + base + "' and '" + tip + "'");
+  if (warnings) warnings->insert(warnings->end(), notes.begin(), notes.end());
   return Chain(std::move(chain), lower, upper);
 }
 

@@ -31,3 +31,9 @@ __all__ = [
     "robots",
     "track",
 ]
+
+# Issue 13, part A: the IK defaults and URDF loading's warnings.
+from .errors import URDFWarning  # noqa: E402
+from .ik import IK_DEFAULTS  # noqa: E402
+
+__all__ += ["IK_DEFAULTS", "URDFWarning"]

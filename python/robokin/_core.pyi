@@ -5,6 +5,7 @@ Arrays are float64; bad input raises ValueError naming the argument.
 
 import os
 from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
+from typing import Mapping
 
 import numpy as np
 import numpy.typing as npt
@@ -43,7 +44,10 @@ class Chain:
     @staticmethod
     def from_urdf(path_or_string: Union[str, os.PathLike], base: str, tip: str) -> "Chain":
         """Builds the chain from link ``base`` to link ``tip`` of a URDF (a file path or the XML
-        itself) through kdl_parser; joint limits come from the file (continuous joints unlimited)."""
+        itself; urdfdom parses it, robokin builds the KDL tree); joint limits come from the file
+        (continuous joints unlimited). A bad file is a ValueError saying why (urdfdom's reason, two
+        parents, lower > upper, mimic / floating / planar joints in the chain, origins beyond 1e9 m,
+        ...); equal lower and upper limits load unlimited with a robokin.URDFWarning."""
     @property
     def dof(self) -> int: ...
     @property
@@ -370,17 +374,20 @@ class IKBatchResult:
     def error_r(self) -> NDArray: ...
     def __len__(self) -> int: ...
 
-# damping None: the C++ default_damping, lm 1e-1 (initial mu relative to max diag(J^T J)),
-# nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by gn. restarts <= 1_000_000
-# (timeout bounds the time); seed in [0, 2**64).
+# The defaults (= ...) are the core's IkOptions{}, readable as IK_DEFAULTS. restarts and timeout
+# None: restart until success within IK_DEFAULTS["timeout"] seconds (of the solving thread's CPU
+# time); an explicit restarts count without a timeout has no time budget. damping None: the C++ default_damping, lm 1e-1 (initial mu
+# relative to max diag(J^T J)), nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by
+# gn. restarts <= 1_000_000; seed in [0, 2**64).
+IK_DEFAULTS: Mapping[str, Union[str, float, int]]
 def ik(
-    chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = "lm", task: str = "pose", tol_p: float = 1e-9,
-    tol_r: float = 1e-9, max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None,
+    chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
+    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
     timeout: Optional[float] = None, damping: Optional[float] = None,
 ) -> IKResult: ...
 def ik_batch(
-    chain: Chain, targets: ArrayLike, q0: ArrayLike, method: str = "lm", task: str = "pose", tol_p: float = 1e-9,
-    tol_r: float = 1e-9, max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None,
+    chain: Chain, targets: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
+    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
     timeout: Optional[float] = None, damping: Optional[float] = None, path: bool = False,
 ) -> IKBatchResult: ...
 class IKSolver:
@@ -391,9 +398,9 @@ class IKSolver:
     solver are serialised.
     """
     def __init__(
-        self, chain: Chain, method: str = "lm", task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9,
-        max_iter: int = 100, restarts: int = 0, seed: Optional[int] = None, timeout: Optional[float] = None,
-        damping: Optional[float] = None,
+        self, chain: Chain, method: str = ..., task: str = ..., tol_p: float = ..., tol_r: float = ...,
+        max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
+        timeout: Optional[float] = None, damping: Optional[float] = None,
     ) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> IKResult: ...
     @property

@@ -7,3 +7,8 @@ class UnreachableError(ValueError):
 
 class PrecisionWarning(UserWarning):
     """A numerical loop stopped before reaching its tolerance ("precision not reached", seed 000)."""
+
+
+class URDFWarning(UserWarning):
+    """A URDF was loaded with something changed or ignored (e.g. a joint whose lower and upper
+    limits are equal, taken as unlimited; urdfdom's own warnings)."""

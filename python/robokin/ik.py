@@ -25,6 +25,17 @@ pseudoinverse); ``gn`` uses none.
 
 For many calls with the same options, ``IKSolver(chain, method=..., ...)`` binds the chain and the
 options once; ``solver.solve(target, q0)`` then costs only the solve.
+
+Defaults (``IK_DEFAULTS``, read from the C++ core's ``IkOptions``, the one place they are written):
+``lm``, tolerances 1e-9 m and 1e-9 rad, 100 iterations per attempt, and, with neither ``restarts``
+nor ``timeout`` given, restarts from random configurations within the limits until a solution is
+found or the time budget of ``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
+that a busy machine does not cut the search short) runs out. A reachable target is then
+solved (>= 99.9 % of random reachable targets of every catalogue arm in
+``benchmarks/bench_ik_defaults.py``, most within tens of microseconds); an unreachable target costs
+the whole budget (5 ms per target, also per target of ``ik_batch``). An explicit ``restarts=k``
+means at most k restarts and no time budget unless ``timeout`` is given (as before the defaults had
+one); ``timeout=t`` alone restarts until success within t seconds.
 """
 
 from __future__ import annotations
@@ -34,19 +45,23 @@ from typing import Optional
 from . import _core
 from ._core import IKBatchResult, IKResult, IKSolver
 
-__all__ = ["IKBatchResult", "IKResult", "IKSolver", "ik", "ik_batch"]
+__all__ = ["IK_DEFAULTS", "IKBatchResult", "IKResult", "IKSolver", "ik", "ik_batch"]
+
+#: The options of a solve given none (read-only; from the core's IkOptions).
+IK_DEFAULTS = _core.IK_DEFAULTS
+_D = IK_DEFAULTS
 
 
 def ik(
     chain: _core.Chain,
     target,
     q0,
-    method: str = "lm",
-    task: str = "pose",
-    tol_p: float = 1e-9,
-    tol_r: float = 1e-9,
-    max_iter: int = 100,
-    restarts: int = 0,
+    method: str = _D["method"],
+    task: str = _D["task"],
+    tol_p: float = _D["tol_p"],
+    tol_r: float = _D["tol_r"],
+    max_iter: int = _D["max_iter"],
+    restarts: Optional[int] = None,
     seed: Optional[int] = None,
     timeout: Optional[float] = None,
     damping: Optional[float] = None,
@@ -66,12 +81,16 @@ def ik(
         max_iter: Iterations per attempt.
         restarts: Extra attempts from random configurations drawn uniformly within the limits
             (revolute joints without limits: ``[-pi, pi]``) when an attempt fails; at most
-            1,000,000. The restarts stop at the first success; on an unreachable target they all
-            run, so give a ``timeout`` to bound the time.
+            1,000,000. The restarts stop at the first success. None (the default): as many as
+            the time budget allows. An int: at most that many, and no time budget unless
+            ``timeout`` is given (on an unreachable target they all run).
         seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
-            None draws one.
-        timeout: Time budget in seconds for all the attempts (checked every few iterations);
-            None for none.
+            None draws one. (With a time budget, how many restarts fit depends on the machine.)
+        timeout: Time budget in seconds for all the attempts (checked every few iterations),
+            counted in the solving thread's CPU time: a busy machine does not cut a search short
+            (the wall time is then longer). None: ``IK_DEFAULTS["timeout"]`` (5 ms) when
+            ``restarts`` is None, no budget when ``restarts`` is an int. An unreachable target
+            costs the whole budget.
         damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
             ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
             lambda (default 1e-9); unused by ``gn``. None selects the default.
@@ -91,12 +110,12 @@ def ik_batch(
     chain: _core.Chain,
     targets,
     q0,
-    method: str = "lm",
-    task: str = "pose",
-    tol_p: float = 1e-9,
-    tol_r: float = 1e-9,
-    max_iter: int = 100,
-    restarts: int = 0,
+    method: str = _D["method"],
+    task: str = _D["task"],
+    tol_p: float = _D["tol_p"],
+    tol_r: float = _D["tol_r"],
+    max_iter: int = _D["max_iter"],
+    restarts: Optional[int] = None,
     seed: Optional[int] = None,
     timeout: Optional[float] = None,
     damping: Optional[float] = None,
@@ -112,7 +131,10 @@ def ik_batch(
             (``timeout`` applies to each target; ``damping`` None: the method's default).
         seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
         path: The targets are a path: each starts from the previous solution (warm start, no
-            branch jumps; sequential). Otherwise the targets are solved in parallel on every core.
+            branch jumps; sequential). With ``restarts`` None a path does not restart (a random
+            restart could jump to another branch): a target the warm start misses is reported
+            unsolved; ``restarts=k`` allows restarts. Otherwise the targets are solved in
+            parallel on every core.
 
     Returns:
         IKBatchResult with ``q`` (N, dof), ``success``, ``iterations``, ``attempts``, ``error_p``,

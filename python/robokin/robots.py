@@ -1,6 +1,10 @@
 """A catalogue of robots with their published parameters (SI units, radians).
 
-Every function returns a new :class:`robokin.Chain`.
+Every function returns a new :class:`robokin.Chain`; ``names()`` lists them and ``get(name)``
+builds one by name. The real arms (UR3/5/10 and their e-Series, UR16e, Franka Emika Panda, KUKA LBR
+iiwa 14 R820, ABB IRB 120, Kinova Gen3 7-DoF, PUMA 560) come from their makers' published
+kinematic parameters and joint ranges, each named in its docstring; the tool frame is the flange
+(no gripper).
 """
 
 from __future__ import annotations
@@ -82,24 +86,191 @@ def rp(stroke: float = 1.0) -> Chain:
     )
 
 
+_UR_SOURCE = ("Universal Robots, \"DH Parameters for calculations of kinematics and dynamics\" "
+              "(universal-robots.com, support article)")
+
+
+def _ur(d1: float, a2: float, a3: float, d4: float, d5: float, d6: float, wrist3_unlimited: bool = False) -> Chain:
+    """A UR arm: standard DH a = (0, a2, a3, 0, 0, 0), d = (d1, 0, 0, d4, d5, d6),
+    alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint +-360 deg (wrist 3 unlimited when asked)."""
+    p = math.pi
+    rows = [
+        (0.0, p / 2, d1, 0.0, "R"),
+        (a2, 0.0, 0.0, 0.0, "R"),
+        (a3, 0.0, 0.0, 0.0, "R"),
+        (0.0, p / 2, d4, 0.0, "R"),
+        (0.0, -p / 2, d5, 0.0, "R"),
+        (0.0, 0.0, d6, 0.0, "R"),
+    ]
+    lower, upper = np.full(6, -2 * p), np.full(6, 2 * p)
+    if wrist3_unlimited:
+        lower[5], upper[5] = -math.inf, math.inf
+    return Chain.from_dh(rows, limits=(lower, upper))
+
+
+def ur3() -> Chain:
+    """Universal Robots UR3 (CB3), standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics"): d1 = 0.1519, a2 = -0.24365,
+    a3 = -0.21325, d4 = 0.11235, d5 = 0.08535, d6 = 0.0819, alpha = (pi/2, 0, 0, pi/2, -pi/2, 0).
+    Joint ranges from UR's technical specifications: +-360 deg, wrist 3 infinite (unlimited here).
+    """
+    return _ur(0.1519, -0.24365, -0.21325, 0.11235, 0.08535, 0.0819, wrist3_unlimited=True)
+
+
 def ur5() -> Chain:
     """Universal Robots UR5, standard DH from Universal Robots' published table
     ("DH parameters for calculations of kinematics and dynamics"):
     d1 = 0.089159, a2 = -0.425, a3 = -0.39225, d4 = 0.10915, d5 = 0.09465, d6 = 0.0823,
     alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint limited to +-2 pi.
     """
+    return _ur(0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823)
+
+
+def ur10() -> Chain:
+    """Universal Robots UR10 (CB3), standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics"): d1 = 0.1273, a2 = -0.612,
+    a3 = -0.5723, d4 = 0.163941, d5 = 0.1157, d6 = 0.0922, alpha = (pi/2, 0, 0, pi/2, -pi/2, 0);
+    every joint +-360 deg (UR's technical specifications).
+    """
+    return _ur(0.1273, -0.612, -0.5723, 0.163941, 0.1157, 0.0922)
+
+
+def ur3e() -> Chain:
+    """Universal Robots UR3e, standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics", e-Series): d1 = 0.15185,
+    a2 = -0.24355, a3 = -0.2132, d4 = 0.13105, d5 = 0.08535, d6 = 0.0921,
+    alpha = (pi/2, 0, 0, pi/2, -pi/2, 0). Joint ranges from UR's technical specifications:
+    +-360 deg, wrist 3 infinite (unlimited here).
+    """
+    return _ur(0.15185, -0.24355, -0.2132, 0.13105, 0.08535, 0.0921, wrist3_unlimited=True)
+
+
+def ur5e() -> Chain:
+    """Universal Robots UR5e, standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics", e-Series): d1 = 0.1625,
+    a2 = -0.425, a3 = -0.3922, d4 = 0.1333, d5 = 0.0997, d6 = 0.0996,
+    alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint +-360 deg (UR's technical specifications).
+    """
+    return _ur(0.1625, -0.425, -0.3922, 0.1333, 0.0997, 0.0996)
+
+
+def ur10e() -> Chain:
+    """Universal Robots UR10e, standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics", e-Series): d1 = 0.1807,
+    a2 = -0.6127, a3 = -0.57155, d4 = 0.17415, d5 = 0.11985, d6 = 0.11655,
+    alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint +-360 deg (UR's technical specifications).
+    """
+    return _ur(0.1807, -0.6127, -0.57155, 0.17415, 0.11985, 0.11655)
+
+
+def ur16e() -> Chain:
+    """Universal Robots UR16e, standard DH from Universal Robots' published table
+    ("DH Parameters for calculations of kinematics and dynamics", e-Series): d1 = 0.1807,
+    a2 = -0.4784, a3 = -0.36, d4 = 0.17415, d5 = 0.11985, d6 = 0.11655,
+    alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint +-360 deg (UR's technical specifications).
+    """
+    return _ur(0.1807, -0.4784, -0.36, 0.17415, 0.11985, 0.11655)
+
+
+def panda() -> Chain:
+    """Franka Emika Panda (7 joints), modified DH (Craig) as Franka Emika publishes it (FCI
+    documentation, "Robot and interface specifications", frankaemika.github.io/docs/
+    control_parameters.html): rows (a, d, alpha) = (0, 0.333, 0), (0, 0, -pi/2), (0, 0.316, pi/2),
+    (0.0825, 0, pi/2), (-0.0825, 0.384, -pi/2), (0, 0, pi/2), (0.088, 0, pi/2), then the flange
+    d = 0.107 (the tool frame here; no hand). Joint limits (same page), rad:
+    lower (-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973),
+    upper (2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973).
+    """
     p = math.pi
     rows = [
-        (0.0, p / 2, 0.089159, 0.0, "R"),
-        (-0.425, 0.0, 0.0, 0.0, "R"),
-        (-0.39225, 0.0, 0.0, 0.0, "R"),
-        (0.0, p / 2, 0.10915, 0.0, "R"),
-        (0.0, -p / 2, 0.09465, 0.0, "R"),
-        (0.0, 0.0, 0.0823, 0.0, "R"),
+        (0.0, 0.0, 0.333, 0.0, "R"),
+        (0.0, -p / 2, 0.0, 0.0, "R"),
+        (0.0, p / 2, 0.316, 0.0, "R"),
+        (0.0825, p / 2, 0.0, 0.0, "R"),
+        (-0.0825, -p / 2, 0.384, 0.0, "R"),
+        (0.0, p / 2, 0.0, 0.0, "R"),
+        (0.088, p / 2, 0.0, 0.0, "R"),
     ]
-    return Chain.from_dh(rows, limits=(np.full(6, -2 * p), np.full(6, 2 * p)))
+    flange = np.eye(4)
+    flange[2, 3] = 0.107
+    lower = np.array([-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973])
+    upper = np.array([2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973])
+    return Chain.from_dh(rows, modified=True, tool=flange, limits=(lower, upper))
 
 
+def iiwa14() -> Chain:
+    """KUKA LBR iiwa 14 R820 (7 joints), standard DH from KUKA's published dimensions (LBR iiwa
+    specification / operating instructions: base to axis 2 360 mm, axis 2 to axis 4 420 mm,
+    axis 4 to axis 6 400 mm, axis 6 to the flange 126 mm): d = (0.36, 0, 0.42, 0, 0.4, 0, 0.126),
+    a = 0, alpha = (-pi/2, pi/2, pi/2, -pi/2, -pi/2, pi/2, 0) (the arm straight up at q = 0).
+    Axis ranges (same specification): +-170, +-120, +-170, +-120, +-170, +-120, +-175 deg.
+    """
+    p = math.pi
+    d = (0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126)
+    alpha = (-p / 2, p / 2, p / 2, -p / 2, -p / 2, p / 2, 0.0)
+    limit = np.radians([170, 120, 170, 120, 170, 120, 175])
+    return Chain.from_dh([(0.0, alpha[i], d[i], 0.0, "R") for i in range(7)], limits=(-limit, limit))
+
+
+def irb120() -> Chain:
+    """ABB IRB 120-3/0.6, standard DH from ABB's product specification (IRB 120, 3HAC035960-001:
+    dimensions 290 mm base to axis 2, 270 mm axis 2 to axis 3, 70 mm axis 3 offset, 302 mm to the
+    wrist centre, 72 mm wrist centre to the flange): (a, alpha, d, theta) = (0, -pi/2, 0.29, 0),
+    (0.27, 0, 0, -pi/2), (0.07, -pi/2, 0, 0), (0, pi/2, 0.302, 0), (0, -pi/2, 0, 0),
+    (0, 0, 0.072, pi), so that q = 0 is ABB's calibration position (upper arm vertical, forearm
+    horizontal, flange at x = 0.374 m, z = 0.63 m, facing +x) and each joint turns the way ABB's
+    axis does. Working range (same specification): axis 1 +-165, axis 2 +-110, axis 3 -110 / +70,
+    axis 4 +-160, axis 5 +-120, axis 6 +-400 deg.
+    """
+    p = math.pi
+    rows = [
+        (0.0, -p / 2, 0.29, 0.0, "R"),
+        (0.27, 0.0, 0.0, -p / 2, "R"),
+        (0.07, -p / 2, 0.0, 0.0, "R"),
+        (0.0, p / 2, 0.302, 0.0, "R"),
+        (0.0, -p / 2, 0.0, 0.0, "R"),
+        (0.0, 0.0, 0.072, p, "R"),
+    ]
+    lower = np.radians([-165, -110, -110, -160, -120, -400])
+    upper = np.radians([165, 110, 70, 160, 120, 400])
+    return Chain.from_dh(rows, limits=(lower, upper))
+
+
+def _rx(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1]])
+
+
+def _dh_tip(a: float, alpha: float, d: float, theta: float) -> np.ndarray:
+    """Rz(theta) Tz(d) Tx(a) Rx(alpha): a standard DH row's constant part after its joint."""
+    c, s = math.cos(theta), math.sin(theta)
+    rz = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1]])
+    tz, tx = np.eye(4), np.eye(4)
+    tz[2, 3], tx[0, 3] = d, a
+    return rz @ tz @ tx @ _rx(alpha)
+
+
+def gen3() -> Chain:
+    """Kinova Gen3 7-DOF (without gripper), classic DH from Kinova's Gen3 User Guide ("Classic DH
+    parameters", 7 DoF): a base frame Rx(pi), then (alpha, a, d, theta) = (pi/2, 0, -0.2848, q1),
+    (pi/2, 0, -0.0118, q2 + pi), (pi/2, 0, -0.4208, q3 + pi), (pi/2, 0, -0.0128, q4 + pi),
+    (pi/2, 0, -0.3143, q5 + pi), (pi/2, 0, 0, q6 + pi), (pi, 0, -0.1674, q7 + pi) (the guide
+    writes the lengths as sums: 0.1564 + 0.1284, 0.0054 + 0.0064, 0.2104 + 0.2104, 0.0064 + 0.0064,
+    0.2084 + 0.1059, 0.1059 + 0.0615). Joint ranges (same guide): joints 1, 3, 5, 7 infinite
+    (unlimited here), joint 2 +-128.9, joint 4 +-147.8, joint 6 +-120.3 deg.
+    """
+    p = math.pi
+    z = (0.0, 0.0, 1.0)
+    d = (-(0.1564 + 0.1284), -(0.0054 + 0.0064), -(0.2104 + 0.2104), -(0.0064 + 0.0064),
+         -(0.2084 + 0.1059), 0.0, -(0.1059 + 0.0615))
+    alpha = (p / 2,) * 6 + (p,)
+    theta = (0.0,) + (p,) * 6
+    segments = [("F", z, _rx(p))]
+    segments += [("R", z, _dh_tip(0.0, alpha[i], d[i], theta[i])) for i in range(7)]
+    inf = math.inf
+    upper = np.array([inf, math.radians(128.9), inf, math.radians(147.8), inf, math.radians(120.3), inf])
+    lower = -upper
+    return Chain.from_segments(segments, limits=(lower, upper))
 def puma560() -> Chain:
     """Unimation PUMA 560, standard DH as in P. Corke's Robotics Toolbox (``Puma560``, after
     Corke and Armstrong-Helouvry, 1994): a = (0, 0.4318, 0.0203, 0, 0, 0),
@@ -113,6 +284,49 @@ def puma560() -> Chain:
     lower = np.radians([-160, -45, -225, -110, -100, -266])
     upper = np.radians([160, 225, 45, 170, 100, 266])
     return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=(lower, upper))
+
+
+# The catalogue by name: every builder above, each callable without arguments (the seeds' robots
+# with their default dimensions).
+_CATALOGUE = {
+    "gen3": gen3,
+    "iiwa14": iiwa14,
+    "irb120": irb120,
+    "panda": panda,
+    "planar_3r": planar_3r,
+    "prr": prr,
+    "puma560": puma560,
+    "rp": rp,
+    "rpr": rpr,
+    "ur3": ur3,
+    "ur3e": ur3e,
+    "ur5": ur5,
+    "ur5e": ur5e,
+    "ur10": ur10,
+    "ur10e": ur10e,
+    "ur16e": ur16e,
+}
+
+
+def names() -> list:
+    """The names of every robot in the catalogue, sorted; ``get(name)`` builds one."""
+    return sorted(_CATALOGUE)
+
+
+def get(name: str) -> Chain:
+    """Builds the catalogue's robot called ``name`` (one of :func:`names`, e.g. ``"panda"``);
+    the seeds' parametrised robots (``prr``, ``planar_3r``, ``rp``) with their default dimensions.
+
+    Raises:
+        ValueError: ``name`` is not in the catalogue (the message lists the valid names).
+        TypeError: ``name`` is not a string.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name: expected a str, got {type(name).__name__}")
+    builder = _CATALOGUE.get(name)
+    if builder is None:
+        raise ValueError(f"name: no robot named {name!r} in the catalogue; valid names: {', '.join(names())}")
+    return builder()
 
 
 _MAX_SAMPLES = 10_000_000
