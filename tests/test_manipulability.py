@@ -92,3 +92,14 @@ def test_bad_arguments_name_themselves():
         ur5.ellipsoid(np.zeros(6), part="both")
     with pytest.raises(ValueError, match="q: contains NaN"):
         ur5.manipulability(np.full(6, np.nan))
+
+
+def test_near_singular_configurations_agree_with_numpy():
+    # Close to the UR5's elbow singularity the product of the singular values is tiny, and its
+    # evaluation switches from the Cholesky factor of J J^T to the SVD: both agree with numpy.
+    ur5 = rk.robots.ur5()
+    for q3 in (1e-1, 1e-2, 1e-3, 1e-5, 1e-7):
+        q = np.array([0.3, -1.0, q3, 0.4, 0.5, 0.6])
+        s = np.linalg.svd(ur5.jacobian(q), compute_uv=False)
+        assert ur5.manipulability(q) == pytest.approx(np.prod(s), rel=1e-6)
+        assert ur5.manipulability(q, "min_singular") == pytest.approx(s[-1], rel=1e-6, abs=1e-15)
