@@ -251,5 +251,9 @@ def test_cartesian_rejects_bad_input():
         traj.cartesian(T, T, [0, 1], law="cubic")
     with pytest.raises(ValueError, match="vmax, amax"):
         traj.cartesian(T, T, law="trapezoidal")
+    with pytest.raises(ValueError, match="t: the trapezoidal law"):
+        traj.cartesian(T, T, [0, 1], law="trapezoidal", vmax=(1, 1), amax=(1, 1))
+    with pytest.raises(ValueError, match="vmax, amax: limits are for the trapezoidal law"):
+        traj.cartesian(T, T, [0, 1], vmax=(1, 1), amax=(1, 1))
     with pytest.raises(ValueError, match="T1: not a rigid transform"):
         traj.cartesian(T, 2 * T, [0, 1])

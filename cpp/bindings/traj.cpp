@@ -132,8 +132,11 @@ py::tuple cartesian(py::handle T0_obj, py::handle T1_obj, const std::string& law
   py::tuple law;
   if (law_name == "quintic") {
     if (t_obj.is_none()) fail("t: the quintic law needs the sample times t");
+    if (!vmax_obj.is_none() || !amax_obj.is_none())
+      fail("vmax, amax: limits are for the trapezoidal law (law='trapezoidal'); the quintic law takes t");
     law = quintic_at(zero, end, zero, zero, checked_times(t_obj), "T0, T1, t");
   } else if (law_name == "trapezoidal") {
+    if (!t_obj.is_none()) fail("t: the trapezoidal law samples every dt from 0; give t for the quintic law only");
     if (vmax_obj.is_none() || amax_obj.is_none())
       fail("vmax, amax: the trapezoidal law needs vmax = (linear, angular) and amax = (linear, angular)");
     const Vector vmax = positive_vector(vmax_obj, "vmax", 2), amax = positive_vector(amax_obj, "amax", 2);
