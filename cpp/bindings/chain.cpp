@@ -1,6 +1,7 @@
 // robokin.Chain: serial chains from DH tables or plain segments; FK, Jacobians, frames.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "progress.hpp"
 
 #include "robokin/chain.hpp"
@@ -101,25 +102,8 @@ Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle l
   return Chain::from_segments(parsed, optional_tool(tool), lower, upper);
 }
 
-// q of shape (dof,) or (N, dof), finite. Returns N, or -1 for a single configuration.
-long check_q(const Chain& c, const Float64View& q, const char* name = "q") {
-  const long n = c.dof();
-  if (!((q.ndim == 1 && q.shape[0] == n) || (q.ndim == 2 && q.shape[1] == n)))
-    fail(std::string(name) + ": expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) +
-         "), got " + shape_of(q.ndim, q.shape));
-  require_finite(q.data, q.size, name);
-  return q.ndim == 1 ? -1 : static_cast<long>(q.shape[0]);
-}
-
 Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
   return as_vector(obj, name, c.dof());
-}
-
-// Finite q can still give an overflowing result (lengths or prismatic joints near 1e308): a
-// ValueError naming q rather than inf or NaN in the answer.
-void require_finite_result(const double* data, py::ssize_t size, const char* name = "q") {
-  if (!all_finite(data, size))
-    fail(std::string(name) + ": the result is not finite (the joint values or the chain's lengths are too large)");
 }
 
 void write_rigid(const Rigid& T, double* m) {
@@ -129,15 +113,6 @@ void write_rigid(const Rigid& T, double* m) {
   }
   m[12] = m[13] = m[14] = 0.0;
   m[15] = 1.0;
-}
-
-// q as a checked float64 view: the array itself when it already is C-contiguous float64 (the fast
-// path, nothing converted), else a converted copy kept alive in `holder`. Validated once, here.
-Float64View q_view(py::handle q_obj, Array& holder) {
-  Float64View v;
-  if (float64_view(q_obj, v)) return v;
-  holder = as_array(q_obj, "q");
-  return view_of(holder);
 }
 
 py::array fk(const Chain& c, py::handle q_obj) {
@@ -163,23 +138,6 @@ py::array fk(const Chain& c, py::handle q_obj) {
   }
   require_finite_result(dst, 16 * count);
   return out;
-}
-
-// The task's rows of the 6 x n geometric Jacobian.
-Task task_of(py::handle obj) {
-  if (PyUnicode_Check(obj.ptr())) {
-    Py_ssize_t len = 0;
-    const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
-    if (!s) throw py::error_already_set();
-    const std::string_view name(s, static_cast<size_t>(len));
-    if (name == "pose") return Task::Pose;
-    if (name == "xy") return Task::XY;
-    if (name == "position") return Task::Position;
-    if (name == "xyphi") return Task::XYPhi;
-    return parse_task(std::string(name));  // throws the ValueError naming the task
-  }
-  // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
-  throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
 }
 
 py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {

@@ -1,5 +1,7 @@
 #include "robokin/reach.hpp"
 
+#include "dls.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
@@ -25,16 +27,20 @@ void check_reach_options(const Chain& chain, const ReachOptions& o) {
   positive(o.tol, "tol");
   positive(o.gain, "gain");
   positive(o.dt, "dt");
-  if (!(std::isfinite(o.damping) && o.damping >= 0))
+  check_damping_and_nullspace(chain, o.damping, o.nullspace_weights);
+}
+
+void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& weights) {
+  if (!(std::isfinite(damping) && damping >= 0))
     throw std::invalid_argument("damping: must be a finite number >= 0");
-  if (o.nullspace_weights.size() != 0) {
-    if (o.nullspace_weights.size() != chain.dof())
+  if (weights.size() != 0) {
+    if (weights.size() != chain.dof())
       throw std::invalid_argument("nullspace: expected " + std::to_string(chain.dof()) +
-                                  " gains, got " + std::to_string(o.nullspace_weights.size()));
-    if (!o.nullspace_weights.allFinite())
+                                  " gains, got " + std::to_string(weights.size()));
+    if (!weights.allFinite())
       throw std::invalid_argument("nullspace: gains must be finite");
     for (int i = 0; i < chain.dof(); ++i)
-      if (o.nullspace_weights(i) != 0 && !(std::isfinite(chain.lower()(i)) && std::isfinite(chain.upper()(i))))
+      if (weights(i) != 0 && !(std::isfinite(chain.lower()(i)) && std::isfinite(chain.upper()(i))))
         throw std::invalid_argument("nullspace: joint " + std::to_string(i) +
                                     " has no finite limits to stay away from; give it a zero gain");
   }
@@ -49,15 +55,12 @@ Vector joint_limit_weights(const Chain& chain) {
   return w;
 }
 
-namespace {
-// The middle of each joint's range; 0 for an unlimited joint (its weight is 0).
 Vector joint_middles(const Chain& chain) {
   Vector qbar = 0.5 * (chain.lower() + chain.upper());
   for (int i = 0; i < chain.dof(); ++i)
     if (!std::isfinite(qbar(i))) qbar(i) = 0.0;
   return qbar;
 }
-}  // namespace
 
 double joint_limit_cost(const Chain& chain, const double* q) {
   const Vector w = joint_limit_weights(chain), qbar = joint_middles(chain);
@@ -77,52 +80,6 @@ Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
 }
 
 namespace {
-
-// out <- J^T (J J^T + lambda^2 I)^-1 rhs, the minimum-norm (damped) solution of J out = rhs; the
-// least-squares minimum-norm solution when J J^T is singular and lambda = 0. M task rows: the
-// M x M system is solved by a Cholesky factorisation written out for fixed M (no calls, no
-// pivoting: J J^T is symmetric positive semi-definite), and handed to a complete orthogonal
-// decomposition of J when it is (nearly) singular, as before.
-template <int M, class JMap, class Out>
-void min_norm_solve(const JMap& J, const Eigen::Matrix<double, M, 1>& rhs, double damping, Out& out) {
-  Eigen::Matrix<double, M, M> A;
-  A.noalias() = J * J.transpose();
-  A.diagonal().array() += damping * damping;
-  // A = L L^T, L lower triangular (stored in the lower half of A).
-  bool ok = true;
-  double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
-  for (int j = 0; j < M && ok; ++j) {
-    double d = A(j, j);
-    for (int k = 0; k < j; ++k) d -= A(j, k) * A(j, k);
-    if (!(d > 0.0)) {
-      ok = false;
-      break;
-    }
-    d = std::sqrt(d);
-    A(j, j) = d;
-    dmin = std::min(dmin, d);
-    dmax = std::max(dmax, d);
-    for (int i = j + 1; i < M; ++i) {
-      double x = A(i, j);
-      for (int k = 0; k < j; ++k) x -= A(i, k) * A(j, k);
-      A(i, j) = x / d;
-    }
-  }
-  if (ok && dmin > 1e-9 * std::max(1.0, dmax)) {
-    Eigen::Matrix<double, M, 1> y = rhs;
-    for (int i = 0; i < M; ++i) {  // L z = rhs
-      for (int k = 0; k < i; ++k) y(i) -= A(i, k) * y(k);
-      y(i) /= A(i, i);
-    }
-    for (int i = M - 1; i >= 0; --i) {  // L^T y = z
-      for (int k = i + 1; k < M; ++k) y(i) -= A(k, i) * y(k);
-      y(i) /= A(i, i);
-    }
-    out.noalias() = J.transpose() * y;
-  } else {
-    out = Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(rhs));
-  }
-}
 
 // |e|, also when its squares overflow (a target beyond ~1e154): the scaled norm, only then.
 template <class V>
@@ -161,10 +118,7 @@ int Reacher::run_rows(const Target& target, double& error) {
       // It is applied on the first iteration of each Reach only: the following iterations are the
       // seed's minimum-norm corrections, which remove that residual.
       const Eigen::Map<const JointVector> weights(opt_.nullspace_weights.data(), n_);
-      h = weights.cwiseProduct(qbar - q);
-      const RowsVector Jh = J * h;
-      min_norm_solve<M>(J, Jh, opt_.damping, correction);
-      dq += h - correction;
+      add_nullspace_term<M>(J, opt_.damping, weights, qbar, q, h, correction, dq);
     }
     dq *= opt_.dt;
     // An absurd gain or target: stop at the last finite joints (q + dq may overflow too).

@@ -5,10 +5,12 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import closed, paths, robots
+from . import pose, traj  # issue 13, part B
 from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
 from .errors import PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
+from .resolved_rate import ServoResult, resolved_rate, servo  # issue 13, part B
 
 __version__ = "0.1.0"
 
@@ -30,6 +32,12 @@ __all__ = [
     "reach",
     "robots",
     "track",
+    # issue 13, part B
+    "ServoResult",
+    "pose",
+    "resolved_rate",
+    "servo",
+    "traj",
 ]
 
 # Issue 13, part A: the IK defaults and URDF loading's warnings.

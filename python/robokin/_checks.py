@@ -25,3 +25,15 @@ def planar_points(value, name: str) -> np.ndarray:
     if not np.all(np.isfinite(p)):
         raise ValueError(f"{name}: contains NaN or inf")
     return p
+
+
+def frame_like(value):
+    """A 4x4 frame (or a batch of them) as given, or the matrix an object holds in ``.A`` (the
+    spatialmath ``SE3`` convention: one (4, 4) array, or a list of them for several poses); numpy
+    arrays, lists and objects with ``__array__`` pass unchanged (the core converts them)."""
+    if isinstance(value, np.ndarray) or value is None or isinstance(value, (list, tuple, str, bytes)):
+        return value
+    matrix = getattr(value, "A", None)
+    if matrix is None:
+        return value
+    return np.asarray(matrix) if isinstance(matrix, (list, tuple)) else matrix

@@ -70,6 +70,17 @@ class Chain:
         """Reference: KDL's ChainFkSolverPos_recursive."""
     def _jacobian_kdl(self, q: ArrayLike) -> NDArray:
         """Reference: KDL's ChainJntToJacSolver, (6, dof)."""
+    # Issue 13, part B (cpp/bindings/manipulability.cpp).
+    def manipulability(self, q: ArrayLike, measure: str = "yoshikawa", task: str = "pose") -> Union[float, NDArray]:
+        """Manipulability from the singular values of the task's Jacobian rows (Eigen's JacobiSVD):
+        ``"yoshikawa"`` their product (``sqrt(det(J J^T))`` when rows <= dof), ``"condition"``
+        ``sigma_min / sigma_max`` (the inverse condition number: 1 isotropic, 0 singular),
+        ``"min_singular"`` ``sigma_min``. A float for q (dof,); (N,) for a batch (N, dof), computed
+        with the GIL released on every core."""
+    def ellipsoid(self, q: ArrayLike, part: str = "translation") -> Tuple[NDArray, NDArray]:
+        """Velocity ellipsoid ``{J_part qd : |qd| <= 1}`` of the rows v (``"translation"``) or w
+        (``"rotation"``) at q (dof,): ``(axes, lengths)``, axes (3, 3) unit columns in the base frame
+        (right-handed), lengths (3,) the singular values, decreasing (0 for missing directions)."""
 
 # --- Reach and tracking (cpp/bindings/reach.cpp) ---------------------------------------------
 
@@ -414,3 +425,49 @@ class _KdlIk:
     """Benchmark reference: KDL's ChainIkSolverPos_LMA ("lma") or ChainIkSolverPos_NR_JL ("nr_jl")."""
     def __init__(self, chain: Chain, solver: str = "lma", max_iter: int = 500, eps: float = 1e-5) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> Tuple[NDArray, int]: ...
+
+# --- issue 13, part B: trajectories (cpp/bindings/traj.cpp); use robokin.traj -----------------
+
+def traj_quintic(q0: ArrayLike, q1: ArrayLike, t: ArrayLike, qd0: Optional[ArrayLike] = None,
+                 qd1: Optional[ArrayLike] = None) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
+    """(t, q, qd, qdd) of the quintic from (q0, qd0) at t[0] to (q1, qd1) at t[-1]."""
+def traj_trapezoidal(q0: ArrayLike, q1: ArrayLike, vmax: ArrayLike, amax: ArrayLike,
+                     dt: float) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
+    """(t, q, qd, qdd) of the synchronised trapezoidal profile, sampled every dt."""
+def traj_via_points(points: ArrayLike, vmax: ArrayLike, amax: ArrayLike,
+                    dt: float) -> Tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """(t, q, qd, qdd, via_times) of linear segments with parabolic blends through the points."""
+def traj_cartesian(T0: ArrayLike, T1: ArrayLike, law: str, t: Optional[ArrayLike], vmax: Optional[ArrayLike],
+                   amax: Optional[ArrayLike], dt: float) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
+    """(t, poses (K, 4, 4), velocity (K, 6), acceleration (K, 6)) of the straight line T0 -> T1."""
+
+# --- issue 13, part B: velocity-level IK (cpp/bindings/resolved_rate.cpp); use robokin ---------
+
+def resolved_rate(chain: Chain, q: ArrayLike, twist: ArrayLike, damping: float = 0.0,
+                  nullspace: Union[None, str, ArrayLike] = None, task: str = "pose") -> NDArray:
+    """(dof,) joint velocities: damped least squares of the twist plus the null-space term."""
+def servo(chain: Chain, poses: ArrayLike, q0: ArrayLike, dt: float, gain: float = 0.75, damping: float = 0.0,
+          nullspace: Union[None, str, ArrayLike] = None, task: str = "pose",
+          saturate: bool = True) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
+    """(q, qdot, error_p, error_r) of the resolved-rate servo along the targets."""
+
+# --- issue 13, part B: pose helpers (cpp/bindings/pose.cpp); use robokin.pose ------------------
+
+def pose_from_rpy(rpy: ArrayLike) -> NDArray:
+    """Frames (4, 4) / (N, 4, 4) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
+def pose_rpy(T: ArrayLike) -> NDArray:
+    """(roll, pitch, yaw) of rotations (3, 3) / frames (4, 4), or batches."""
+def pose_from_quaternion(quaternion: ArrayLike) -> NDArray:
+    """Frames of quaternions (w, x, y, z) (normalised first)."""
+def pose_quaternion(T: ArrayLike) -> NDArray:
+    """Unit quaternions (w, x, y, z), w >= 0."""
+def pose_from_rotation_vector(rotation_vector: ArrayLike) -> NDArray:
+    """Frames of rotation vectors (angle * unit axis)."""
+def pose_rotation_vector(T: ArrayLike) -> NDArray:
+    """Rotation vectors, angle in [0, pi]."""
+def pose_exp(xi: ArrayLike) -> NDArray:
+    """SE(3) exponential of twists (v, w)."""
+def pose_log(T: ArrayLike) -> NDArray:
+    """SE(3) logarithm (v, w), |w| in [0, pi]."""
+def pose_error(target: ArrayLike, current: ArrayLike) -> NDArray:
+    """The IK's pose error (p_t - p, rotation vector of R_t R^T)."""

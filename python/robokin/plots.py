@@ -7,7 +7,7 @@ from typing import Dict, Optional
 import numpy as np
 
 from . import robots
-from ._checks import planar_points
+from ._checks import planar_points, real_array
 from ._core import Chain, TrackResult, joint_limit_cost
 
 
@@ -123,6 +123,43 @@ def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_
         ax.set_title(f"({'cd'[index % 2]}) robot motion, {label}")
         if index == 1:
             break
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def trajectory_figure(trajectory, names=None, title: Optional[str] = None):
+    """Positions, velocities and accelerations of a joint trajectory against time, one panel each.
+
+    Args:
+        trajectory: A :class:`robokin.traj.Trajectory` (anything with ``t`` (K,) and ``q``,
+            ``qd``, ``qdd`` (K, n)).
+        names: n labels for the joints; ``q_0 ... q_{n-1}`` when None.
+        title: Figure title.
+
+    Returns:
+        A matplotlib Figure (three stacked axes sharing the time axis).
+    """
+    try:
+        t = real_array(trajectory.t, "trajectory.t")
+        parts = [real_array(getattr(trajectory, name), f"trajectory.{name}") for name in ("q", "qd", "qdd")]
+    except AttributeError as exc:
+        raise TypeError(f"trajectory: expected t, q, qd and qdd arrays ({exc})") from None
+    if t.ndim != 1 or any(p.ndim != 2 or p.shape[0] != len(t) for p in parts):
+        raise ValueError("trajectory: expected t (K,) and q, qd, qdd (K, n)")
+    n = parts[0].shape[1]
+    labels = [f"q_{i}" for i in range(n)] if names is None else [str(s) for s in names]
+    if len(labels) != n:
+        raise ValueError(f"names: expected {n} labels, got {len(labels)}")
+    fig = _new_figure(figsize=(6.4, 5.6), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
+    for ax, values, unit in zip(axes, parts, ("position", "velocity (/s)", "acceleration (/s²)")):
+        for i in range(n):
+            ax.plot(t, values[:, i], lw=1.4, label=labels[i])
+        ax.set_ylabel(unit)
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="best", fontsize="small", ncol=min(n, 3))
+    axes[-1].set_xlabel("time (s)")
     if title:
         fig.suptitle(title)
     return fig

@@ -32,6 +32,12 @@ struct ReachResult {
 // Validates options against the chain (sizes, positive finite numbers); throws std::invalid_argument.
 void check_reach_options(const Chain& chain, const ReachOptions& options);
 
+// The damping and null-space checks of check_reach_options, shared with resolved-rate control.
+void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& nullspace_weights);
+
+// The middle of each joint's range (the seed's qbar); 0 for an unlimited joint (its weight is 0).
+Vector joint_middles(const Chain& chain);
+
 // The seed's weights for joint-limit avoidance: 1 / (q_max - q_min), 0 for unlimited joints.
 Vector joint_limit_weights(const Chain& chain);
 

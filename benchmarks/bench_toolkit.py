@@ -1,0 +1,127 @@
+"""Serial-arm toolkit benchmarks of issue 13 (part B): manipulability and trajectory evaluation.
+
+Each figure is printed beside its reference measured in the same run, with the ratio
+robokin / reference (lower is better):
+
+- ``Chain.manipulability(q)`` (one call: Jacobian + JacobiSVD of its rows + the measure) against
+  ``Chain.jacobian(q)`` (one call: the Jacobian alone) on the same chain: the goal is within 1.5x,
+  i.e. the SVD and the measure cost at most half a Jacobian call on top of it. UR5 (6 joints) and
+  a 7-joint arm.
+- ``robokin.traj.quintic`` evaluated at 1e6 sample times (6 joints: positions, velocities and
+  accelerations) against numpy's vectorised polynomial (Horner in s for the three shapes, then
+  outer products with q1 - q0), single-threaded (ROBOKIN_NUM_THREADS=1) like numpy; the default
+  thread count shown for information. Goal: no slower than numpy.
+
+Every reference is checked against robokin before it is timed. Times: best of several repeats
+(median also shown) on a shared machine.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+if str(HERE) not in sys.path:
+    sys.path.insert(0, str(HERE))
+
+import robokin as rk  # noqa: E402
+from _timing import once, per_call  # noqa: E402
+
+SAMPLES = 1_000_000
+goals: list[dict] = []
+
+
+def fmt(seconds: float) -> str:
+    if seconds < 1e-6:
+        return f"{seconds * 1e9:7.0f} ns"
+    if seconds < 1e-3:
+        return f"{seconds * 1e6:7.2f} us"
+    return f"{seconds * 1e3:7.1f} ms"
+
+
+def line(what: str, ours, ref_name: str, ref, goal: float | None = None, note: str = "") -> None:
+    ratio = ours[0] / ref[0]
+    text = (f"  {what:<34} robokin {fmt(ours[0])} (median {fmt(ours[1]).strip()})  |  "
+            f"{ref_name:<14} {fmt(ref[0])} (median {fmt(ref[1]).strip()})  ->  {ratio:6.3f}x")
+    if goal is not None:
+        met = ratio <= goal
+        text += f"  goal <= {goal}: {'MET' if met else 'NOT MET'}"
+        goals.append({"name": f"{what} vs {ref_name}", "ratio": ratio, "goal": goal, "met": met})
+    print(text + (f"  {note}" if note else ""), flush=True)
+
+
+def bench_manipulability(rng) -> None:
+    print("manipulability, one call (q as a float64 array):")
+    arms = {"UR5": rk.robots.ur5(), "7R arm": rk.Chain.from_dh([(0.3, 0.5, 0.1, 0.2, "R")] * 7, modified=True)}
+    for name, chain in arms.items():
+        q = rng.uniform(-2, 2, chain.dof)
+        s = np.linalg.svd(chain.jacobian(q), compute_uv=False)
+        if not np.isclose(chain.manipulability(q), np.prod(s), rtol=1e-10):
+            raise AssertionError(f"{name}: manipulability disagrees with numpy's SVD")
+        ns = {"chain": chain, "q": q}
+        ref = per_call("chain.jacobian(q)", ns)
+        for measure in ("yoshikawa", "condition"):
+            ns["m"] = measure
+            ours = per_call("chain.manipulability(q, m)", ns)
+            line(f"{name} manipulability {measure}", ours, "jacobian", ref, 1.5 if measure == "yoshikawa" else None)
+        ns_np = {"np": np, "J": chain.jacobian(q)}
+        svd = per_call("np.linalg.svd(J, compute_uv=False)", ns_np)
+        print(f"    (for scale: numpy's SVD of that 6x{chain.dof} Jacobian alone takes {fmt(svd[0]).strip()})")
+
+
+def numpy_quintic(q0, q1, t):
+    """The quintic with zero end velocities and accelerations, vectorised in numpy."""
+    T = t[-1] - t[0]
+    s = (t - t[0]) / T
+    d = q1 - q0
+    s2 = s * s
+    shape = s2 * s * (10.0 + s * (-15.0 + 6.0 * s))
+    dshape = s2 * (30.0 + s * (-60.0 + 30.0 * s)) / T
+    ddshape = s * (60.0 + s * (-180.0 + 120.0 * s)) / (T * T)
+    return q0 + np.outer(shape, d), np.outer(dshape, d), np.outer(ddshape, d)
+
+
+def bench_traj(rng) -> None:
+    print(f"quintic trajectory, {SAMPLES:,} samples x 6 joints (q, qd, qdd):")
+    q0, q1 = rng.uniform(-2, 2, 6), rng.uniform(-2, 2, 6)
+    t = np.linspace(0.0, 3.0, SAMPLES)
+    tr = rk.traj.quintic(q0, q1, t)
+    ref = numpy_quintic(q0, q1, t)
+    for ours, theirs, what in zip((tr.q, tr.qd, tr.qdd), ref, ("q", "qd", "qdd")):
+        if not np.allclose(ours, theirs, rtol=0, atol=1e-12):
+            raise AssertionError(f"quintic {what}: numpy's polynomial disagrees with robokin")
+    saved = os.environ.get("ROBOKIN_NUM_THREADS")
+    try:
+        os.environ["ROBOKIN_NUM_THREADS"] = "1"
+        ours = once(lambda: rk.traj.quintic(q0, q1, t), repeat=7)
+        theirs = once(lambda: numpy_quintic(q0, q1, t), repeat=7)
+        line("quintic 1e6 samples, 1 thread", ours, "numpy", theirs, 1.0)
+        os.environ.pop("ROBOKIN_NUM_THREADS")
+        ours_all = once(lambda: rk.traj.quintic(q0, q1, t), repeat=7)
+        line(f"quintic 1e6 samples, {os.cpu_count()} threads", ours_all, "numpy", theirs, None)
+    finally:
+        if saved is None:
+            os.environ.pop("ROBOKIN_NUM_THREADS", None)
+        else:
+            os.environ["ROBOKIN_NUM_THREADS"] = saved
+    trap = once(lambda: rk.traj.trapezoidal(q0, q1, vmax=1.0, amax=2.0, dt=1e-5), repeat=3)
+    k = len(rk.traj.trapezoidal(q0, q1, vmax=1.0, amax=2.0, dt=1e-5))
+    print(f"  (for information: trapezoidal, {k:,} samples: {fmt(trap[0]).strip()})")
+
+
+def main():
+    goals.clear()
+    rng = np.random.default_rng(13)
+    print(f"robokin {rk.__version__}, numpy {np.__version__}, Python {sys.version.split()[0]}")
+    bench_manipulability(rng)
+    bench_traj(rng)
+    return list(goals)
+
+
+if __name__ == "__main__":
+    results = main()
+    sys.exit(0 if all(g["met"] for g in results) else 1)

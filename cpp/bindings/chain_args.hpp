@@ -1,0 +1,58 @@
+// Arguments of the Chain methods (chain.cpp, manipulability.cpp): joint configurations, one (dof,)
+// or a batch (N, dof), checked once, read in place when already C-contiguous float64; task names.
+#pragma once
+
+#include "arrays.hpp"
+
+#include "robokin/chain.hpp"
+#include "robokin/task.hpp"
+
+#include <string>
+#include <string_view>
+
+namespace robokin::bind {
+
+// q of shape (dof,) or (N, dof), finite. Returns N, or -1 for a single configuration.
+inline long check_q(const Chain& c, const Float64View& q, const char* name = "q") {
+  const long n = c.dof();
+  if (!((q.ndim == 1 && q.shape[0] == n) || (q.ndim == 2 && q.shape[1] == n)))
+    fail(std::string(name) + ": expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) +
+         "), got " + shape_of(q.ndim, q.shape));
+  require_finite(q.data, q.size, name);
+  return q.ndim == 1 ? -1 : static_cast<long>(q.shape[0]);
+}
+
+// Finite q can still give an overflowing result (lengths or prismatic joints near 1e308): a
+// ValueError naming q rather than inf or NaN in the answer.
+inline void require_finite_result(const double* data, py::ssize_t size, const char* name = "q") {
+  if (!all_finite(data, size))
+    fail(std::string(name) + ": the result is not finite (the joint values or the chain's lengths are too large)");
+}
+
+// q as a checked float64 view: the array itself when it already is C-contiguous float64 (the fast
+// path, nothing converted), else a converted copy kept alive in `holder`. Validated once, here.
+inline Float64View q_view(py::handle q_obj, Array& holder) {
+  Float64View v;
+  if (float64_view(q_obj, v)) return v;
+  holder = as_array(q_obj, "q");
+  return view_of(holder);
+}
+
+// The task's rows of the 6 x n geometric Jacobian.
+inline Task task_of(py::handle obj) {
+  if (PyUnicode_Check(obj.ptr())) {
+    Py_ssize_t len = 0;
+    const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
+    if (!s) throw py::error_already_set();
+    const std::string_view name(s, static_cast<size_t>(len));
+    if (name == "pose") return Task::Pose;
+    if (name == "xy") return Task::XY;
+    if (name == "position") return Task::Position;
+    if (name == "xyphi") return Task::XYPhi;
+    return parse_task(std::string(name));  // throws the ValueError naming the task
+  }
+  // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
+  throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
+}
+
+}  // namespace robokin::bind
