@@ -195,7 +195,8 @@ RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj,
   if (!(o.serial_margin >= 0 && o.serial_margin < 1)) fail("serial_margin: must be in [0, 1)");
   if (!(o.max_step > 0)) fail("max_step: must be positive");
   if (!(o.max_turn > 0)) fail("max_turn: must be positive");
-  if (!(o.resolution >= o.max_step)) fail("resolution: must be at least max_step");
+  if (!(o.resolution >= o.max_step && o.resolution <= 1000 * o.max_step))
+    fail("resolution: must be between max_step and 1000 max_step");
   if (!(o.span >= 0 && o.span <= M_PI)) fail("span: must be in [0, pi]");
   PythonProgress progress("RRR3.connect");
   py::gil_scoped_release release;

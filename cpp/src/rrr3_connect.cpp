@@ -19,6 +19,7 @@ constexpr double kMaxCells = 2e8;     // the box of grid nodes the search may vi
 constexpr long kMaxVisited = 1500000;  // nodes evaluated before the search gives up (memory bound)
 constexpr double kNearPenalty = 20;   // cost factor of steps through nodes nearer than the clearance
 constexpr int kMaxRepairs = 64;       // A* reruns after an edge found blocked between its nodes
+constexpr double kMaxPoses = 1e6;     // poses of an answer (and checks of one segment)
 
 struct Eval {
   double det_a = kNaN, det_b = kNaN, distance = kNaN;
@@ -69,10 +70,14 @@ struct Rules {
   }
 };
 
+double steps_between_d(const Pose& a, const Pose& b, const RRR3ConnectOptions& o) {
+  return std::max({1.0, std::ceil(std::hypot(b(0) - a(0), b(1) - a(1)) / o.max_step),
+                   std::ceil(std::abs(b(2) - a(2)) / o.max_turn)});
+}
+
+// Steps of the straight segment a -> b; the caller has bounded them by kMaxPoses.
 long steps_between(const Pose& a, const Pose& b, const RRR3ConnectOptions& o) {
-  const double n = std::max(std::ceil(std::hypot(b(0) - a(0), b(1) - a(1)) / o.max_step),
-                            std::ceil(std::abs(b(2) - a(2)) / o.max_turn));
-  return std::max(1L, static_cast<long>(n));
+  return static_cast<long>(std::min(steps_between_d(a, b, o), kMaxPoses));
 }
 
 // Poses a + (b - a) t / n, t = 1 .. n (b itself exactly at the end).
@@ -93,6 +98,7 @@ RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const R
   check(o.max_turn > 0 && std::isfinite(o.max_turn), "max_turn: must be positive and finite");
   check(o.resolution >= o.max_step && std::isfinite(o.resolution), "resolution: must be finite and at least max_step");
   check(o.span >= 0 && o.span <= M_PI, "span: must be in [0, pi]");
+  check(o.resolution <= 1000 * o.max_step, "resolution: must be at most 1000 max_step");
 
   const Eval es = evaluate(robot, start, o.mode), eg = evaluate(robot, goal, o.mode);
   for (int end = 0; end < 2; ++end) {
@@ -118,6 +124,7 @@ RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const R
 
   // Checks the straight segment a -> b (a excluded) at the output's spacing.
   auto segment_ok = [&](const Pose& a, const Eval& ea, const Pose& b, const Eval& eb) {
+    if (steps_between_d(a, b, o) >= kMaxPoses) return false;  // too long to check: not taken
     const double d_end = std::min(ea.distance, eb.distance), b_end = std::min(std::abs(ea.det_b), std::abs(eb.det_b));
     if (!rules.ok(eb, d_end, b_end)) return false;
     const long n = steps_between(a, b, o);
@@ -136,6 +143,9 @@ RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const R
   const double cells = (i_hi_d - i_lo_d + 1) * (j_hi_d - j_lo_d + 1) * (k_hi_d - k_lo_d + 1);
   check(std::isfinite(cells) && cells <= kMaxCells,
         "resolution: too fine for the robot's size and span (" + num(cells, "%.3g") + " grid nodes, at most 2e8)");
+
+  check(steps_between_d(start, goal, o) < kMaxPoses,
+        "max_step: start and goal are more than 1e6 steps of max_step (max_turn) apart");
 
   std::vector<Pose> waypoints;
   std::vector<Eval> wevals;
@@ -287,6 +297,11 @@ RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const R
   }
 
   // The output: every segment at the spacing it was checked at.
+  double total = 1;
+  for (size_t w = 1; w < waypoints.size(); ++w) total += steps_between_d(waypoints[w - 1], waypoints[w], o);
+  if (total > kMaxPoses)
+    throw NoRoute("regions", "start " + pose_text(start) + " and goal " + pose_text(goal) +
+                                 ": the singularity-free path found is longer than 1e6 steps of max_step");
   std::vector<Pose> poses{waypoints.front()};
   for (size_t w = 1; w < waypoints.size(); ++w) {
     const long n = steps_between(waypoints[w - 1], waypoints[w], o);
