@@ -2,6 +2,12 @@
 
 Both are written to a temporary file next to the target and renamed into place when complete,
 so an interrupted run never leaves a half-written recording under the requested name.
+
+The time base is the simulation's: the loop offers one frame per simulation step (none while
+paused) and ``fps`` is the number of steps per simulated second, so a recording of N steps of
+``1 / fps`` seconds lasts N / fps seconds whatever rate the window ran at. With ``every = k`` one
+frame in k is kept and shown for k steps (MP4 at fps / k frames per second; GIF frames of
+k / fps seconds, rounded to GIF's 10 ms ticks without drifting).
 """
 
 from __future__ import annotations
@@ -13,18 +19,20 @@ from typing import List, Optional
 import numpy as np
 from robokin._atomic import AtomicPath
 
+from .outputs import OutputError, reason_of
+
 
 class Recorder:
     """Collects frames (H, W, 3) uint8 RGB and writes them when closed.
 
     Args:
         path: Target file, ``.gif`` or ``.mp4``.
-        fps: Playback frames per second.
+        fps: Frames offered per second of simulated time (simulation steps per second).
         every: Keep one frame in ``every`` (the others are skipped).
         width: Width of the written frames in pixels (None: as given); even for MP4.
     """
 
-    def __init__(self, path: str, fps: float = 30.0, every: int = 1, width: Optional[int] = None) -> None:
+    def __init__(self, path: str, fps: float = 60.0, every: int = 1, width: Optional[int] = None) -> None:
         self.path = path
         self.kind = os.path.splitext(path)[1].lower()
         if self.kind not in (".gif", ".mp4"):
@@ -72,27 +80,39 @@ class Recorder:
             paletted = image.quantize(palette=_gif_palette(), dither=Image.Dither.NONE)
             self._gif.append(zlib.compress(paletted.tobytes(), 6))
         else:
-            if self._writer is None:
-                import imageio.v2 as imageio
+            try:
+                if self._writer is None:
+                    import imageio.v2 as imageio
 
-                self._writer = imageio.get_writer(
-                    self._out.tmp, format="FFMPEG", mode="I", fps=self.fps, codec="libx264",
-                    quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
-                )
-            self._writer.append_data(np.asarray(image))
+                    self._writer = imageio.get_writer(
+                        self._out.tmp, format="FFMPEG", mode="I", fps=self.fps / self.every, codec="libx264",
+                        quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
+                    )
+                self._writer.append_data(np.asarray(image))
+            except Exception as exc:  # ffmpeg stopped: a full disk, a file too large
+                self._abandon_writer()
+                raise OutputError(self.path, reason_of(exc)) from None
         self.frames_written += 1
+
+    @property
+    def seconds(self) -> float:
+        """Playing time of the frames kept so far (simulated seconds)."""
+        return self.frames_written * self.every / self.fps
 
     def close(self) -> Optional[str]:
         """Writes the file and renames it into place; returns its path (None if no frame was kept)."""
         try:
             if self.frames_written == 0:
                 return None
-            if self.kind == ".gif":
-                self._write_gif()
-            else:
-                self._writer.close()
-                self._writer = None
-            return self._out.commit()
+            try:
+                if self.kind == ".gif":
+                    self._write_gif()
+                else:
+                    self._writer.close()
+                    self._writer = None
+                return self._out.commit()
+            except Exception as exc:  # the disk is full, the file too large, the directory gone
+                raise OutputError(self.path, reason_of(exc)) from None
         finally:
             self.discard()
 
@@ -100,11 +120,27 @@ class Recorder:
         """Drops the recording (an interrupted run): nothing is left under the path, nor a temporary file."""
         self._gif = []
         try:
-            if self._writer is not None:
-                self._writer.close()
+            self._abandon_writer()
         finally:
-            self._writer = None
             self._out.discard()
+
+    def _abandon_writer(self) -> None:
+        """Stops ffmpeg without waiting for it to finish a video nobody will keep."""
+        writer, self._writer = self._writer, None
+        if writer is None:
+            return
+        gen = getattr(writer, "_write_gen", None)
+        frame = getattr(gen, "gi_frame", None)
+        process = frame.f_locals.get("p") if frame is not None else None
+        if process is not None and hasattr(process, "kill"):
+            try:
+                process.kill()
+            except OSError:
+                pass
+        try:
+            writer.close()
+        except Exception:
+            pass
 
     def _write_gif(self) -> None:
         from PIL import Image
@@ -122,11 +158,21 @@ class Recorder:
             image = Image.fromarray(delta, "P")
             image.putpalette(palette)
             frames.append(image)
-        duration = int(round(1000.0 * self.every / self.fps))
         frames[0].save(
-            self._out.tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
+            self._out.tmp, format="GIF", save_all=True, append_images=frames[1:],
+            duration=gif_durations(len(frames), self.every / self.fps),
             loop=0, optimize=False, disposal=1, transparency=_TRANSPARENT,
         )
+
+
+def gif_durations(count: int, seconds: float) -> List[int]:
+    """Display times (ms, multiples of GIF's 10 ms tick) of ``count`` frames of ``seconds`` each:
+    frame k ends at round(k * seconds) ticks, so the total is right to one tick and never drifts.
+    (GIF viewers show frames shorter than 20 ms slower: frames of at least 20 ms are kept.)"""
+    tick = 0.01
+    per = max(seconds, 0.02)
+    ends = [int(round((k + 1) * per / tick)) for k in range(count)]
+    return [10 * (e - b) for b, e in zip([0] + ends[:-1], ends)]
 
 
 _PALETTE = None
