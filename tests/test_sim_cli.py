@@ -200,3 +200,18 @@ def test_recorded_frames_are_drawn_at_their_size_without_fps_or_rec(tmp_path):
     red = np.all(np.abs(window[5:35, 400:475] - np.array(theme.SINGULAR)) < 30, axis=2)
     assert red.sum() > 30  # the REC mark, in the window only
     assert res.record == str(out)
+
+
+def test_a_truncated_mp4_is_told_from_a_whole_one(tmp_path):
+    """ffmpeg may end with status 0 after a full disk cut its file short: the recorder checks the
+    file's boxes before renaming it into place."""
+    from robokin_sim.recording import mp4_complete
+
+    out = tmp_path / "whole.mp4"
+    run_sim("--frames", "10", "--record", str(out), "--size", "200x200")
+    data = out.read_bytes()
+    assert mp4_complete(str(out))
+    for cut in (len(data) - 1, len(data) // 2, 2048, 7):
+        part = tmp_path / f"cut{cut}.mp4"
+        part.write_bytes(data[:cut])
+        assert not mp4_complete(str(part)), cut

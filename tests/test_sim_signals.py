@@ -86,17 +86,17 @@ def test_a_later_run_removes_what_sigkill_left_and_only_that(tmp_path):
 
 
 def _limit_file_size():
-    # A file system that is full after 8 kB: writes beyond it fail (EFBIG) instead of killing the
+    # A file system that is full after 2 kB: writes beyond it fail (EFBIG) instead of killing the
     # process (SIGXFSZ ignored, for ffmpeg too).
     signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    resource.setrlimit(resource.RLIMIT_FSIZE, (8192, 8192))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (2048, 2048))
 
 
 @pytest.mark.parametrize("option,name", [("--log", "big.csv"), ("--record", "big.mp4"), ("--record", "big.gif"),
                                          ("--screenshot", "big.png")])
 def test_a_full_disk_is_one_line_naming_the_file(tmp_path, option, name):
     (tmp_path / name).write_bytes(b"the previous file")
-    out = subprocess.run([sys.executable, "-m", "robokin_sim", "--headless", "--mode", "clover", "--frames", "300",
+    out = subprocess.run([sys.executable, "-m", "robokin_sim", "--headless", "--mode", "clover", "--frames", "60",
                           option, name], cwd=tmp_path, env=_env(), capture_output=True,
                          text=True, timeout=LIMIT * 2, preexec_fn=_limit_file_size)
     assert out.returncode == 1, out.stderr

@@ -13,6 +13,7 @@ k / fps seconds, rounded to GIF's 10 ms ticks without drifting).
 from __future__ import annotations
 
 import os
+import signal
 import zlib
 from typing import List, Optional
 
@@ -108,8 +109,17 @@ class Recorder:
                 if self.kind == ".gif":
                     self._write_gif()
                 else:
+                    process = _ffmpeg_process(self._writer)
                     self._writer.close()
                     self._writer = None
+                    # ffmpeg may end with status 0 after failed writes (a full disk): the file
+                    # itself says whether it is whole.
+                    if process is not None and process.wait() != 0:
+                        status = process.returncode
+                        raise OSError("ffmpeg " + (f"was stopped: {signal.strsignal(-status)}" if status < 0
+                                                   else f"ended with status {status}"))
+                    if not mp4_complete(self._out.tmp):
+                        raise OSError(28, "the video file came out truncated (is the disk full?)")
                 return self._out.commit()
             except Exception as exc:  # the disk is full, the file too large, the directory gone
                 raise OutputError(self.path, reason_of(exc)) from None
@@ -129,10 +139,8 @@ class Recorder:
         writer, self._writer = self._writer, None
         if writer is None:
             return
-        gen = getattr(writer, "_write_gen", None)
-        frame = getattr(gen, "gi_frame", None)
-        process = frame.f_locals.get("p") if frame is not None else None
-        if process is not None and hasattr(process, "kill"):
+        process = _ffmpeg_process(writer)
+        if process is not None:
             try:
                 process.kill()
             except OSError:
@@ -163,6 +171,41 @@ class Recorder:
             duration=gif_durations(len(frames), self.every / self.fps),
             loop=0, optimize=False, disposal=1, transparency=_TRANSPARENT,
         )
+
+
+def _ffmpeg_process(writer):
+    """The ffmpeg subprocess behind an imageio FFMPEG writer (None if it cannot be found)."""
+    gen = getattr(writer, "_write_gen", None)
+    frame = getattr(gen, "gi_frame", None)
+    process = frame.f_locals.get("p") if frame is not None else None
+    return process if hasattr(process, "wait") and hasattr(process, "kill") else None
+
+
+def mp4_complete(path: str) -> bool:
+    """Whether the MP4 file's top-level boxes tile it exactly and include the index ('moov'): a file
+    cut short by a full disk fails this."""
+    import struct
+
+    size = os.path.getsize(path)
+    seen, offset = set(), 0
+    with open(path, "rb") as f:
+        while offset < size:
+            f.seek(offset)
+            head = f.read(16)
+            if len(head) < 8:
+                return False
+            length, kind = struct.unpack(">I4s", head[:8])
+            if length == 1:
+                if len(head) < 16:
+                    return False
+                length = struct.unpack(">Q", head[8:16])[0]
+            elif length == 0:
+                length = size - offset
+            if length < 8 or offset + length > size:
+                return False
+            seen.add(kind)
+            offset += length
+    return offset == size and b"moov" in seen and b"mdat" in seen
 
 
 def gif_durations(count: int, seconds: float) -> List[int]:
