@@ -6,7 +6,6 @@
 # What a bare Debian lacks is found by trying, not by package name alone, so that a machine whose
 # Python or compiler does not come from Debian (pyenv, conda, a CXX of its own) installs nothing:
 #   - the C++ libraries: libeigen3-dev, liborocos-kdl-dev, libkdl-parser-dev, liburdfdom-dev;
-#   - the X server and key sender the real-window simulator tests use: xvfb, xdotool;
 #   - a C++17 compiler ($CXX, c++ or g++): g++;
 #   - $PYTHON itself (python3), its venv module with ensurepip (python3-venv) and its headers,
 #     Python.h (python3-dev);
