@@ -33,7 +33,7 @@ COVERS = {
     "RRR3Singularity.det_b_norm", "RRR3Singularity.distance", "RRR3Singularity.leg", "RRR3Singularity.lines",
     "RRR3Singularity.__repr__",
     "RRR3Plan.poses", "RRR3Plan.alpha", "RRR3Plan.det_a_norm", "RRR3Plan.det_b_norm", "RRR3Plan.distance",
-    "RRR3Plan.sign", "RRR3Plan.feasible", "RRR3Plan.__repr__",
+    "RRR3Plan.sign", "RRR3Plan.feasible", "RRR3Plan.__repr__", "RRR3.connect",
     "RRR3Workspace.cells", "RRR3Workspace.x", "RRR3Workspace.y", "RRR3Workspace.extent",
     "RRR3Workspace.cell_size", "RRR3Workspace.reachable_area", "RRR3Workspace.regular_area",
     "RRR3Workspace.area", "RRR3Workspace.__repr__",
@@ -278,6 +278,72 @@ def test_plan_with_any_arguments(robot, points, phi, mode, avoid, max_step, marg
     if plan is None:
         return
     check_plan(robot, np.asarray(points, float), plan, phi, mode, avoid, max_step, margin, serial_margin, span)
+
+
+def check_route(robot, start, goal, mode, plan, clearance, serial_margin, max_step, max_turn):
+    """A connect answer against the seed's formulas: ends, spacing, one sign of det A, clearances."""
+    poses = np.asarray(plan.poses)
+    assert poses.ndim == 2 and poses.shape[1] == 3 and len(poses) >= 1 and plan.feasible
+    assert_finite(poses, plan.alpha, plan.det_a_norm, plan.det_b_norm, plan.distance)
+    np.testing.assert_array_equal(poses[0], start)
+    np.testing.assert_array_equal(poses[-1], goal)
+    if len(poses) > 1:
+        steps = np.diff(poses, axis=0)
+        assert np.hypot(steps[:, 0], steps[:, 1]).max() <= max_step * (1 + 1e-9)
+        assert np.abs(steps[:, 2]).max() <= max_turn * (1 + 1e-9)
+    det_a = np.array([np.linalg.det(seed_jacobians(robot, p, robot.ik(p, mode))[0]) for p in poses])
+    assert np.all(np.sign(det_a) == plan.sign) and plan.sign in (-1, 1)
+    distance = np.asarray(plan.distance)
+    assert distance.min() >= min(clearance, distance[0], distance[-1]) * (1 - 1e-12)
+    det_b = np.abs(np.asarray(plan.det_b_norm))
+    assert det_b.min() >= min(serial_margin, det_b[0], det_b[-1]) * (1 - 1e-12)
+
+
+@given(robot=robots, start=arrays(shape=[(3,), (2,), (4,), (1, 3)]), goal=arrays(shape=[(3,), (3, 1)]), mode=modes,
+       clearance=options, serial_margin=options, max_step=options, max_turn=options, resolution=options, span=options)
+def test_connect_with_any_arguments(robot, start, goal, mode, clearance, serial_margin, max_step, max_turn,
+                                    resolution, span):
+    names = ("start", "goal", "mode", "clearance", "serial_margin", "max_step", "max_turn", "resolution", "span")
+
+    def call():
+        try:
+            return robot.connect(start, goal, mode, clearance, serial_margin, max_step, max_turn, resolution, span)
+        except rk.NoRouteError as e:
+            assert e.reason in ("start", "goal", "regions") and str(e)
+            return None
+
+    plan = check_call(call, *names)
+    if plan is not None:
+        check_route(robot, as_pose(start), as_pose(goal), tuple(int(m) for m in np.asarray(mode, float)), plan,
+                    clearance, serial_margin, max_step, max_turn)
+
+
+@given(data=st.data(), clearance=st.floats(0.0, 0.3))
+def test_connect_routes_are_verified_and_opposite_signs_have_none(data, clearance):
+    """Reachable poses of the seed's robot, near and across singularities: a route satisfies
+    everything it promises (checked with the seed's formulas); poses whose det A differ in sign
+    have none."""
+    robot = ROBOTS[0]
+    mode = data.draw(good_modes)
+    poses = []
+    while len(poses) < 2:
+        p = np.array(data.draw(st.tuples(st.floats(-0.12, 0.12), st.floats(-0.12, 0.12), st.floats(-1.2, 1.2))))
+        try:
+            s = robot.singularity(p, mode)
+        except rk.UnreachableError:
+            continue
+        if s.det_a_norm != 0 and s.det_b_norm != 0:
+            poses.append((p, np.sign(s.det_a_norm)))
+    (start, s0), (goal, s1) = poses
+    try:
+        plan = robot.connect(start, goal, mode, clearance=clearance, resolution=0.01)
+    except rk.NoRouteError as e:
+        event(f"no route: {e.reason}, {'same' if s0 == s1 else 'opposite'} signs")
+        assert e.reason == "regions"
+        return
+    event("route")
+    assert s0 == s1
+    check_route(robot, start, goal, mode, plan, clearance, 0.02, 0.001, 0.01)
 
 
 @given(rows=arrays(shape=[(0, 4), (1, 4), (3, 4), (2, 3), (4,)]), phi=options, mode=modes, n=grid_sizes, tol=options)

@@ -36,14 +36,21 @@ def test_parse_args_any_argv(argv):
             config = parse_args(argv)
     except SystemExit as exc:
         assert exc.code in (0, 2), exc.code
-        assert "usage" in (err if exc.code == 2 else out).getvalue()
+        if exc.code == 2:  # one line naming the problem
+            lines = err.getvalue().splitlines()
+            assert len(lines) == 1 and lines[0].startswith("robokin-sim: error: "), lines
+        else:
+            assert "usage" in out.getvalue()
         return
     assert isinstance(config, Config)
     assert config.robot in MODES and config.mode in MODES[config.robot]
-    assert config.frames is None or (isinstance(config.frames, int) and config.frames >= 1)
+    assert config.frames is None or (isinstance(config.frames, int) and 1 <= config.frames <= 10**9)
     assert config.record is None or config.record.lower().endswith((".gif", ".mp4"))
     assert config.record_every >= 1 and config.fps >= 1
-    assert config.record_width is None or config.record_width >= 1
+    assert config.record_width is None or 100 <= config.record_width <= 4096
+    assert config.fps <= 1000 and config.record_every <= 10_000
+    for path in (config.log, config.screenshot, config.record):
+        assert path is None or path.strip()
     assert all(100 <= v <= 4096 for v in config.size) and len(config.size) == 2
     assert isinstance(config.keys, KeyScript)
 

@@ -32,13 +32,13 @@ def test_bad_command_lines_exit_with_usage(capsys):
         with pytest.raises(SystemExit) as exc:
             parse_args(argv)
         assert exc.value.code == 2
-    assert "usage" in capsys.readouterr().err
+    assert "robokin-sim --help" in capsys.readouterr().err
 
 
 def test_defaults():
     assert parse_args([]).mode == "free" and parse_args(["--robot", "rpr"]).mode == "line"
     gif = parse_args(["--record", "a.gif"])
-    assert gif.record_every == 2 and gif.record_width == 400
+    assert gif.record_every == 2 and gif.record_width == 480
     assert parse_args(["--record", "a.mp4"]).record_every == 1
 
 
@@ -111,3 +111,107 @@ def test_unwritable_output_is_a_clean_error(tmp_path):
     out = subprocess.run([sys.executable, "-m", "robokin_sim", "--headless", "--frames", "3", "--log",
                           str(blocker / "sub" / "x.csv")], capture_output=True, text=True, env=env, timeout=120)
     assert out.returncode == 1 and "robokin-sim: error:" in out.stderr and "Traceback" not in out.stderr
+
+
+@pytest.mark.parametrize("argv", [
+    ["--record-width", "20000"], ["--record-width", "100000"], ["--record-width", "99"], ["--log", ""],
+    ["--log", "  "], ["--record", ""], ["--screenshot", ""], ["--keys", "right*"], ["--keys", "right*1e9"],
+    ["--frames", "1" * 30], ["--frames", "1000000001"], ["--fps", "100000"], ["--record-every", "99999999"],
+    ["--record", "a.gif", "--record-every", "1"], ["--log", "."],
+])
+def test_out_of_range_options_are_one_line_and_exit_2(argv, capsys):
+    with pytest.raises(SystemExit) as exc:
+        parse_args(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and err.startswith("robokin-sim: error: "), err
+
+
+def test_bounds_that_are_accepted():
+    assert parse_args(["--frames", "1000000000"]).frames == 10**9
+    assert parse_args(["--record", "a.mp4", "--record-width", "4096"]).record_width == 4096
+    assert parse_args(["--record", "a.gif"]).record_width == 480
+
+
+def _mp4_frames_and_seconds(path):
+    import imageio_ffmpeg
+
+    reader = imageio_ffmpeg.read_frames(str(path))
+    meta = next(reader)
+    frames = sum(1 for _ in reader)
+    return frames, meta["fps"], meta["duration"]
+
+
+@pytest.mark.parametrize("every", [1, 3])
+def test_mp4_plays_in_simulated_time(tmp_path, every):
+    """N steps of 1/60 s last N/60 s of video, pauses excluded, whatever the frames per second."""
+    out = tmp_path / "run.mp4"
+    # 91 steps: 20, the frame of the second space, 30 and 40; the 15 paused frames record nothing.
+    run_sim("--keys", "right*20,space,up*14,space,left*30,k*40", "--record", str(out), "--record-every",
+            str(every), "--size", "200x200", "--fps", "7")
+    frames, fps, duration = _mp4_frames_and_seconds(out)
+    steps = 20 + 1 + 30 + 40
+    assert frames == -(-steps // every)  # one frame kept in every, the first one included
+    assert fps == pytest.approx(60 / every)
+    assert frames / fps == pytest.approx(steps / 60, abs=every / 60)
+    assert duration == pytest.approx(steps / 60, abs=every / 60 + 1e-9)
+
+
+def test_gif_plays_in_simulated_time(tmp_path):
+    out = tmp_path / "run.gif"
+    run_sim("--frames", "300", "--mode", "circle", "--record", str(out), "--record-every", "2")
+    with Image.open(out) as im:
+        durations = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            durations.append(im.info["duration"])
+    assert len(durations) == 150 and min(durations) >= 20
+    assert sum(durations) == pytest.approx(300 / 60 * 1000, abs=10)
+
+
+def test_recorded_frames_are_drawn_at_their_size_without_fps_or_rec(tmp_path):
+    """The recording has its own renderer: a 480 px frame with the HUD at full size, no fps row,
+    no REC mark; the window's frame has both."""
+    import pygame
+
+    from robokin_sim import theme
+    from robokin_sim.render_common import Hud
+    from robokin_sim.render_rrr3 import Rrr3Renderer
+    from robokin_sim.scene_rrr3 import Rrr3Scene
+
+    out = tmp_path / "run.gif"
+    res = run_sim("--frames", "4", "--record", str(out), "--size", "800x600")
+    with Image.open(out) as im:
+        assert im.size == (480, 360)
+        im.seek(1)
+        recorded = np.asarray(im.convert("RGB")).astype(int)
+    scene = Rrr3Scene("free")
+    for _ in range(4):
+        scene.step(frozenset())
+    surface = pygame.Surface((480, 360))
+    Rrr3Renderer((480, 360)).draw(surface, scene.state(), Hud(fps=None))
+    direct = pygame.surfarray.array3d(surface).swapaxes(0, 1).astype(int)
+    # The same picture as drawn directly at 480 x 360 without an fps row (up to the GIF palette).
+    assert np.mean(np.abs(recorded - direct).max(axis=2) <= 40) > 0.995
+    with_fps = pygame.Surface((480, 360))
+    Rrr3Renderer((480, 360)).draw(with_fps, scene.state(), Hud(fps=60.0, recording=True))
+    window = pygame.surfarray.array3d(with_fps).swapaxes(0, 1).astype(int)
+    assert np.mean(np.abs(recorded - window).max(axis=2) > 40) > 0.001  # the fps row and REC differ
+    red = np.all(np.abs(window[5:35, 400:475] - np.array(theme.SINGULAR)) < 30, axis=2)
+    assert red.sum() > 30  # the REC mark, in the window only
+    assert res.record == str(out)
+
+
+def test_a_truncated_mp4_is_told_from_a_whole_one(tmp_path):
+    """ffmpeg may end with status 0 after a full disk cut its file short: the recorder checks the
+    file's boxes before renaming it into place."""
+    from robokin_sim.recording import mp4_complete
+
+    out = tmp_path / "whole.mp4"
+    run_sim("--frames", "10", "--record", str(out), "--size", "200x200")
+    data = out.read_bytes()
+    assert mp4_complete(str(out))
+    for cut in (len(data) - 1, len(data) // 2, 2048, 7):
+        part = tmp_path / f"cut{cut}.mp4"
+        part.write_bytes(data[:cut])
+        assert not mp4_complete(str(part)), cut

@@ -75,3 +75,36 @@ def test_screenshot_option_and_resized_window(tmp_path):
     image = pygame.image.load(str(shot))
     assert image.get_size() == (500, 360)
     assert not [p for p in os.listdir(tmp_path) if p.endswith(".part.png")]  # no temporary left over
+
+
+def test_the_footer_names_the_colour_the_singular_cells_are_drawn_in(monkeypatch):
+    """The hint says "pink", and pink (theme.SINGULAR_CELL, light red) is what the parallel
+    singular cells of the workspace map are drawn in."""
+    from robokin_sim import panel
+
+    pygame.display.init()
+    scene = Rrr3Scene("free")
+    surface = pygame.Surface((800, 800))
+    drawn = []
+    original = panel.draw_footer
+    monkeypatch.setattr(panel, "draw_footer", lambda s, t, lines: (drawn.extend(lines), original(s, t, lines)))
+    Rrr3Renderer(surface.get_size()).draw(surface, scene.state(), Hud())
+    assert any("pink: parallel singularities" in line for line in drawn)
+    r, g, b = theme.SINGULAR_CELL
+    assert r > 230 and g < r - 30 and b < r - 30 and min(g, b) > 150  # light red: pink
+    rgb = _pixels(surface)
+    assert np.count_nonzero(np.all(rgb == theme.SINGULAR_CELL, axis=2)) > 100
+    # No red cells: nothing else on the map is drawn in the singular (red) colour.
+    assert np.count_nonzero(np.all(rgb == theme.SINGULAR, axis=2)) == 0
+
+
+def test_the_readme_lists_every_key_of_both_scenes():
+    from robokin_sim.panel import HELP
+
+    readme = open(os.path.join(os.path.dirname(__file__), "..", "README.md"), encoding="utf-8").read()
+    section = readme[readme.index("## The simulator"):readme.index("## A tour of the Python API")]
+    for robot in ("rrr3", "rpr"):
+        for keys, _ in HELP[robot]:
+            for key in keys.split(" / "):
+                assert f"`{key}`" in section, (robot, key)
+    assert "--robot rpr" in section and "null-space joint-limit avoidance" in section

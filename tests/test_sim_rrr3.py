@@ -9,7 +9,8 @@ from sim_helpers import read_log, run_sim
 
 from robokin_sim.scene_rrr3 import Rrr3Scene
 
-COLUMNS = ["step", "time", "mode", "x", "y", "phi", "alpha_0", "alpha_1", "alpha_2", "det_a", "det_b", "state"]
+COLUMNS = ["step", "time", "mode", "x", "y", "phi", "alpha_0", "alpha_1", "alpha_2", "det_a", "det_b", "det_a_norm",
+           "det_b_norm", "distance", "avoid", "state"]
 NUMERIC = [c for c in COLUMNS if c not in ("mode", "state")]
 
 
@@ -56,6 +57,11 @@ def test_logged_alphas_are_the_cores_inverse_model(runs):
         for k in range(0, len(rows), 97):
             sing = robot.singularity(pose[k], (1, 1, 1))
             assert float(rows[k]["det_a"]) == sing.det_a and float(rows[k]["det_b"]) == sing.det_b
+            assert float(rows[k]["det_a_norm"]) == sing.det_a_norm and float(rows[k]["det_b_norm"]) == sing.det_b_norm
+            assert float(rows[k]["distance"]) == sing.distance
+            # The normalised determinants are the raw ones over R_e and l1^3.
+            assert float(rows[k]["det_a_norm"]) == pytest.approx(float(rows[k]["det_a"]) / robot.platform_radius)
+            assert float(rows[k]["det_b_norm"]) == pytest.approx(float(rows[k]["det_b"]) / robot.l1**3)
 
 
 def test_circle_stays_on_the_circle(runs):
@@ -172,7 +178,103 @@ def test_reset_and_pause_keys(tmp_path):
     rows = read_log(log)
     # Paused from the first space to the second (11 frames): no step, no row.
     assert len(rows) == 80 - 11 and [int(r["step"]) for r in rows] == list(range(1, 70))
-    # r went back to the circle's approach from home, m then froze free mode where it was.
+    # r went back towards the circle's start from where the robot was (one step of at most 1 mm),
+    # m then froze free mode where it was.
     after = rows[51:]  # from the frame r was pressed on
-    assert after[0]["mode"] == "approach" and float(after[0]["x"]) <= 0.001 + 1e-12
+    step = np.hypot(float(after[0]["x"]) - float(rows[50]["x"]), float(after[0]["y"]) - float(rows[50]["y"]))
+    assert after[0]["mode"] == "approach" and step <= 0.001 + 1e-12
     assert {r["mode"] for r in after[1:]} == {"free"}
+
+
+#: Every start the simulator offers before a path: home, free-mode moves, k / l rotations.
+STARTS = ["", "l*5,", "k*30,", "l*40,", "k*60,", "right*40,up*20,", "left*50,down*30,l*10,", "up*60,k*20,",
+          "down*45,right*30,"]
+
+
+@pytest.mark.parametrize("path", ["o", "p"])
+@pytest.mark.parametrize("start", STARTS)
+def test_no_approach_crosses_a_parallel_singularity(tmp_path, start, path):
+    """From every start to the circle and the clover, with avoidance on: no logged step is
+    parallel and det A never changes sign (approach included)."""
+    log = tmp_path / "a.csv"
+    frames = sum(int(k.split("*")[1]) for k in start.split(",") if k) + 450
+    run_sim("--keys", start + path, "--frames", str(frames), "--log", str(log), render=False)
+    rows = read_log(log)
+    det = _array(rows, "det_a")[:, 0]
+    assert "parallel" not in {r["state"] for r in rows}
+    assert np.all(det < 0) or np.all(det > 0)
+    name = {"o": "circle", "p": "clover"}[path]
+    assert rows[-1]["mode"] in ("approach", name) and name in {r["mode"] for r in rows}
+    first = [r["mode"] for r in rows].index(name)
+    pose = _array(rows[: first + 1], "x", "y", "phi")  # the moves up to the path: 1 mm, 0.01 rad at most
+    assert np.hypot(*np.diff(pose[:, :2], axis=0).T).max() <= 0.001 + 1e-12
+    assert np.abs(np.diff(pose[:, 2])).max() <= 0.01 + 1e-12
+
+
+@pytest.mark.parametrize("mode", ["circle", "clover"])
+def test_headless_paths_have_no_parallel_row(tmp_path, mode):
+    """The issue's check: robokin-sim --headless --mode circle --log c.csv (the default 700 frames)."""
+    log = tmp_path / "c.csv"
+    run_sim("--mode", mode, "--log", str(log), render=False)
+    rows = read_log(log)
+    det = _array(rows, "det_a_norm")[:, 0]
+    assert len(rows) == 700 and "parallel" not in {r["state"] for r in rows}
+    assert np.all(det < 0) or np.all(det > 0)
+
+
+def test_reset_keeps_avoidance_and_goes_home_without_crossing():
+    scene = Rrr3Scene("free", avoid=True)
+    scene.press("s")
+    assert scene.avoid is False
+    for _ in range(30):
+        scene.step(frozenset({"right", "l"}))
+    scene.press("r")
+    assert scene.avoid is False and "reset" in scene.message  # said, and not silently turned back on
+    dets = []
+    while scene.mode == "approach":
+        scene.step(frozenset())
+        dets.append(scene.det_a)
+    assert scene.mode == "free" and np.array_equal(scene.pose, [0.0, 0.0, 0.0]) and np.all(np.array(dets) < 0)
+
+
+def test_reset_after_crossing_in_free_mode_restarts_at_home():
+    """Free mode may cross a parallel singularity (the user drives); r then has no way back."""
+    scene = Rrr3Scene("free")
+    for _ in range(80):
+        scene.step(frozenset({"right"}))
+    assert scene.det_a > 0  # across the singularity between x = 0.054 and 0.055
+    scene.press("r")
+    assert "restarted at home" in scene.message and scene.mode == "free"
+    assert np.array_equal(scene.pose, [0.0, 0.0, 0.0])
+
+
+def test_mode_change_clears_the_trail_and_m_in_free_mode_says_so():
+    scene = Rrr3Scene("free")
+    scene.press("m")
+    assert scene.message.startswith("already in free mode")
+    for _ in range(10):
+        scene.step(frozenset({"up"}))
+    assert len(scene.state().trail) == 10
+    scene.press("o")
+    assert len(scene.state().trail) == 0
+    for _ in range(20):
+        scene.step(frozenset())
+    assert len(scene.state().trail) == 20
+    scene.press("m")
+    assert len(scene.state().trail) == 0 and scene.mode == "free"
+
+
+def test_a_path_across_the_singularity_is_refused_with_a_message():
+    """On the far side of the parallel singularity (driven there in free mode) the clover at its
+    planned orientations is out of reach without crossing back: refused, the robot stays."""
+    scene = Rrr3Scene("free")
+    for _ in range(80):
+        scene.step(frozenset({"right"}))
+    pose = scene.pose.copy()
+    scene.press("p")
+    if scene.mode == "approach":  # a route on this side exists: it must then keep det A > 0
+        while scene.mode == "approach":
+            scene.step(frozenset())
+            assert scene.det_a > 0 and scene.sing != "parallel"
+    else:
+        assert "refused" in scene.message and np.array_equal(scene.pose, pose) and scene.mode == "free"

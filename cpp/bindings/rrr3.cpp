@@ -4,6 +4,7 @@
 #include "progress.hpp"
 
 #include "robokin/rrr3.hpp"
+#include "robokin/rrr3_connect.hpp"
 #include "robokin/rrr3_plan.hpp"
 #include "robokin/rrr3_workspace.hpp"
 
@@ -179,6 +180,29 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   return plan_path(r, pts.data(), count, o, &progress);
 }
 
+RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj, py::handle mode, double clearance,
+                       double serial_margin, double max_step, double max_turn, double resolution, double span) {
+  RRR3ConnectOptions o;
+  const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
+  o.mode = as_mode(mode);
+  o.clearance = finite_option(clearance, "clearance");
+  o.serial_margin = finite_option(serial_margin, "serial_margin");
+  o.max_step = finite_option(max_step, "max_step");
+  o.max_turn = finite_option(max_turn, "max_turn");
+  o.resolution = finite_option(resolution, "resolution");
+  o.span = finite_option(span, "span");
+  if (!(o.clearance >= 0 && o.clearance < 1)) fail("clearance: must be in [0, 1) (a distance RRR3Singularity.distance)");
+  if (!(o.serial_margin >= 0 && o.serial_margin < 1)) fail("serial_margin: must be in [0, 1)");
+  if (!(o.max_step > 0)) fail("max_step: must be positive");
+  if (!(o.max_turn > 0)) fail("max_turn: must be positive");
+  if (!(o.resolution >= o.max_step && o.resolution <= 1000 * o.max_step))
+    fail("resolution: must be between max_step and 1000 max_step");
+  if (!(o.span >= 0 && o.span <= M_PI)) fail("span: must be in [0, pi]");
+  PythonProgress progress("RRR3.connect");
+  py::gil_scoped_release release;
+  return connect(r, start, goal, o, &progress);
+}
+
 long grid_size(long n) {
   if (n < 2 || n > 5000) fail("n: expected a grid size in [2, 5000], got " + std::to_string(n));
   return n;
@@ -232,6 +256,11 @@ void bind_rrr3(py::module_& m) {
       py::object cls = py::module_::import("robokin.errors").attr("UnreachableError");
       py::object exc = cls(e.what());
       exc.attr("leg") = e.leg();
+      PyErr_SetObject(cls.ptr(), exc.ptr());
+    } catch (const NoRoute& e) {
+      py::object cls = py::module_::import("robokin.errors").attr("NoRouteError");
+      py::object exc = cls(e.what());
+      exc.attr("reason") = e.reason();
       PyErr_SetObject(cls.ptr(), exc.ptr());
     }
   });
@@ -384,6 +413,12 @@ void bind_rrr3(py::module_& m) {
            py::arg("serial_margin") = 0.02, py::arg("span") = 1.0, py::arg("resolution") = 0.005,
            py::arg("smoothing") = 10.0,
            "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.")
+      .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("clearance") = 0.05, py::arg("serial_margin") = 0.02, py::arg("max_step") = 0.001,
+           py::arg("max_turn") = 0.01, py::arg("resolution") = 0.005, py::arg("span") = 1.5,
+           "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
+           "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
+           "why there is none (the two poses are in different singularity-free regions of the mode).")
       .def("__repr__", [](const RRR3& r) {
         return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
                exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";

@@ -7,7 +7,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 from . import closed, paths, robots
 from . import pose, traj  # issue 13, part B
 from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
-from .errors import PrecisionWarning, UnreachableError
+from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 from .resolved_rate import ServoResult, resolved_rate, servo  # issue 13, part B
@@ -16,6 +16,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "Chain",
+    "NoRouteError",
     "PrecisionWarning",
     "IKBatchResult",
     "IKResult",

@@ -2,12 +2,17 @@
 into place (``os.replace`` is atomic within a directory). An interrupted write (an exception,
 Ctrl-C) leaves neither a truncated file under the requested name nor the temporary file behind.
 
+The temporary file is named ``.NAME.PID.RANDOM.partEXT`` (PID: the writing process). A process
+killed outright (SIGKILL, a power cut) cannot remove it; the next AtomicPath for the same target
+removes the temporary files of that target whose process is gone, and only those.
+
 Used by :mod:`robokin.demo` (its figure) and the simulator (recordings, CSV logs, screenshots).
 """
 
 from __future__ import annotations
 
 import os
+import re
 import tempfile
 
 
@@ -30,7 +35,8 @@ class AtomicPath:
         directory = os.path.dirname(os.path.abspath(self.path))
         os.makedirs(directory, exist_ok=True)
         stem, ext = os.path.splitext(os.path.basename(self.path))
-        fd, self.tmp = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part" + ext, dir=directory)
+        remove_stale(directory, stem, ext)
+        fd, self.tmp = tempfile.mkstemp(prefix=f".{stem}.{os.getpid()}.", suffix=".part" + ext, dir=directory)
         os.close(fd)
         # mkstemp makes the file private; give it the permissions a plain open() would.
         umask = os.umask(0)
@@ -58,3 +64,61 @@ class AtomicPath:
                 self.commit()
         finally:
             self.discard()
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process with this id exists (one we may not signal exists too)."""
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale(directory: str, stem: str, ext: str) -> list:
+    """Removes the temporary files ``.STEM.PID.RANDOM.partEXT`` in ``directory`` whose process PID
+    no longer exists (left by a killed writer of the target ``STEM + EXT``); returns their paths.
+    Files of other targets, of live processes, or named otherwise are left alone."""
+    pattern = re.compile(r"\." + re.escape(stem) + r"\.(\d{1,10})\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
+    removed = []
+    try:
+        names = os.listdir(directory)
+    except OSError:
+        return removed
+    for name in names:
+        match = pattern.match(name)
+        if match and not _alive(int(match.group(1))):
+            path = os.path.join(directory, name)
+            try:
+                if os.path.isfile(path) and not os.path.islink(path):
+                    os.remove(path)
+                    removed.append(path)
+            except OSError:
+                pass
+    return removed
+
+
+def remove_own(path) -> list:
+    """Removes the temporary files this process made for ``path`` and did not commit (a run
+    stopped by a signal between creating one and recording it); returns their paths."""
+    path = os.fspath(path)
+    directory = os.path.dirname(os.path.abspath(path))
+    stem, ext = os.path.splitext(os.path.basename(path))
+    pattern = re.compile(r"\." + re.escape(stem) + r"\." + str(os.getpid()) + r"\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
+    removed = []
+    try:
+        names = os.listdir(directory)
+    except OSError:
+        return removed
+    for name in names:
+        if pattern.match(name):
+            try:
+                os.remove(os.path.join(directory, name))
+                removed.append(os.path.join(directory, name))
+            except OSError:
+                pass
+    return removed

@@ -308,6 +308,27 @@ class RRR3:
         distance to parallel singularities below ``margin`` penalised heavily. Excursions from
         the nominal orientation go out and back once (dips are filled), so nothing chatters.
         """
+    def connect(
+        self, start: ArrayLike, goal: ArrayLike, mode: Sequence[int] = (1, 1, 1), clearance: float = 0.05,
+        serial_margin: float = 0.02, max_step: float = 0.001, max_turn: float = 0.01, resolution: float = 0.005,
+        span: float = 1.5,
+    ) -> RRR3Plan:
+        """A motion from pose ``start`` to pose ``goal`` (x, y, phi) that never crosses a parallel
+        singularity: poses (K, 3), start first and goal last, consecutive ones at most ``max_step``
+        metres and ``max_turn`` radians apart, each reachable in ``mode`` with det A of the start's
+        sign, a distance to parallel singularities (RRR3Singularity.distance) of at least
+        ``clearance`` and ``|det_b_norm| >= serial_margin`` (less only where start or goal is
+        itself nearer: then at least as much as there). Answered as an RRR3Plan (``feasible`` True,
+        ``sign`` the sign kept).
+
+        A* search in (x, y, phi) on a grid of step ``resolution`` in x and y and ``resolution *
+        max_turn / max_step`` in phi (anchored at the start, phi within ``span`` of the two
+        orientations), cost the number of steps, then straight shortcuts; every returned pose is
+        checked. Raises ``rk.NoRouteError`` (an ``UnreachableError``) when there is none, its
+        ``reason`` "start" or "goal" (that pose unreachable or singular) or "regions" (the two
+        poses are in different singularity-free regions of ``mode``: det A has opposite signs, or
+        every path of one sign comes nearer than ``clearance``).
+        """
 
 # --- closed-form inverse kinematics (cpp/bindings/ik_closed.cpp) -------------------------------
 

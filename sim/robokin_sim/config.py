@@ -49,6 +49,9 @@ class Config:
     fps: int = 60
 
 
+#: Default width of GIF recordings (pixels).
+GIF_WIDTH = 480
+
 #: Frames of the headless demo: the approach to the clover and one full turn (39 + 628).
 DEMO_FRAMES = 667
 
@@ -61,14 +64,52 @@ def has_display() -> bool:
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
+#: Largest --frames (about 190 days of a window at 60 frames/s): a typo cannot run for ever.
+MAX_FRAMES = 1_000_000_000
+#: Bounds of --record-width (pixels) and --fps.
+RECORD_WIDTHS = (100, 4096)
+MAX_FPS = 1000
+MAX_RECORD_EVERY = 10_000
+
+
+def _bounded_int(lower: int, upper: int):
+    def convert(text: str) -> int:
+        digits = text.strip()
+        if not (digits.isdigit() or (digits[:1] in "+-" and digits[1:].isdigit())):
+            raise argparse.ArgumentTypeError(f"expected a whole number in [{lower}, {upper}], got {text!r}")
+        if len(digits.lstrip("+-0")) > len(str(upper)) or not lower <= int(digits) <= upper:
+            raise argparse.ArgumentTypeError(f"must be a whole number in [{lower}, {upper}], got {text!r}")
+        return int(digits)
+
+    return convert
+
+
 def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
+    return _bounded_int(1, MAX_FRAMES)(text)
+
+
+def _output(suffixes):
+    """An output path: not empty, not a directory, ending in one of ``suffixes`` (when given)."""
+
+    def convert(text: str) -> str:
+        if not text.strip():
+            raise argparse.ArgumentTypeError("expected a file name, got an empty one")
+        if os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text!r} is a directory; expected a file name")
+        if suffixes and os.path.splitext(text)[1].lower() not in suffixes:
+            raise argparse.ArgumentTypeError(f"must end in {' or '.join(suffixes)}, got {text!r}")
+        return text
+
+    return convert
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with bad input reported on one line (and exit status 2, as argparse does)."""
+
+    def error(self, message: str):
+        # Control characters of the user's input are shown escaped: the message stays one line.
+        message = "".join(c if c.isprintable() else repr(c)[1:-1] for c in message)
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def _size(text: str) -> Tuple[int, int]:
@@ -89,13 +130,11 @@ def _keys(text: str) -> KeyScript:
 
 
 def _recording(text: str) -> str:
-    if os.path.splitext(text)[1].lower() not in (".gif", ".mp4"):
-        raise argparse.ArgumentTypeError(f"recording must end in .gif or .mp4, got {text!r}")
-    return text
+    return _output((".gif", ".mp4"))(text)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="robokin-sim",
         description="pygame simulator of the 3-RRR planar parallel robot and the RPR arm (robokin).",
         epilog="Keys: m free mode, o circle, p clover (RPR: o/p the line), arrows move, k/l rotate, "
@@ -116,19 +155,21 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--frames", type=_positive_int, metavar="N", help="stop after N frames")
     parser.add_argument("--record", type=_recording, metavar="OUT", help="write a recording (.gif or .mp4)")
     parser.add_argument(
-        "--record-every", type=_positive_int, metavar="K", help="record one frame in K (default 1 for .mp4, 2 for .gif)"
+        "--record-every", type=_bounded_int(1, MAX_RECORD_EVERY), metavar="K", help="record one frame in K (default 1 for .mp4, 2 for .gif)"
     )
     parser.add_argument(
-        "--record-width", type=_positive_int, metavar="PX", help="width of recorded frames (default: window; .gif 400)"
+        "--record-width", type=_bounded_int(*RECORD_WIDTHS), metavar="PX",
+        help="width of recorded frames, 100-4096 (default: the window's; .gif 480); the frame is drawn at that size"
     )
-    parser.add_argument("--log", metavar="OUT.csv", help="write one CSV row per simulation step")
-    parser.add_argument("--screenshot", metavar="OUT.png", help="save the last frame drawn as a PNG")
+    parser.add_argument("--log", type=_output(()), metavar="OUT.csv", help="write one CSV row per simulation step")
+    parser.add_argument("--screenshot", type=_output(()), metavar="OUT.png", help="save the last frame drawn as a PNG")
     parser.add_argument("--keys", type=_keys, default=KeyScript(()), metavar="SCRIPT",
                         help="scripted key presses, e.g. right*20,down*10,l*10 (hold KEY for N steps)")
     parser.add_argument("--no-avoid", dest="avoid", action="store_false",
                         help="3-RRR: singularity avoidance off; RPR: minimum-norm (no joint-limit avoidance)")
     parser.add_argument("--size", type=_size, default=(800, 800), metavar="WxH", help="window size (default 800x800)")
-    parser.add_argument("--fps", type=_positive_int, default=60, help="frames per second with a window (default 60)")
+    parser.add_argument("--fps", type=_bounded_int(1, MAX_FPS), default=60,
+                        help="frames per second of the window (default 60); one simulation step per frame")
     return parser
 
 
@@ -149,7 +190,11 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> Config:
         parser.error(f"--mode {mode} is not a mode of --robot {ns.robot} (choose from {', '.join(MODES[ns.robot])})")
     gif = bool(ns.record) and ns.record.lower().endswith(".gif")
     every = ns.record_every or (2 if gif else 1)
-    width = ns.record_width or (min(400, ns.size[0]) if gif else None)
+    if gif and every < 2:
+        # Browsers show GIF frames shorter than 20 ms for 100 ms: one step (1/60 s) per frame
+        # would play at a sixth of the speed.
+        parser.error("--record-every: a GIF keeps one frame in 2 steps or more (frames of at least 1/30 s)")
+    width = ns.record_width or (min(GIF_WIDTH, ns.size[0]) if gif else None)
     return Config(
         robot=ns.robot,
         mode=mode,

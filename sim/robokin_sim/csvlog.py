@@ -1,7 +1,9 @@
 """The CSV log: one row per simulation step with the columns of DESIGN.md.
 
 Floats are written with ``repr`` (shortest round-trip form), so a test reading the log sees the
-exact values the simulator had. The file is written under a temporary name and renamed when closed.
+exact values the simulator had. The file is written under a temporary name
+(``.NAME.PID.RANDOM.part.csv`` next to it) and renamed when closed; with ``flush`` every row
+reaches that temporary file at once, so a window run's log can be followed while it runs.
 """
 
 from __future__ import annotations
@@ -11,6 +13,8 @@ from typing import Optional, Sequence
 
 from robokin._atomic import AtomicPath
 
+from .outputs import OutputError, reason_of
+
 
 class CsvLog:
     """Writes rows under a header.
@@ -18,30 +22,46 @@ class CsvLog:
     Args:
         path: The CSV file to write.
         columns: The header.
+        flush: Flush every row to the temporary file.
     """
 
-    def __init__(self, path: str, columns: Sequence[str]) -> None:
+    def __init__(self, path: str, columns: Sequence[str], flush: bool = False) -> None:
         self.path = path
         self.columns = tuple(columns)
         self.rows = 0
+        self.flush = bool(flush)
         self._out = AtomicPath(path)
         self._written: Optional[str] = None
         self._file = open(self._out.tmp, "w", newline="", encoding="utf-8")
         self._writer = csv.writer(self._file, lineterminator="\n")
-        self._writer.writerow(self.columns)
+        self.write(self.columns, header=True)
 
-    def write(self, row: Sequence) -> None:
-        """Appends one row (as many values as columns)."""
-        self._writer.writerow(row)
-        self.rows += 1
+    @property
+    def tmp(self) -> str:
+        """The temporary file the rows go to until :meth:`close`."""
+        return self._out.tmp
+
+    def write(self, row: Sequence, header: bool = False) -> None:
+        """Appends one row (as many values as columns); OutputError when the disk refuses it."""
+        try:
+            self._writer.writerow(row)
+            if self.flush:
+                self._file.flush()
+        except OSError as exc:
+            raise OutputError(self.path, reason_of(exc)) from None
+        if not header:
+            self.rows += 1
 
     def close(self) -> Optional[str]:
         """Flushes, renames the file into place and returns its path."""
         if self._file.closed:  # closed before (a second close, or after discard)
             return self._written
         try:
-            self._file.close()
-            self._written = self._out.commit()
+            try:
+                self._file.close()
+                self._written = self._out.commit()
+            except OSError as exc:
+                raise OutputError(self.path, reason_of(exc)) from None
             return self._written
         finally:
             self._out.discard()

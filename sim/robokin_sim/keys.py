@@ -69,12 +69,17 @@ def parse_script(text: str) -> KeyScript:
         item = raw.strip().lower()
         if not item:
             continue
-        name, _, count_text = item.partition("*")
+        name, star, count_text = item.partition("*")
         name = ALIASES.get(name.strip(), name.strip())
         if name not in KEYS:
             raise ValueError(f"--keys: unknown key {raw.strip()!r} (keys: {', '.join(KEYS)})")
+        count_text = count_text.strip()
+        if star and not count_text.isdigit():
+            raise ValueError(f"--keys: bad count in {raw.strip()!r}, expected KEY*N with N a whole number")
+        if len(count_text) > 7:
+            raise ValueError(f"--keys: count in {raw.strip()!r} must be between 1 and {MAX_HOLD}")
         try:
-            count = int(count_text) if count_text else 1
+            count = int(count_text) if star else 1
         except ValueError:
             raise ValueError(f"--keys: bad count in {raw.strip()!r}, expected KEY*N with N a whole number") from None
         if not 1 <= count <= MAX_HOLD:

@@ -4,6 +4,10 @@ Each frame advances the scene by exactly one step of ``DT`` seconds. With a wind
 paced at ``fps`` frames per second; headless it runs as fast as it can and never sleeps. Nothing
 is printed inside the loop; :func:`run` returns what it wrote and :func:`robokin_sim.__main__.main`
 reports it.
+
+A recording gets one frame per simulation step (none while paused), drawn by a renderer of its
+own at the recording's size: its text is as large as the window's, and it carries neither the
+window's frames-per-second row nor the REC mark the window shows while recording.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from typing import Iterator, Optional
 
 from .config import Config
 from .keys import HELD_KEYS, NO_INPUT, Input
+from .scene import DT
 
 #: Frames a headless run lasts when neither --frames nor --keys says: about one clover turn
 #: (628 steps) with its approach.
@@ -43,6 +48,17 @@ def make_scene(config: Config):
     from .scene_rrr3 import Rrr3Scene
 
     return Rrr3Scene(mode=config.mode, avoid=config.avoid)
+
+
+def record_size(config: Config, window) -> tuple:
+    """Size (w, h) of the recorded frames: ``record_width`` wide (the window's width when None)
+    with the window's aspect; even for MP4 (yuv420p)."""
+    w, h = window
+    if config.record_width:
+        w, h = config.record_width, max(2, round(h * config.record_width / w))
+    if config.record and config.record.lower().endswith(".mp4"):
+        w, h = max(2, w - w % 2), max(2, h - h % 2)
+    return int(w), int(h)
 
 
 def make_renderer(robot: str, size):
@@ -90,14 +106,6 @@ class _Keyboard:
         return Input(pressed=frozenset(pressed), held=frozenset(held))
 
 
-def _save_png(pygame, surface, path: str) -> str:
-    from robokin._atomic import AtomicPath
-
-    with AtomicPath(path) as tmp:
-        pygame.image.save(surface, tmp, "png")
-    return path
-
-
 def run(config: Config, render: bool = True) -> RunResult:
     """Runs the simulator.
 
@@ -114,36 +122,46 @@ def run(config: Config, render: bool = True) -> RunResult:
         os.environ["SDL_VIDEODRIVER"] = "dummy"
         os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    # SDL would turn SIGINT and SIGTERM into a quit event (that a headless run never reads):
+    # signals are Python's (robokin_sim.signals).
+    os.environ["SDL_NO_SIGNAL_HANDLERS"] = "1"
     import pygame
 
     from .csvlog import CsvLog
+    from .outputs import save_png
     from .recording import Recorder
     from .render_common import Hud
 
     pygame.display.init()
     pygame.font.init()
     scene = make_scene(config)
-    render = render or not config.headless or bool(config.record) or bool(config.screenshot)
     if config.headless:
         screen = pygame.Surface(config.size)
     else:
         screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
         pygame.display.set_caption(f"robokin-sim: {config.robot}")
-    renderer = make_renderer(config.robot, screen.get_size()) if render else None
+    # The window is drawn every frame; headless, the screen only when asked (render) and not
+    # recording (the recording has its own frames), and once at the end for a screenshot.
+    draw_screen = not config.headless or (render and not config.record)
+    renderer = make_renderer(config.robot, screen.get_size()) if (draw_screen or config.screenshot) else None
     keyboard = None if config.headless else _Keyboard(pygame)
     script: Iterator[Input] = config.keys.inputs()
     clock = pygame.time.Clock()
-    hud = Hud()
+    hud = Hud(recording=bool(config.record))
     budget = _frame_budget(config)
     frames = 0
     started = last = time.perf_counter()
     written_record = written_log = written_shot = None
     recorder = log = None
+    record_surface = record_renderer = None
     try:
         if config.record:
-            recorder = Recorder(config.record, fps=min(config.fps, 60), every=config.record_every,
-                                width=config.record_width)
-        log = CsvLog(config.log, scene.columns) if config.log else None
+            size = record_size(config, screen.get_size())
+            recorder = Recorder(config.record, fps=1.0 / DT, every=config.record_every, width=size[0])
+            record_surface = pygame.Surface(size)
+            record_renderer = make_renderer(config.robot, size)
+        log = CsvLog(config.log, scene.columns, flush=not config.headless) if config.log else None
+        drawn = False
         while budget is None or frames < budget:
             inp = next(script, NO_INPUT)
             if keyboard is not None:
@@ -159,19 +177,25 @@ def run(config: Config, render: bool = True) -> RunResult:
                 hud.help = not hud.help
             for key in inp.pressed:
                 scene.press(key)
-            if not hud.paused:
+            stepped = not hud.paused
+            if stepped:
                 scene.step(inp.held)
                 if log is not None:
                     log.write(scene.row())
-            if renderer is not None:
+            state = None
+            if draw_screen:
                 if keyboard is not None and screen.get_size() != pygame.display.get_surface().get_size():
                     screen = pygame.display.get_surface()
-                renderer.draw(screen, scene.state(), hud)
-                if recorder is not None:
-                    if recorder.wants():
-                        recorder.add(pygame.surfarray.array3d(screen).swapaxes(0, 1))
-                    else:
-                        recorder.skip()
+                state = scene.state()
+                renderer.draw(screen, state, hud)
+                drawn = True
+            if recorder is not None and stepped:
+                if recorder.wants():
+                    state = state or scene.state()
+                    record_renderer.draw(record_surface, state, dataclasses.replace(hud, fps=None, recording=False))
+                    recorder.add(pygame.surfarray.array3d(record_surface).swapaxes(0, 1))
+                else:
+                    recorder.skip()
             frames += 1
             if keyboard is not None:
                 pygame.display.flip()
@@ -182,9 +206,11 @@ def run(config: Config, render: bool = True) -> RunResult:
                 hud.fps = 30.0 / max(now - last, 1e-9)
                 last = now
         if config.screenshot and renderer is not None:
-            written_shot = _save_png(pygame, screen, config.screenshot)
+            if not drawn:
+                renderer.draw(screen, scene.state(), dataclasses.replace(hud, recording=False))
+            written_shot = save_png(pygame, screen, config.screenshot)
     except BaseException:
-        # Interrupted (Ctrl-C, an error): the recording and the log would be cut short, so neither
+        # Interrupted (a signal, an error): the recording and the log would be cut short, so neither
         # is written under its name (nor is a temporary file left behind).
         if recorder is not None:
             recorder.discard()

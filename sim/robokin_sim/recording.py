@@ -2,16 +2,25 @@
 
 Both are written to a temporary file next to the target and renamed into place when complete,
 so an interrupted run never leaves a half-written recording under the requested name.
+
+The time base is the simulation's: the loop offers one frame per simulation step (none while
+paused) and ``fps`` is the number of steps per simulated second, so a recording of N steps of
+``1 / fps`` seconds lasts N / fps seconds whatever rate the window ran at. With ``every = k`` one
+frame in k is kept and shown for k steps (MP4 at fps / k frames per second; GIF frames of
+k / fps seconds, rounded to GIF's 10 ms ticks without drifting).
 """
 
 from __future__ import annotations
 
 import os
+import signal
 import zlib
 from typing import List, Optional
 
 import numpy as np
 from robokin._atomic import AtomicPath
+
+from .outputs import OutputError, reason_of
 
 
 class Recorder:
@@ -19,12 +28,12 @@ class Recorder:
 
     Args:
         path: Target file, ``.gif`` or ``.mp4``.
-        fps: Playback frames per second.
+        fps: Frames offered per second of simulated time (simulation steps per second).
         every: Keep one frame in ``every`` (the others are skipped).
         width: Width of the written frames in pixels (None: as given); even for MP4.
     """
 
-    def __init__(self, path: str, fps: float = 30.0, every: int = 1, width: Optional[int] = None) -> None:
+    def __init__(self, path: str, fps: float = 60.0, every: int = 1, width: Optional[int] = None) -> None:
         self.path = path
         self.kind = os.path.splitext(path)[1].lower()
         if self.kind not in (".gif", ".mp4"):
@@ -72,27 +81,48 @@ class Recorder:
             paletted = image.quantize(palette=_gif_palette(), dither=Image.Dither.NONE)
             self._gif.append(zlib.compress(paletted.tobytes(), 6))
         else:
-            if self._writer is None:
-                import imageio.v2 as imageio
+            try:
+                if self._writer is None:
+                    import imageio.v2 as imageio
 
-                self._writer = imageio.get_writer(
-                    self._out.tmp, format="FFMPEG", mode="I", fps=self.fps, codec="libx264",
-                    quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
-                )
-            self._writer.append_data(np.asarray(image))
+                    self._writer = imageio.get_writer(
+                        self._out.tmp, format="FFMPEG", mode="I", fps=self.fps / self.every, codec="libx264",
+                        quality=7, pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error",
+                    )
+                self._writer.append_data(np.asarray(image))
+            except Exception as exc:  # ffmpeg stopped: a full disk, a file too large
+                self._abandon_writer()
+                raise OutputError(self.path, reason_of(exc)) from None
         self.frames_written += 1
+
+    @property
+    def seconds(self) -> float:
+        """Playing time of the frames kept so far (simulated seconds)."""
+        return self.frames_written * self.every / self.fps
 
     def close(self) -> Optional[str]:
         """Writes the file and renames it into place; returns its path (None if no frame was kept)."""
         try:
             if self.frames_written == 0:
                 return None
-            if self.kind == ".gif":
-                self._write_gif()
-            else:
-                self._writer.close()
-                self._writer = None
-            return self._out.commit()
+            try:
+                if self.kind == ".gif":
+                    self._write_gif()
+                else:
+                    process = _ffmpeg_process(self._writer)
+                    self._writer.close()
+                    self._writer = None
+                    # ffmpeg may end with status 0 after failed writes (a full disk): the file
+                    # itself says whether it is whole.
+                    if process is not None and process.wait() != 0:
+                        status = process.returncode
+                        raise OSError("ffmpeg " + (f"was stopped: {signal.strsignal(-status)}" if status < 0
+                                                   else f"ended with status {status}"))
+                    if not mp4_complete(self._out.tmp):
+                        raise OSError(28, "the video file came out truncated (is the disk full?)")
+                return self._out.commit()
+            except Exception as exc:  # the disk is full, the file too large, the directory gone
+                raise OutputError(self.path, reason_of(exc)) from None
         finally:
             self.discard()
 
@@ -100,11 +130,25 @@ class Recorder:
         """Drops the recording (an interrupted run): nothing is left under the path, nor a temporary file."""
         self._gif = []
         try:
-            if self._writer is not None:
-                self._writer.close()
+            self._abandon_writer()
         finally:
-            self._writer = None
             self._out.discard()
+
+    def _abandon_writer(self) -> None:
+        """Stops ffmpeg without waiting for it to finish a video nobody will keep."""
+        writer, self._writer = self._writer, None
+        if writer is None:
+            return
+        process = _ffmpeg_process(writer)
+        if process is not None:
+            try:
+                process.kill()
+            except OSError:
+                pass
+        try:
+            writer.close()
+        except Exception:
+            pass
 
     def _write_gif(self) -> None:
         from PIL import Image
@@ -122,11 +166,56 @@ class Recorder:
             image = Image.fromarray(delta, "P")
             image.putpalette(palette)
             frames.append(image)
-        duration = int(round(1000.0 * self.every / self.fps))
         frames[0].save(
-            self._out.tmp, format="GIF", save_all=True, append_images=frames[1:], duration=max(duration, 20),
+            self._out.tmp, format="GIF", save_all=True, append_images=frames[1:],
+            duration=gif_durations(len(frames), self.every / self.fps),
             loop=0, optimize=False, disposal=1, transparency=_TRANSPARENT,
         )
+
+
+def _ffmpeg_process(writer):
+    """The ffmpeg subprocess behind an imageio FFMPEG writer (None if it cannot be found)."""
+    gen = getattr(writer, "_write_gen", None)
+    frame = getattr(gen, "gi_frame", None)
+    process = frame.f_locals.get("p") if frame is not None else None
+    return process if hasattr(process, "wait") and hasattr(process, "kill") else None
+
+
+def mp4_complete(path: str) -> bool:
+    """Whether the MP4 file's top-level boxes tile it exactly and include the index ('moov'): a file
+    cut short by a full disk fails this."""
+    import struct
+
+    size = os.path.getsize(path)
+    seen, offset = set(), 0
+    with open(path, "rb") as f:
+        while offset < size:
+            f.seek(offset)
+            head = f.read(16)
+            if len(head) < 8:
+                return False
+            length, kind = struct.unpack(">I4s", head[:8])
+            if length == 1:
+                if len(head) < 16:
+                    return False
+                length = struct.unpack(">Q", head[8:16])[0]
+            elif length == 0:
+                length = size - offset
+            if length < 8 or offset + length > size:
+                return False
+            seen.add(kind)
+            offset += length
+    return offset == size and b"moov" in seen and b"mdat" in seen
+
+
+def gif_durations(count: int, seconds: float) -> List[int]:
+    """Display times (ms, multiples of GIF's 10 ms tick) of ``count`` frames of ``seconds`` each:
+    frame k ends at round(k * seconds) ticks, so the total is right to one tick and never drifts.
+    (GIF viewers show frames shorter than 20 ms slower: frames of at least 20 ms are kept.)"""
+    tick = 0.01
+    per = max(seconds, 0.02)
+    ends = [int(round((k + 1) * per / tick)) for k in range(count)]
+    return [10 * (e - b) for b, e in zip([0] + ends[:-1], ends)]
 
 
 _PALETTE = None

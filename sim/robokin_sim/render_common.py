@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Optional
 
 import pygame
 
@@ -13,11 +14,29 @@ from .view import Viewport
 
 @dataclasses.dataclass
 class Hud:
-    """Loop state shown on screen: measured frames per second, pause and help flags."""
+    """Loop state shown on screen: measured frames per second (None: no fps row, as in a
+    recording), pause and help flags, and whether the run is recording (the window's REC mark)."""
 
-    fps: float = 0.0
+    fps: Optional[float] = 0.0
     paused: bool = False
     help: bool = False
+    recording: bool = False
+
+
+def fps_rows(hud: Hud) -> list:
+    """The panel's fps row, or none (recorded frames)."""
+    return [] if hud.fps is None else [("fps", f"{hud.fps:.0f}", None)]
+
+
+def draw_rec(surface: pygame.Surface, text, hud: Hud) -> None:
+    """A red dot and "REC" at the top right while the run is recording (the window only)."""
+    if not hud.recording:
+        return
+    label = text.render("REC", theme.SINGULAR)
+    w = surface.get_width()
+    x, y = w - label.get_width() - 12, 10
+    pygame.draw.circle(surface, theme.SINGULAR, (x - 11, y + label.get_height() // 2 - 1), 7)
+    surface.blit(label, (x, y))
 
 
 def draw_grid(surface: pygame.Surface, view: Viewport, spacing: float) -> None:

@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_overlays, draw_panel, number
-from .render_common import Hud, draw_grid, polyline
+from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline
 from .view import Viewport
 
 JOINT_NAMES = ("t1", "t2", "t3")
@@ -48,11 +48,12 @@ class RprRenderer:
             ("solution", "null-space limits" if state.avoid else "minimum norm", None),
             ("tip x, y", f"{number(state.frames[-1][0, 3], '{:+.3f}')}, {number(state.frames[-1][1, 3], '{:+.3f}')}", None),
             ("Reach error", number(state.error, "{:.1e}") + " m", None if state.converged else theme.SINGULAR),
-            ("fps", f"{hud.fps:.0f}", None),
+            *fps_rows(hud),
         ]
         bars = [(JOINT_NAMES[i], float(joint[i]), float(state.lower[i]), float(state.upper[i])) for i in range(3)]
         draw_panel(surface, self.text, rows, bars=bars)
         draw_overlays(surface, self.text, self.small, "rpr", state.message, hud.paused, hud.help)
+        draw_rec(surface, self.text, hud)
 
     def _arm(self, surface: pygame.Surface, state) -> None:
         v = self.view

@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_overlays, draw_panel, number
-from .render_common import Hud, draw_grid, polyline
+from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline
 from .view import Viewport
 
 #: Cell code of the core's workspace map -> colour (0 unreachable is left transparent).
@@ -115,13 +115,14 @@ class Rrr3Renderer:
             ("x, y (m)", f"{number(x)}, {number(y)}", None),
             ("phi (rad)", number(phi), None),
             ("alpha (rad)", " ".join(number(a, "{:+.2f}") for a in state.alpha), None),
-            ("det A", number(state.det_a, "{:+.3e}"), None),
-            ("det B", number(state.det_b, "{:+.3e}"), None),
+            ("det_a_norm", number(state.det_a_norm, "{:+.3f}"), None),
+            ("det_b_norm", number(state.det_b_norm, "{:+.3f}"), None),
             ("working mode", "({:+d}, {:+d}, {:+d})".format(*m), None),
             ("singularity", state.state, theme.STATE_COLOURS.get(state.state, theme.SINGULAR)),
             ("avoidance", "on" if state.avoid else "off", None),
-            ("fps", f"{hud.fps:.0f}", None),
+            *fps_rows(hud),
         ]
         draw_panel(surface, self.text, rows)
         draw_overlays(surface, self.text, self.small, "rrr3", state.message, hud.paused, hud.help,
-                      hint="h: keys   red cells: parallel singularities at this orientation")
+                      hint="h: keys   pink: parallel singularities at this phi")
+        draw_rec(surface, self.text, hud)

@@ -15,8 +15,15 @@ import robokin as rk
 #: The seed's tolerance, on the core's normalised determinants (det A / R_e, det B / l1^3).
 SINGULAR_TOL = 1e-3
 #: Distance to a parallel singularity (the core's inverse condition number of A, in [0, 1])
-#: below which a pose is "near" (orange): the margin the core's avoidance planner keeps.
+#: below which a pose is "near" (orange): the margin the core's avoidance planner keeps, and the
+#: clearance of every approach (``RRR3.connect``).
 NEAR_DISTANCE = 0.05
+#: Grid step of the approach search (m; 0.1 rad in phi): coarse enough that a search that finds
+#: nothing gives up in a tenth of a second, and the shortcuts straighten what it finds.
+ROUTE_RESOLUTION = 0.01
+#: Nominal orientations tried for a path whose orientation-0 plan is in another singularity-free
+#: region than the robot: 0, then +-0.05, +-0.1, ... +-1.5 rad (nearest to 0 first).
+NOMINALS = tuple(round(s * k * 0.05, 10) for k in range(31) for s in ((1,) if k == 0 else (1, -1)))
 
 
 class Evaluation(NamedTuple):
@@ -27,6 +34,8 @@ class Evaluation(NamedTuple):
     det_b: float
     distance: float
     state: str
+    det_a_norm: float
+    det_b_norm: float
 
 
 def evaluate(robot, pose, mode) -> Optional[Evaluation]:
@@ -45,12 +54,13 @@ def evaluate(robot, pose, mode) -> Optional[Evaluation]:
     except ValueError:  # rk.UnreachableError is a ValueError
         return None
     det_a, det_b, distance = float(sing.det_a), float(sing.det_b), float(sing.distance)
-    if not (np.all(np.isfinite(alpha)) and math.isfinite(det_a) and math.isfinite(det_b) and math.isfinite(distance)):
+    det_a_norm, det_b_norm = float(sing.det_a_norm), float(sing.det_b_norm)
+    if not (np.all(np.isfinite(alpha)) and all(map(math.isfinite, (det_a, det_b, distance, det_a_norm, det_b_norm)))):
         return None
     state = str(sing.kind)
     if state == "none" and distance < NEAR_DISTANCE:
         state = "near"
-    return Evaluation(alpha, det_a, det_b, distance, state)
+    return Evaluation(alpha, det_a, det_b, distance, state, det_a_norm, det_b_norm)
 
 
 def points(robot, pose, mode) -> dict:
@@ -99,27 +109,68 @@ def workspace(robot, phi: float, mode, n: int = 200) -> Optional[Workspace]:
     return Workspace(np.asarray(ws.cells), tuple(float(v) for v in ws.extent))
 
 
-def approach(robot, start, goal, mode, move_step: float, turn_step: float) -> np.ndarray:
+def route(robot, start, goal, mode, move_step: float, turn_step: float) -> np.ndarray:
     """Poses (K, 3) from ``start`` (excluded) to ``goal`` (included), at most ``move_step`` metres
-    and ``turn_step`` radians apart, all reachable; empty when already there.
+    and ``turn_step`` radians apart, along which det A keeps its sign and the distance to parallel
+    singularities stays at least :data:`NEAR_DISTANCE` (the core's ``RRR3.connect``); empty when
+    already there.
 
-    Goes straight when every pose on the way is reachable (checked with the core's batch inverse
-    model), else through the home pose (0, 0, 0).
+    Raises:
+        rk.NoRouteError: No such motion (``reason`` says why: the goal is in another
+            singularity-free region, or an end is unusable).
     """
     start, goal = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
+    if np.array_equal(start, goal):
+        return np.empty((0, 3))
+    plan = robot.connect(start, goal, mode=mode, clearance=NEAR_DISTANCE, max_step=move_step, max_turn=turn_step,
+                         resolution=ROUTE_RESOLUTION)
+    return np.asarray(plan.poses, dtype=float)[1:]
 
-    def straight(a, b):
-        n = int(max(math.ceil(np.linalg.norm(b[:2] - a[:2]) / move_step), math.ceil(abs(b[2] - a[2]) / turn_step)))
-        if n == 0:
-            return np.empty((0, 3))
-        return a + np.linspace(0.0, 1.0, n + 1)[1:, None] * (b - a)
 
-    def reachable(poses):
-        return len(poses) == 0 or bool(np.all(np.isfinite(robot.ik_batch(poses, mode))))
+def path_determinants(robot, poses, mode) -> Tuple[np.ndarray, np.ndarray]:
+    """det A / R_e and the distance to parallel singularities at each pose (K, 3); NaN where a
+    leg cannot reach."""
+    poses = np.asarray(poses, dtype=float)
+    det = np.full(len(poses), np.nan)
+    distance = np.full(len(poses), np.nan)
+    for k, pose in enumerate(poses):
+        try:
+            sing = robot.singularity(pose, mode)
+        except ValueError:
+            continue
+        det[k], distance[k] = sing.det_a_norm, sing.distance
+    return det, distance
 
-    direct = straight(start, goal)
-    if reachable(direct):
-        return direct
-    home = np.zeros(3)
-    via = np.concatenate((straight(start, home), straight(home, goal)))
-    return via if reachable(via) else direct
+
+def path_orientations(robot, path: np.ndarray, mode, sign: int, avoid: bool):
+    """Orientations (K,) for the closed ``path`` that keep det A of ``sign`` all along, and the
+    nominal orientation they were planned about; None when no nominal orientation of
+    :data:`NOMINALS` gives one.
+
+    With ``avoid``: the avoidance plan about the first nominal orientation (nearest to 0) whose
+    plan is clear of parallel singularities with det A of ``sign`` everywhere. Without: the
+    constant orientation 0 when the path's start is of ``sign`` there (the path may then cross
+    singularities, which is what turning avoidance off shows), else the nearest nominal
+    orientation whose whole path keeps ``sign``, else the nearest whose start does.
+    """
+    path = np.asarray(path, dtype=float)
+    fallback = None
+    for phi0 in NOMINALS:
+        nominal = robot.plan(path, phi=phi0, mode=mode, avoid=False)
+        det = np.asarray(nominal.det_a_norm)
+        if not np.isfinite(det[0]) or np.sign(det[0]) != sign:
+            continue
+        if not avoid:
+            constant = np.full(len(path), phi0)
+            if phi0 == 0.0 or np.all(np.sign(det) == sign):
+                return constant, phi0
+            fallback = fallback if fallback is not None else (constant, phi0)
+            continue
+        orientation = avoidance_plan(robot, path, mode, phi=phi0)
+        poses = np.column_stack((path, orientation))
+        det, distance = path_determinants(robot, poses, mode)
+        closed = np.append(orientation, orientation[0])
+        if (np.all(np.sign(det) == sign) and np.all(distance >= NEAR_DISTANCE)
+                and np.abs(np.diff(closed)).max() <= 0.01 + 1e-9):
+            return orientation, phi0
+    return fallback

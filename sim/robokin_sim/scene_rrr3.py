@@ -6,9 +6,21 @@
   Free-mode poses are kept as whole numbers of steps from an anchor pose, so ``right*20`` from the
   origin ends at exactly ``x = 0.02``.
 * Circle and clover: the seed program's curves, one point per step; the orientation comes from the
-  core's avoidance planner (tilting before a parallel singularity, back after) or stays at 0
-  without avoidance. Switching to a path from elsewhere first moves the effector to the path's start
-  in 1 mm / 0.01 rad steps (the "approach" rows of the log).
+  core's avoidance planner (tilting before a parallel singularity, back after) or stays constant
+  without avoidance. Switching to a path from elsewhere first moves the effector to the path's
+  start in 1 mm / 0.01 rad steps (the "approach" rows of the log) along the core's
+  ``RRR3.connect``: det A keeps its sign and stays clear of zero, so no approach crosses a
+  parallel singularity.
+* Which side: det A cannot change sign without a parallel singularity, so a path is traced on the
+  robot's side. Its orientation is planned about the nominal orientation nearest to 0 (0, +-0.05,
+  ... +-1.5 rad) at which the whole path is on the robot's side, clear of singularities (with
+  avoidance; without, orientation 0 when the path's start is on the robot's side there). From
+  home (det A < 0) the circle is traced about a tilted orientation for that reason: at
+  orientation 0 it lies on the other side. When no orientation works, or no singularity-free
+  approach exists, the switch is refused with a message and the robot stays.
+* ``r`` goes back to where the run started (home, or the start of its path) along a
+  singularity-free route; avoidance stays as the user set it. A robot driven across a parallel
+  singularity in free mode has no such route: ``r`` then restarts at home (and says so).
 
 Every kinematic quantity (inverse model, Jacobian determinants, singularity state, workspace, the
 avoidance plan) comes from ``robokin.RRR3``.
@@ -49,6 +61,8 @@ class Rrr3State:
     points: Optional[dict]  # "O", "A", "B": (3, 2) each
     det_a: float
     det_b: float
+    det_a_norm: float  # det A / R_e
+    det_b_norm: float  # det B / l1^3
     state: str  # none | near | parallel | serial
     mode: str  # free | approach | circle | clover
     working_mode: tuple
@@ -69,7 +83,8 @@ class Rrr3Scene(Scene):
     """
 
     robot = "rrr3"
-    columns = ("step", "time", "mode", "x", "y", "phi", "alpha_0", "alpha_1", "alpha_2", "det_a", "det_b", "state")
+    columns = ("step", "time", "mode", "x", "y", "phi", "alpha_0", "alpha_1", "alpha_2", "det_a", "det_b",
+               "det_a_norm", "det_b_norm", "distance", "avoid", "state")
 
     def __init__(self, mode: str = "free", avoid: bool = True) -> None:
         super().__init__()
@@ -94,75 +109,129 @@ class Rrr3Scene(Scene):
         return model.evaluate(self.robot_model, pose, self.working_mode)
 
     def _set(self, pose, evaluated) -> None:
-        alpha, det_a, det_b, distance, state = evaluated
+        alpha, det_a, det_b, distance, state, det_a_norm, det_b_norm = evaluated
         if self._last_det_a is not None and det_a * self._last_det_a < 0 and state in ("none", "near"):
             # det A changed sign between two samples: a parallel singularity was crossed between
             # them. Report it rather than hide it behind the sampling.
             state = "parallel"
         self.pose = np.asarray(pose, dtype=float)
         self.alpha, self.det_a, self.det_b, self.sing = alpha, det_a, det_b, state
+        self.det_a_norm, self.det_b_norm = det_a_norm, det_b_norm
         self.distance = distance
         self._last_det_a = det_a if det_a != 0 else self._last_det_a
         self._points = None
 
     # --- keys ---------------------------------------------------------------------------------
     def reset(self) -> None:
-        self.avoid = self.start_avoid
+        """Back to where the run started: home, then the start mode (see the module's notes)."""
+        if not hasattr(self, "pose"):  # the first reset: the run starts at home
+            self.avoid = self.start_avoid
+            self._last_det_a = None
+            self._set(HOME, self._evaluate(HOME))
+            self._go_free()
+            self.message = ""
+            if self.start_mode != "free":
+                self._start_path(self.start_mode)
+            return
         self.trail.clear()
+        if self.start_mode != "free":
+            self._start_path(self.start_mode, reset=True)
+            return
+        try:
+            poses = model.route(self.robot_model, self.pose, HOME, self.working_mode, MOVE_STEP, TURN_STEP)
+        except rk.NoRouteError:
+            self._restart()
+            return
+        self._go_free()
+        self._path_name = None
+        self._approach, self._after_approach = poses, "free"
+        self.mode = "approach" if len(poses) else "free"
+        self.message = "reset: back to home"
+        if not len(poses):
+            self._go_free()
+
+    def _restart(self) -> None:
+        """Home at once: the robot was driven across a parallel singularity, and every way back crosses one."""
         self._last_det_a = None
         self._set(HOME, self._evaluate(HOME))
-        self._anchor = np.array(HOME)
-        self._counts = np.zeros(3, dtype=np.int64)
-        self.mode, self.path, self._plan, self._index = "free", None, None, 0
-        self._approach: Optional[np.ndarray] = None
-        self._path_name: Optional[str] = None
-        self.message = ""
+        self._go_free()
+        self.message = "reset: restarted at home (every way back crossed a parallel singularity)"
         if self.start_mode != "free":
             self._start_path(self.start_mode)
+            self.message = "reset: restarted at home (every way back crossed a parallel singularity)"
+
+    def _go_free(self) -> None:
+        self.mode, self.path, self._plan, self._index = "free", None, None, 0
+        self._approach, self._after_approach = None, None
+        self._path_name = None
+        self._anchor = self.pose.copy()
+        self._counts = np.zeros(3, dtype=np.int64)
 
     def press(self, key: str) -> None:
         if key == "m":
-            self._enter_free()
+            if self.mode == "free":
+                self.message = "already in free mode: arrows move, k / l rotate"
+            else:
+                self.trail.clear()
+                self._go_free()
+                self.message = "free mode: arrows move, k / l rotate"
         elif key == "o":
             self._start_path("circle")
         elif key == "p":
             self._start_path("clover")
         elif key == "s":
             self.avoid = not self.avoid
-            self.message = "singularity avoidance on" if self.avoid else "singularity avoidance off"
+            said = "singularity avoidance on" if self.avoid else "singularity avoidance off"
+            self.message = said
             if self._path_name is not None:
                 # Re-plan the orientations and move to the new plan's pose at the current point
                 # (an approach, never a jump in phi).
-                self._start_path(self._path_name, index=self._index, keep_trail=True)
+                if self._start_path(self._path_name, index=self._index, keep_trail=True):
+                    self.message = said + (": " + self.message if self.mode == "approach" else "")
+                else:  # no way to the new plan: keep the old one
+                    self.avoid = not self.avoid
+                    self.message = f"avoidance stays {'on' if self.avoid else 'off'}: " + self.message
         elif key == "r":
             self.reset()
 
-    def _enter_free(self) -> None:
-        self.mode, self.path, self._plan, self._approach, self._path_name = "free", None, None, None, None
-        self._anchor = self.pose.copy()
-        self._counts[:] = 0
-        self.message = "free mode: arrows move, k / l rotate"
+    def _orientation_plan(self, name: str, sign: int):
+        """(orientations (K,), nominal phi) for path ``name`` on the side ``sign`` of det A, or None."""
+        key = (name, self.avoid, sign)
+        if key not in self._plans:  # planning takes ~0.1 s per nominal orientation: once per path and side
+            self._plans[key] = model.path_orientations(self.robot_model, self.paths[name], self.working_mode,
+                                                       sign, self.avoid)
+        return self._plans[key]
 
-    def _orientation_plan(self, name: str) -> np.ndarray:
-        """Orientation phi for every point of the path: the core's avoidance plan, or 0 without."""
-        points = self.paths[name]
-        if not self.avoid:
-            return np.zeros(len(points))
-        if name not in self._plans:  # planning takes ~0.1 s: once per path
-            self._plans[name] = model.avoidance_plan(self.robot_model, points, self.working_mode)
-        return self._plans[name]
-
-    def _start_path(self, name: str, index: int = 0, keep_trail: bool = False) -> None:
-        self.path = self.paths[name]
-        self._path_name = name
-        self._plan = self._orientation_plan(name)
-        self._index = index
-        start = np.array([*self.path[index], self._plan[index]])
+    def _start_path(self, name: str, index: int = 0, keep_trail: bool = False, reset: bool = False) -> bool:
+        """Approach path ``name`` at point ``index`` along a singularity-free route, or refuse (and
+        stay); returns whether it goes."""
+        sign = int(np.sign(self.det_a))
+        planned = self._orientation_plan(name, sign) if sign != 0 else None
+        why = "no orientation keeps it on the robot's side of the parallel singularities"
+        poses = None
+        if planned is not None:
+            orientation, phi0 = planned
+            path = self.paths[name]
+            start = np.array([*path[index], orientation[index]])
+            try:
+                poses = model.route(self.robot_model, self.pose, start, self.working_mode, MOVE_STEP, TURN_STEP)
+            except rk.NoRouteError as exc:
+                why = "no singularity-free way there from here" if exc.reason == "regions" else str(exc)
+        if poses is None:
+            if reset:
+                self._restart()
+                return True
+            self.message = f"{name} refused: {why}; move in free mode (m) and try again"
+            return False
         if not keep_trail:
             self.trail.clear()
-        self._approach = model.approach(self.robot_model, self.pose, start, self.working_mode, MOVE_STEP, TURN_STEP)
-        self.mode = "approach" if len(self._approach) else name
-        self.message = f"{name}: approaching the start" if len(self._approach) else name
+        self.path, self._path_name, self._plan, self._index = self.paths[name], name, orientation, index
+        self._approach, self._after_approach = poses, name
+        tilt = f" (about phi = {phi0:+.2f} rad)" if phi0 else ""
+        prefix = "reset: " if reset else ""
+        self.mode = "approach" if len(poses) else name
+        self.message = f"{prefix}{name}{tilt}: approaching the start" if len(poses) else f"{prefix}{name}{tilt}"
+        return True
 
     # --- one step -----------------------------------------------------------------------------
     def advance(self, held: FrozenSet[str]) -> None:
@@ -176,8 +245,13 @@ class Rrr3Scene(Scene):
                 self._set(target, evaluated)
                 self.trail.append(self.pose[:2].copy())
             if len(self._approach) == 0:
-                self._approach, self.mode = None, self._path_name
-                self.message = self._path_name
+                after = self._after_approach
+                if after == "free":
+                    self._go_free()
+                    self.message = "home"
+                else:
+                    self._approach, self._after_approach, self.mode = None, None, after
+                    self.message = after
         else:
             self._path_step()
 
@@ -228,7 +302,8 @@ class Rrr3Scene(Scene):
     # --- output -------------------------------------------------------------------------------
     def row(self):
         x, y, phi = self.pose.tolist()
-        return (self.steps, self.time, self.mode, x, y, phi, *self.alpha.tolist(), self.det_a, self.det_b, self.sing)
+        return (self.steps, self.time, self.mode, x, y, phi, *self.alpha.tolist(), self.det_a, self.det_b,
+                self.det_a_norm, self.det_b_norm, self.distance, int(self.avoid), self.sing)
 
     def workspace(self, phi: float) -> Optional[model.Workspace]:
         """The core's workspace map at orientation ``phi`` (cached on phi rounded to 0.01 rad)."""
@@ -244,6 +319,7 @@ class Rrr3Scene(Scene):
             self._points = model.points(self.robot_model, self.pose, self.working_mode)
         return Rrr3State(
             pose=self.pose, alpha=self.alpha, points=self._points, det_a=self.det_a, det_b=self.det_b,
+            det_a_norm=self.det_a_norm, det_b_norm=self.det_b_norm,
             distance=self.distance, state=self.sing, mode=self.mode, working_mode=self.working_mode, avoid=self.avoid, path=self.path,
             trail=np.array(self.trail), workspace=self.workspace(float(self.pose[2])), message=self.message,
         )
