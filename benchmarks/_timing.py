@@ -33,3 +33,25 @@ def once(fn, repeat: int = 3):
         fn()
         runs.append(timeit.default_timer() - start)
     return min(runs), statistics.median(runs)
+
+
+def fmt(seconds: float) -> str:
+    """A time in the unit that reads best: ns, us or ms."""
+    if seconds < 1e-6:
+        return f"{seconds * 1e9:7.0f} ns"
+    if seconds < 1e-3:
+        return f"{seconds * 1e6:7.2f} us"
+    return f"{seconds * 1e3:7.1f} ms"
+
+
+def ratio_line(goals: list, what: str, ours, ref_name: str, ref, goal: float | None = None, note: str = "") -> None:
+    """Prints robokin's (best, median) beside a reference's and their ratio; with ``goal`` (a ratio
+    to stay under) it says MET or NOT MET and appends the goal to ``goals``."""
+    ratio = ours[0] / ref[0]
+    text = (f"  {what:<34} robokin {fmt(ours[0])} (median {fmt(ours[1]).strip()})  |  "
+            f"{ref_name:<14} {fmt(ref[0])} (median {fmt(ref[1]).strip()})  ->  {ratio:6.3f}x")
+    if goal is not None:
+        met = ratio <= goal
+        text += f"  goal <= {goal}: {'MET' if met else 'NOT MET'}"
+        goals.append({"name": f"{what} vs {ref_name}", "ratio": ratio, "goal": goal, "met": met})
+    print(text + (f"  {note}" if note else ""), flush=True)

@@ -34,7 +34,7 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 import robokin as rk  # noqa: E402
-from _timing import once, per_call  # noqa: E402
+from _timing import fmt, once, per_call, ratio_line  # noqa: E402
 
 L1, L3 = rk.robots.RPR_L1, rk.robots.RPR_L3
 LOWER, UPPER = rk.robots.RPR_LIMITS
@@ -52,24 +52,8 @@ PATH_POINTS = 10_000
 goals: list[dict] = []
 
 
-# --------------------------------------------------------------------------- output helpers
-def fmt(seconds: float) -> str:
-    if seconds < 1e-6:
-        return f"{seconds * 1e9:7.0f} ns"
-    if seconds < 1e-3:
-        return f"{seconds * 1e6:7.2f} us"
-    return f"{seconds * 1e3:7.1f} ms"
-
-
-def line(what: str, ours, ref_name: str, ref, goal: float | None = None, note: str = "") -> None:
-    ratio = ours[0] / ref[0]
-    text = (f"  {what:<28} robokin {fmt(ours[0])} (median {fmt(ours[1]).strip()})  |  "
-            f"{ref_name:<10} {fmt(ref[0])} (median {fmt(ref[1]).strip()})  ->  {ratio:6.3f}x")
-    if goal is not None:
-        met = ratio <= goal
-        text += f"  goal <= {goal}: {'MET' if met else 'NOT MET'}"
-        goals.append({"name": f"{what} vs {ref_name}", "ratio": ratio, "goal": goal, "met": met})
-    print(text + (f"  {note}" if note else ""), flush=True)
+def line(*args, **kwargs) -> None:
+    ratio_line(goals, *args, **kwargs)
 
 
 def check(name: str, ours, ref, atol: float = 1e-12) -> None:

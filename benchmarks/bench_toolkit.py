@@ -29,29 +29,14 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 import robokin as rk  # noqa: E402
-from _timing import once, per_call  # noqa: E402
+from _timing import fmt, once, per_call, ratio_line  # noqa: E402
 
 SAMPLES = 1_000_000
 goals: list[dict] = []
 
 
-def fmt(seconds: float) -> str:
-    if seconds < 1e-6:
-        return f"{seconds * 1e9:7.0f} ns"
-    if seconds < 1e-3:
-        return f"{seconds * 1e6:7.2f} us"
-    return f"{seconds * 1e3:7.1f} ms"
-
-
-def line(what: str, ours, ref_name: str, ref, goal: float | None = None, note: str = "") -> None:
-    ratio = ours[0] / ref[0]
-    text = (f"  {what:<34} robokin {fmt(ours[0])} (median {fmt(ours[1]).strip()})  |  "
-            f"{ref_name:<14} {fmt(ref[0])} (median {fmt(ref[1]).strip()})  ->  {ratio:6.3f}x")
-    if goal is not None:
-        met = ratio <= goal
-        text += f"  goal <= {goal}: {'MET' if met else 'NOT MET'}"
-        goals.append({"name": f"{what} vs {ref_name}", "ratio": ratio, "goal": goal, "met": met})
-    print(text + (f"  {note}" if note else ""), flush=True)
+def line(*args, **kwargs) -> None:
+    ratio_line(goals, *args, **kwargs)
 
 
 def bench_manipulability(rng) -> None:

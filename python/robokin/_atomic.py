@@ -79,11 +79,14 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def remove_stale(directory: str, stem: str, ext: str) -> list:
-    """Removes the temporary files ``.STEM.PID.RANDOM.partEXT`` in ``directory`` whose process PID
-    no longer exists (left by a killed writer of the target ``STEM + EXT``); returns their paths.
-    Files of other targets, of live processes, or named otherwise are left alone."""
-    pattern = re.compile(r"\." + re.escape(stem) + r"\.(\d{1,10})\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
+def _part_pattern(stem: str, pid: str, ext: str):
+    """The name of a temporary file of ``STEM + EXT``: ``.STEM.PID.RANDOM.partEXT``."""
+    return re.compile(r"\." + re.escape(stem) + r"\.(" + pid + r")\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
+
+
+def _remove_parts(directory: str, pattern, dead) -> list:
+    """Removes the regular files of ``directory`` whose names match ``pattern`` and whose writer's
+    PID (the pattern's group) ``dead(pid)`` says is gone; returns their paths."""
     removed = []
     try:
         names = os.listdir(directory)
@@ -91,7 +94,7 @@ def remove_stale(directory: str, stem: str, ext: str) -> list:
         return removed
     for name in names:
         match = pattern.match(name)
-        if match and not _alive(int(match.group(1))):
+        if match and dead(int(match.group(1))):
             path = os.path.join(directory, name)
             try:
                 if os.path.isfile(path) and not os.path.islink(path):
@@ -102,18 +105,20 @@ def remove_stale(directory: str, stem: str, ext: str) -> list:
     return removed
 
 
+def remove_stale(directory: str, stem: str, ext: str) -> list:
+    """Removes the temporary files ``.STEM.PID.RANDOM.partEXT`` in ``directory`` whose process PID
+    no longer exists (left by a killed writer of the target ``STEM + EXT``); returns their paths.
+    Files of other targets, of live processes, or named otherwise are left alone."""
+    return _remove_parts(directory, _part_pattern(stem, r"\d{1,10}", ext), lambda pid: not _alive(pid))
+
+
 def remove_own(path) -> list:
     """Removes the temporary files this process made for ``path`` and did not commit (a run
     stopped by a signal between creating one and recording it); returns their paths."""
     path = os.fspath(path)
     directory = os.path.dirname(os.path.abspath(path))
     stem, ext = os.path.splitext(os.path.basename(path))
-    pattern = re.compile(r"\." + re.escape(stem) + r"\." + str(os.getpid()) + r"\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
-    removed = []
-    try:
-        names = os.listdir(directory)
-    except OSError:
-        return removed
+    return _remove_parts(directory, _part_pattern(stem, str(os.getpid()), ext), lambda pid: True)
     for name in names:
         if pattern.match(name):
             try:

@@ -153,7 +153,7 @@ def trajectory_figure(trajectory, names=None, title: Optional[str] = None):
         raise ValueError(f"names: expected {n} labels, got {len(labels)}")
     fig = _new_figure(figsize=(6.4, 5.6), layout="constrained")
     axes = fig.subplots(3, 1, sharex=True)
-    for ax, values, unit in zip(axes, parts, ("position", "velocity (/s)", "acceleration (/s²)")):
+    for ax, values, unit in zip(axes, parts, ("position (rad, m)", "velocity (rad/s, m/s)", "acceleration (rad/s², m/s²)")):
         for i in range(n):
             ax.plot(t, values[:, i], lw=1.4, label=labels[i])
         ax.set_ylabel(unit)
