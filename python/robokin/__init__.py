@@ -9,6 +9,7 @@ from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
 from .errors import PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
+from .postures import TrackPosturesResult, count_reconfigurations, track_postures
 
 __version__ = "0.1.0"
 
@@ -30,4 +31,8 @@ __all__ = [
     "reach",
     "robots",
     "track",
+    # issue 15: postures along a path
+    "TrackPosturesResult",
+    "count_reconfigurations",
+    "track_postures",
 ]
