@@ -143,13 +143,30 @@ ClosedFormSolutions ur(py::handle target, const Chain& chain, py::handle limits)
   return ik_ur(ur_arm_arg(chain), chain, T, ur_limits_arg(chain, limits));
 }
 
+py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
+
 py::tuple ur_batch(py::handle targets_obj, const Chain& chain, py::handle limits) {
+  const URArm arm = ur_arm_arg(chain);
+  const JointLimits lim = ur_limits_arg(chain, limits);
+  return ur_batch_with(targets_obj, chain, arm, lim);
+}
+
+// The UR closed form with its arm and limits read once (robokin.closed.ur keeps a few).
+struct URSolver {
+  const Chain* chain;  // kept alive by the Python object (keep_alive)
+  URArm arm;
+  JointLimits limits;
+  ClosedFormSolutions solve(py::handle target) const {
+    return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
+  }
+  py::tuple solve_batch(py::handle targets) const { return ur_batch_with(targets, *chain, arm, limits); }
+};
+
+py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
   require_finite(a.data(), a.size(), "targets");
-  const URArm arm = ur_arm_arg(chain);
-  const JointLimits lim = ur_limits_arg(chain, limits);
   const long count = a.shape(0);
   std::vector<Rigid> targets(count);
   for (long k = 0; k < count; ++k) {
@@ -246,6 +263,13 @@ void bind_ik_closed(py::module_& m) {
         py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
+  py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
+      .def(py::init([](const Chain& chain, py::handle limits) {
+             return URSolver{&chain, ur_arm_arg(chain), ur_limits_arg(chain, limits)};
+           }),
+           py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
+      .def("solve", &URSolver::solve, py::arg("target"))
+      .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ur_geometry", &ur_geometry, py::arg("chain"));

@@ -221,6 +221,24 @@ def _ur_chain(robot) -> Chain:
     return _UR_CHAINS[key]
 
 
+_UR_SOLVERS: dict = {}
+
+
+def _ur_solver(robot, limits):
+    """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
+    used last; a chain is held by its entry, so its id cannot be reused while cached."""
+    chain = _ur_chain(robot)
+    if not (limits is None or (isinstance(limits, str) and limits == "default")):
+        return _core._URSolver(chain, limits)
+    key = (id(chain), limits)
+    hit = _UR_SOLVERS.get(key)
+    if hit is None or hit[0] is not chain:
+        if len(_UR_SOLVERS) >= 16:
+            _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
+        hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
+    return hit[1]
+
+
 def ur(target, robot, limits="default") -> IKSolutions:
     """All (up to 8) solutions of a Universal Robots arm (UR3/5/10/16 and the e-series: three
     parallel axes 2, 3, 4) for the tool frame ``target``, in closed form.
@@ -247,7 +265,7 @@ def ur(target, robot, limits="default") -> IKSolutions:
         solutions of which one representative per shoulder and elbow is returned, "wrist
         singular", chosen with the elbow as near a right angle as the continuum allows).
     """
-    return _core.ik_ur(target, _ur_chain(robot), limits)
+    return _ur_solver(robot, limits).solve(target)
 
 
 def ur_batch(targets, robot, limits="default"):
@@ -263,5 +281,5 @@ def ur_batch(targets, robot, limits="default"):
         limits; a singular case keeps its one solution in the first slot of the postures that
         coincide), and ``singular`` (N,) booleans.
     """
-    return _core.ik_ur_batch(targets, _ur_chain(robot), limits)
+    return _ur_solver(robot, limits).solve_batch(targets)
 
