@@ -1,5 +1,5 @@
 """Property tests of issue 15's calls: rk.closed.ur / ur_batch, rk.track_postures,
-rk.count_reconfigurations.
+rk.count_reconfigurations, rk.closed.general_3r, rk.cuspidal.
 
 Rules. (1) Any arguments: a result whose every number is finite (NaN only as the batch's "no
 solution" rows), or ValueError / TypeError naming an argument. (2) Reported success equals verified
@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 import robokin as rk
 from dh_reference import fk_dh
 
-COVERS = {"closed.ur", "closed.ur_batch", "track_postures", "count_reconfigurations"}
+COVERS = {"closed.ur", "closed.ur_batch", "track_postures", "count_reconfigurations", "closed.general_3r", "cuspidal"}
 
 P = math.pi
 UR5 = rk.robots.ur5()
@@ -103,3 +103,32 @@ def test_count_reconfigurations_any_arguments(q, dt, vmax, q0):
     r = check_call(lambda: rk.count_reconfigurations(q, dt, vmax, q0=q0), "q", "dt", "qdot_max", "q0")
     if r is not None:
         assert r.dtype.kind == "i"
+
+
+dh_rows3 = st.lists(st.tuples(st.floats(-2, 2), st.floats(-4, 4), st.floats(-2, 2), st.floats(-4, 4)),
+                    min_size=3, max_size=3)
+
+
+@settings(max_examples=60)
+@given(dh_rows3, finite_arrays((3,), -4.0, 4.0), st.one_of(arrays(), finite_arrays((3,), -4.0, 4.0)))
+def test_general_3r_any_geometry_and_target(rows, q, target):
+    chain = rk.Chain.from_dh([r + ("R",) for r in rows])
+    for p in (chain.fk(np.asarray(q))[:3, 3], target):
+        s = check_call(lambda: rk.closed.general_3r(p, chain, limits=None), "chain", "target")
+        if s is None:
+            continue
+        assert_finite(s.q)
+        assert len(s) <= 4 or s.singular
+        for row in s.q:
+            assert np.linalg.norm(chain._fk_kdl(row)[:3, 3] - np.asarray(p, float)) <= 1e-8 * (1 + sum(
+                abs(v) for r in rows for v in (r[0], r[2])))
+
+
+@settings(max_examples=15)
+@given(dh_rows3, st.one_of(st.integers(-5, 40), st.just(2.5), st.none()))
+def test_cuspidal_any_geometry(rows, resolution):
+    chain = rk.Chain.from_dh([r + ("R",) for r in rows])
+    c = check_call(lambda: rk.cuspidal(chain, resolution=resolution), "chain", "resolution")
+    if c is not None:
+        assert_finite(c.cusps)
+        assert c.cuspidal == (len(c.cusps) > 0) and c.aspects >= 0

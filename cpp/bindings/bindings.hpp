@@ -13,4 +13,5 @@ void bind_ik_closed(pybind11::module_& m);
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // after bind_chain: adds Chain.from_urdf
 void bind_testing(pybind11::module_& m);  // hooks for the test suite
+void bind_ik_3r(pybind11::module_& m);  // issue 15: general 3R arms, cuspidality
 }  // namespace robokin::bind

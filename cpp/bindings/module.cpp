@@ -11,4 +11,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_ik(m);
   robokin::bind::bind_urdf(m);
   robokin::bind::bind_testing(m);
+  robokin::bind::bind_ik_3r(m);  // issue 15
 }

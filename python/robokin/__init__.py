@@ -10,6 +10,7 @@ from .errors import PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 from .postures import TrackPosturesResult, count_reconfigurations, track_postures
+from .cuspidality import Cuspidality, cuspidal
 
 __version__ = "0.1.0"
 
@@ -35,4 +36,6 @@ __all__ = [
     "TrackPosturesResult",
     "count_reconfigurations",
     "track_postures",
+    "Cuspidality",
+    "cuspidal",
 ]

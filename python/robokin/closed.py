@@ -22,6 +22,7 @@ from ._core import UR_POSTURES, Chain, IKSolutions
 __all__ = [
     "IKSolutions",
     "anthropomorphic",
+    "general_3r",
     "planar_2r",
     "planar_3r",
     "planar_rp",
@@ -283,3 +284,26 @@ def ur_batch(targets, robot, limits="default"):
     """
     return _ur_solver(robot, limits).solve_batch(targets)
 
+
+def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
+    """Every position solution (at most 4) of a 3R arm of any geometry (any DH table, revolute
+    joints), for the tool point at ``target`` (x, y, z).
+
+    With ``V = Rz(q2) w(q3)`` the point seen from joint 2, the invariants of joint 1 (height along
+    its axis, distance to its origin) are two linear equations in ``V``; with ``|V_xy|`` fixed they
+    leave a trigonometric polynomial of degree 2 in ``q3`` (a quartic in ``exp(i q3)``, solved as
+    the eigenvalues of its companion matrix), of degree 1 when the first two axes are parallel or
+    intersect. Each root gives ``q2`` and ``q1`` in closed form, is polished by Newton's method on
+    the forward model and kept only when ``chain.fk`` puts the tool within 1e-9 x the arm's size of
+    ``target``.
+
+    Args:
+        target: Tool point (3,).
+        chain: A 3-joint revolute chain (e.g. ``Chain.from_dh`` of three "R" rows).
+        limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``.
+
+    Returns:
+        IKSolutions labelled by the sign of det J ("det J > 0", "det J < 0", "singular");
+        ``singular`` is set when a solution is singular or a joint is free (one representative).
+    """
+    return _core.ik_3r(target, chain, limits)
