@@ -7,7 +7,7 @@ DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr test fuzz test-asan bench clean
+.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -30,6 +30,10 @@ run: setup
 
 demo-rpr: setup
 	$(VPY) -m robokin.demo
+
+# Issue 15: greedy vs planned postures along a straight line of the PUMA 560 (figure in out/).
+demo-postures: setup
+	$(VPY) -m robokin.demo_postures
 
 test: setup
 	$(VPY) -m pytest -q

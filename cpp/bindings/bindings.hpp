@@ -13,9 +13,10 @@ void bind_ik_closed(pybind11::module_& m);
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // after bind_chain: adds Chain.from_urdf
 void bind_testing(pybind11::module_& m);  // hooks for the test suite
-// Issue 13, part B: the serial-arm toolkit.
+// The serial-arm toolkit: trajectories, manipulability, velocity-level IK, pose helpers.
 void bind_traj(pybind11::module_& m);
 void bind_manipulability(pybind11::module_& m);  // after bind_chain: adds Chain methods
 void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
+void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
 }  // namespace robokin::bind

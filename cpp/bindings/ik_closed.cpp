@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <vector>
 
 namespace robokin::bind {
 namespace {
@@ -114,6 +116,86 @@ struct SphericalWrist {
   }
 };
 
+// ---- The UR family (robokin.closed.ur) ----
+
+URArm ur_arm_arg(const Chain& chain) {
+  try {
+    return ur_arm(chain);
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+}
+
+// limits: "default" (the chain's), None, or a pair.
+JointLimits ur_limits_arg(const Chain& chain, py::handle limits) {
+  if (py::isinstance<py::str>(limits)) {
+    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
+    JointLimits lim;
+    lim.lower = chain.lower(), lim.upper = chain.upper();
+    if (lim.lower.size() != 6) lim.lower.resize(0), lim.upper.resize(0);
+    return lim;
+  }
+  return limits_arg(limits, 6);
+}
+
+ClosedFormSolutions ur(py::handle target, const Chain& chain, py::handle limits) {
+  const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
+  return ik_ur(ur_arm_arg(chain), chain, T, ur_limits_arg(chain, limits));
+}
+
+py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
+
+py::tuple ur_batch(py::handle targets_obj, const Chain& chain, py::handle limits) {
+  const URArm arm = ur_arm_arg(chain);
+  const JointLimits lim = ur_limits_arg(chain, limits);
+  return ur_batch_with(targets_obj, chain, arm, lim);
+}
+
+// The UR closed form with its arm and limits read once (robokin.closed.ur keeps a few).
+struct URSolver {
+  const Chain* chain;  // kept alive by the Python object (keep_alive)
+  URArm arm;
+  JointLimits limits;
+  ClosedFormSolutions solve(py::handle target) const {
+    return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
+  }
+  py::tuple solve_batch(py::handle targets) const { return ur_batch_with(targets, *chain, arm, limits); }
+};
+
+py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
+  Array a = as_array(targets_obj, "targets");
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+    fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
+  require_finite(a.data(), a.size(), "targets");
+  const long count = a.shape(0);
+  std::vector<Rigid> targets(count);
+  for (long k = 0; k < count; ++k) {
+    const Eigen::Matrix4d m = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(a.data() + 16 * k);
+    const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+    if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
+        (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)
+      fail("targets: frame " + std::to_string(k) + " is not a rigid transform");
+    targets[k] = Rigid::from_matrix(m);
+  }
+  py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{8}, py::ssize_t{6}});
+  py::array_t<bool> singular(static_cast<py::ssize_t>(count));
+  double* qd = q.mutable_data();
+  bool* sd = singular.mutable_data();
+  PythonProgress progress("UR closed form");
+  {
+    py::gil_scoped_release release;
+    ik_ur_batch(arm, chain, targets.data(), count, lim, qd, sd, &progress);
+  }
+  return py::make_tuple(q, singular);
+}
+
+py::tuple ur_geometry(const Chain& chain) {
+  const URArm g = ur_arm_arg(chain);
+  py::dict d;
+  d["d1"] = g.d1, d["a2"] = g.a2, d["a3"] = g.a3, d["d4"] = g.d4, d["d5"] = g.d5;
+  return py::make_tuple(d, to_numpy(g.tool.matrix()));
+}
+
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
   py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
   std::copy(s.q.begin(), s.q.end(), out.mutable_data());
@@ -181,6 +263,21 @@ void bind_ik_closed(py::module_& m) {
         py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
+  py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
+      .def(py::init([](const Chain& chain, py::handle limits) {
+             return URSolver{&chain, ur_arm_arg(chain), ur_limits_arg(chain, limits)};
+           }),
+           py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
+      .def("solve", &URSolver::solve, py::arg("target"))
+      .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
+  m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
+  m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
+  m.def("ur_geometry", &ur_geometry, py::arg("chain"));
+  {
+    py::list names;
+    for (const char* p : kURPostures) names.append(py::str(p));
+    m.attr("UR_POSTURES") = py::tuple(names);
+  }
 }
 
 }  // namespace robokin::bind

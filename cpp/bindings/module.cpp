@@ -11,9 +11,10 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_ik(m);
   robokin::bind::bind_urdf(m);
   robokin::bind::bind_testing(m);
-  // Issue 13, part B: trajectories, manipulability, velocity-level IK, pose helpers.
+  // Trajectories, manipulability, velocity-level IK, pose helpers.
   robokin::bind::bind_traj(m);
   robokin::bind::bind_manipulability(m);
   robokin::bind::bind_resolved_rate(m);
   robokin::bind::bind_pose(m);
+  robokin::bind::bind_ik_3r(m);
 }

@@ -1,9 +1,14 @@
-// Closed-form inverse kinematics: the planar arms of seed 003 and the PUMA-type 6R arm.
+// Closed-form inverse kinematics: the planar arms of seed 003, the PUMA-type 6R arm and the UR family.
 #include "robokin/ik_closed.hpp"
 #include "robokin/angles.hpp"
+#include "robokin/parallel.hpp"
+
+#include <kdl/segment.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace robokin {
 namespace {
@@ -12,8 +17,8 @@ constexpr double kPi = M_PI;
 // |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
 constexpr double kCosEps = 1e-12;
 
-// Wraps revolute angles to (-pi, pi] and fits them into the limits (shifting by 2 pi when that
-// helps); false when a joint cannot be brought within its limits.
+}  // namespace
+
 bool fit_limits(double* q, int n, const JointLimits& lim) {
   for (int i = 0; i < n; ++i) {
     const bool prismatic = !lim.prismatic.empty() && lim.prismatic[i];
@@ -41,6 +46,8 @@ bool fit_limits(double* q, int n, const JointLimits& lim) {
   }
   return true;
 }
+
+namespace {
 
 // Every solution is checked against the forward model before it is returned: the closed forms
 // clamp cosines within kCosEps of +-1 and fix a free joint at a singularity, so a pose a hair out of
@@ -391,6 +398,208 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
     if (best < 0 || d < best_d) best = k, best_d = d;
   }
   return best;
+}
+
+}  // namespace robokin
+
+// ---------------------------------------------------------------------------------------------
+// The Universal Robots family: three parallel axes (2, 3, 4).
+namespace robokin {
+namespace {
+
+Rigid kdl_rigid(const KDL::Frame& f) {
+  Rigid r;
+  for (int i = 0; i < 3; ++i) {
+    r.p(i) = f.p(i);
+    for (int j = 0; j < 3; ++j) r.R(i, j) = f.M(i, j);
+  }
+  return r;
+}
+
+// Labels of the UR postures: shoulder (left, right, singular) x elbow (up, down, straight,
+// folded) x wrist (no flip, flip, singular), built once.
+const char* ur_label(int shoulder, int elbow, int wrist) {
+  static const std::vector<std::string> labels = [] {
+    const char* const sh[] = {"shoulder left", "shoulder right", "shoulder singular"};
+    const char* const el[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
+    const char* const wr[] = {"wrist no flip", "wrist flip", "wrist singular"};
+    std::vector<std::string> all;
+    for (const char* s : sh)
+      for (const char* e : el)
+        for (const char* w : wr) all.push_back(std::string(s) + ", " + e + ", " + w);
+    return all;
+  }();
+  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
+}
+
+[[noreturn]] void not_ur(const std::string& why) {
+  throw std::invalid_argument("robot: not an arm of the UR layout (" + why + ")");
+}
+
+}  // namespace
+
+const char* const kURPostures[8] = {
+    ur_label(0, 0, 0), ur_label(0, 0, 1), ur_label(0, 1, 0), ur_label(0, 1, 1),
+    ur_label(1, 0, 0), ur_label(1, 0, 1), ur_label(1, 1, 0), ur_label(1, 1, 1),
+};
+
+URArm ur_arm(const Chain& chain) {
+  if (chain.dof() != 6) not_ur("it has " + std::to_string(chain.dof()) + " joints, not 6");
+  URArm arm;
+  Rigid since;  // fixed transform since the last joint
+  Rigid after[6];
+  int j = -1;
+  double size = 0;
+  for (const KDL::Segment& seg : chain.kdl().segments) {
+    const KDL::Joint& joint = seg.getJoint();
+    if (joint.getType() == KDL::Joint::Fixed) {
+      since = since * kdl_rigid(seg.pose(0.0));
+      continue;
+    }
+    ++j;
+    if (joint.getType() >= KDL::Joint::TransAxis) not_ur("joint " + std::to_string(j + 1) + " is prismatic");
+    // The joint must turn about the z axis of the frame it starts from: pose(q) = Rz(+-q).
+    const Rigid P0 = kdl_rigid(joint.pose(0.0)), P1 = kdl_rigid(joint.pose(0.5));
+    const bool plus = (P1.R - rot_z(0.5)).cwiseAbs().maxCoeff() < 1e-12;
+    const bool minus = (P1.R - rot_z(-0.5)).cwiseAbs().maxCoeff() < 1e-12;
+    if ((P0.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-12 || P0.p.norm() > 0 || P1.p.norm() > 0 ||
+        !(plus || minus))
+      not_ur("joint " + std::to_string(j + 1) + " does not turn about the z axis of its frame");
+    arm.scale[j] = plus ? 1.0 : -1.0;
+    if (j == 0) arm.base = since;
+    else after[j - 1] = since;
+    since = kdl_rigid(seg.pose(0.0));
+    size += since.p.norm();
+  }
+  arm.tool = since;
+  // Rows 1..5 as standard DH: Rz(theta) Tz(d) Tx(a) Rx(alpha).
+  const double expect_alpha[5] = {kPi / 2, 0, 0, kPi / 2, -kPi / 2};
+  double a[5], d[5];
+  const double tol = 1e-9 * std::max(1.0, size);
+  for (int i = 0; i < 5; ++i) {
+    const Rigid& F = after[i];
+    const double th = std::atan2(F.R(1, 0), F.R(0, 0)), al = std::atan2(F.R(2, 1), F.R(2, 2));
+    if ((F.R - rot_z(th) * rot_x(al)).cwiseAbs().maxCoeff() > 1e-9 ||
+        std::abs(-F.p.x() * std::sin(th) + F.p.y() * std::cos(th)) > tol)
+      not_ur("the frame after joint " + std::to_string(i + 1) + " is not a standard DH row");
+    if (std::abs(wrap_angle(al - expect_alpha[i])) > 1e-9)
+      not_ur("alpha of row " + std::to_string(i + 1) + " is not " +
+             (i == 0 || i == 3 ? "pi/2" : i == 4 ? "-pi/2" : "0"));
+    arm.theta[i] = th;
+    a[i] = F.p.x() * std::cos(th) + F.p.y() * std::sin(th);
+    d[i] = F.p.z();
+  }
+  if (std::abs(a[0]) > tol || std::abs(a[3]) > tol || std::abs(a[4]) > tol)
+    not_ur("a1, a4 and a5 must be 0");
+  if (std::abs(a[1]) <= tol || std::abs(a[2]) <= tol) not_ur("a2 and a3 must not be 0");
+  arm.d1 = d[0], arm.a2 = a[1], arm.a3 = a[2], arm.d4 = d[1] + d[2] + d[3], arm.d5 = d[4];
+  return arm;
+}
+
+ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
+                          int* slot) {
+  ClosedFormSolutions out;
+  out.dof = 6;
+  out.q.reserve(48);
+  out.postures.reserve(8);
+  // The frame A1 ... A5 Rz(q6) of the bare DH arm: its origin is the wrist centre (frame 5's).
+  const Rigid Td = arm.base.inverse() * T * arm.tool.inverse();
+  const Eigen::Vector3d p = Td.p;
+  const double size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) +
+                      std::abs(arm.d5) + arm.base.p.norm() + arm.tool.p.norm();
+  const auto reaches = [&](const double* q) {
+    Rigid F;
+    chain.fk(q, F);
+    return (F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR;
+  };
+  // Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist centre in a plane
+  // d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions x1 . p = +-h.
+  const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
+  const double r = std::hypot(p.x(), p.y()) / unit, d4 = std::abs(arm.d4) / unit;
+  const double disc = (r - d4) * (r + d4);
+  if (!(disc >= -kCosEps * std::max(1.0, r * r))) return out;
+  const double h = std::sqrt(std::max(0.0, disc)) * unit;
+  // disc carries the rounding of r^2 (~1e-16): h, its square root, is then ~1e-8 where the two
+  // shoulders coincide, and the two q1 differ by ~h / d4.
+  const bool shoulder_singular = disc <= 1e-13 * std::max(1.0, r * r);
+  const double phi = r > 0 ? std::atan2(p.y(), p.x()) : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
+  if (shoulder_singular) out.singular = true;
+  const double a2 = std::abs(arm.a2), a3 = std::abs(arm.a3);
+  for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
+    const double x1 = side == 0 ? -h : h;  // shoulder left: wrist centre on the -x1 side
+    const double q1 = phi + std::atan2(arm.d4, x1);
+    const Eigen::Matrix3d R01 = rot_z(q1) * rot_x(kPi / 2);
+    const Eigen::Matrix3d M = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
+    const Eigen::Vector3d P = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
+    const double w = std::hypot(M(0, 2), M(1, 2));
+    const bool wrist_singular = w < 1e-10;
+    if (wrist_singular) out.singular = true;
+    for (int flip = 0; flip < (wrist_singular ? 1 : 2); ++flip) {
+      double q234;
+      if (!wrist_singular) {
+        q234 = std::atan2(-M(1, 2), -M(0, 2)) + (flip ? kPi : 0.0);
+      } else {
+        // Axes 2, 3, 4, 6 parallel: q234 is free. The wrist's origin 4 is then on the circle
+        // P + d5 (-sin t, cos t); the representative puts it where |W|^2 = a2^2 + a3^2 (the
+        // elbow at a right angle) or as near as the circle comes.
+        const double rho = std::hypot(P.x(), P.y());
+        const double beta = std::atan2(P.x(), P.y());
+        const double den = 2.0 * arm.d5 * rho;
+        double t = 0.0;
+        if (std::abs(den) > 1e-12 * unit * unit) {
+          const double cv = (a2 * a2 + a3 * a3 - rho * rho - arm.d5 * arm.d5) / den;
+          t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
+        }
+        q234 = t;
+      }
+      const Eigen::Matrix3d N = rot_z(-q234) * M;
+      const double q5 = std::atan2(-N(0, 2), N(2, 2)), q6 = std::atan2(N(1, 0), N(1, 1));
+      const double s234 = std::sin(q234), c234 = std::cos(q234);
+      // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
+      const double X = P.x() - arm.d5 * s234, Y = P.y() + arm.d5 * c234;
+      double th[2][2];
+      const char* lab[2];
+      bool elbow_singular = false;
+      const int n = planar_2r_solve(a2, a3, X, Y, th, lab, elbow_singular);
+      if (elbow_singular) out.singular = true;
+      for (int k = 0; k < n; ++k) {
+        // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
+        const double q2 = th[k][0] - (arm.a2 < 0 ? kPi : 0.0);
+        const double q3 = th[k][1] + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
+        const double ex = a2 * std::cos(th[k][0]), ey = a2 * std::sin(th[k][0]);
+        const double cross = X * ey - Y * ex;
+        int elbow;
+        if (n == 1) elbow = std::cos(th[k][1]) > 0 ? 2 : 3;
+        else elbow = ((cross > 0) == (X >= 0)) ? 0 : 1;
+        const double dh[6] = {q1, q2, q3, q234 - q2 - q3, q5, q6};
+        double q[6];
+        for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+        const int before = out.count();
+        add_if_admissible(out, q, limits,
+                          ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular ? 2 : flip), reaches);
+        if (slot && out.count() > before)
+          slot[before] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular ? 0 : flip);
+      }
+    }
+  }
+  return out;
+}
+
+void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
+                 double* q_out, bool* singular, Progress* progress) {
+  parallel_for(
+      count, 512,
+      [&](long begin, long end) {
+        int slot[8];
+        for (long k = begin; k < end; ++k) {
+          double* row = q_out + 48 * k;
+          std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
+          const ClosedFormSolutions s = ik_ur(arm, chain, targets[k], limits, slot);
+          for (int i = 0; i < s.count(); ++i) std::copy(s.q.begin() + 6 * i, s.q.begin() + 6 * i + 6, row + 6 * slot[i]);
+          singular[k] = s.singular;
+        }
+      },
+      progress);
 }
 
 }  // namespace robokin

@@ -5,12 +5,12 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import closed, paths, robots
-from . import pose, traj  # issue 13, part B
-from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
+from . import pose, trajfrom ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
-from .resolved_rate import ServoResult, resolved_rate, servo  # issue 13, part B
+from .resolved_rate import ServoResult, resolved_rate, servofrom .postures import TrackPosturesResult, count_reconfigurations, track_postures
+from .cuspidality import Cuspidality, cuspidal
 
 __version__ = "0.1.0"
 
@@ -33,15 +33,19 @@ __all__ = [
     "reach",
     "robots",
     "track",
-    # issue 13, part B
-    "ServoResult",
+      "ServoResult",
     "pose",
     "resolved_rate",
     "servo",
     "traj",
+    "TrackPosturesResult",
+    "count_reconfigurations",
+    "track_postures",
+    "Cuspidality",
+    "cuspidal",
 ]
 
-# Issue 13, part A: the IK defaults and URDF loading's warnings.
+# The IK defaults and URDF loading's warnings.
 from .errors import URDFWarning  # noqa: E402
 from .ik import IK_DEFAULTS  # noqa: E402
 

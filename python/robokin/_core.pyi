@@ -70,7 +70,7 @@ class Chain:
         """Reference: KDL's ChainFkSolverPos_recursive."""
     def _jacobian_kdl(self, q: ArrayLike) -> NDArray:
         """Reference: KDL's ChainJntToJacSolver, (6, dof)."""
-    # Issue 13, part B (cpp/bindings/manipulability.cpp).
+    # Manipulability (cpp/bindings/manipulability.cpp).
     def manipulability(self, q: ArrayLike, measure: str = "yoshikawa", task: str = "pose") -> Union[float, NDArray]:
         """Manipulability from the singular values of the task's Jacobian rows (Eigen's JacobiSVD):
         ``"yoshikawa"`` their product (``sqrt(det(J J^T))`` when rows <= dof), ``"condition"``
@@ -447,7 +447,7 @@ class _KdlIk:
     def __init__(self, chain: Chain, solver: str = "lma", max_iter: int = 500, eps: float = 1e-5) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> Tuple[NDArray, int]: ...
 
-# --- issue 13, part B: trajectories (cpp/bindings/traj.cpp); use robokin.traj -----------------
+# --- trajectories (cpp/bindings/traj.cpp); use robokin.traj -----------------
 
 def traj_quintic(q0: ArrayLike, q1: ArrayLike, t: ArrayLike, qd0: Optional[ArrayLike] = None,
                  qd1: Optional[ArrayLike] = None) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
@@ -462,7 +462,7 @@ def traj_cartesian(T0: ArrayLike, T1: ArrayLike, law: str, t: Optional[ArrayLike
                    amax: Optional[ArrayLike], dt: float) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
     """(t, poses (K, 4, 4), velocity (K, 6), acceleration (K, 6)) of the straight line T0 -> T1."""
 
-# --- issue 13, part B: velocity-level IK (cpp/bindings/resolved_rate.cpp); use robokin ---------
+# --- velocity-level IK (cpp/bindings/resolved_rate.cpp); use robokin ---------
 
 def resolved_rate(chain: Chain, q: ArrayLike, twist: ArrayLike, damping: float = 0.0,
                   nullspace: Union[None, str, ArrayLike] = None, task: str = "pose") -> NDArray:
@@ -472,7 +472,7 @@ def servo(chain: Chain, poses: ArrayLike, q0: ArrayLike, dt: float, gain: float 
           saturate: bool = True) -> Tuple[NDArray, NDArray, NDArray, NDArray]:
     """(q, qdot, error_p, error_r) of the resolved-rate servo along the targets."""
 
-# --- issue 13, part B: pose helpers (cpp/bindings/pose.cpp); use robokin.pose ------------------
+# --- pose helpers (cpp/bindings/pose.cpp); use robokin.pose ------------------
 
 def pose_from_rpy(rpy: ArrayLike) -> NDArray:
     """Frames (4, 4) / (N, 4, 4) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
@@ -492,3 +492,17 @@ def pose_log(T: ArrayLike) -> NDArray:
     """SE(3) logarithm (v, w), |w| in [0, pi]."""
 def pose_error(target: ArrayLike, current: ArrayLike) -> NDArray:
     """The IK's pose error (p_t - p, rotation vector of R_t R^T)."""
+# ---- UR-family closed form (robokin.closed.ur) ----
+UR_POSTURES: Tuple[str, ...]
+def ik_ur(target: ArrayLike, chain: Chain, limits: Union[str, None, Tuple[ArrayLike, ArrayLike]] = "default") -> IKSolutions: ...
+def ik_ur_batch(
+    targets: ArrayLike, chain: Chain, limits: Union[str, None, Tuple[ArrayLike, ArrayLike]] = "default"
+) -> Tuple[NDArray, NDArray]: ...
+def ur_geometry(chain: Chain) -> Tuple[Dict[str, float], NDArray]: ...
+class _URSolver:
+    def __init__(self, chain: Chain, limits: Union[str, None, Tuple[ArrayLike, ArrayLike]] = "default") -> None: ...
+    def solve(self, target: ArrayLike) -> IKSolutions: ...
+    def solve_batch(self, targets: ArrayLike) -> Tuple[NDArray, NDArray]: ...
+def ik_3r(target: ArrayLike, chain: Chain, limits: Union[str, None, Tuple[ArrayLike, ArrayLike]] = "default") -> IKSolutions: ...
+def det_3r(chain: Chain, q2: float, q3: float) -> float: ...
+def cuspidal_3r(chain: Chain, resolution: int = 256) -> Dict[str, object]: ...

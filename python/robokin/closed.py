@@ -17,11 +17,12 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from ._core import Chain, IKSolutions
+from ._core import UR_POSTURES, Chain, IKSolutions
 
 __all__ = [
     "IKSolutions",
     "anthropomorphic",
+    "general_3r",
     "planar_2r",
     "planar_3r",
     "planar_rp",
@@ -29,6 +30,9 @@ __all__ = [
     "puma560_path",
     "rpr_self_motion",
     "spherical_wrist_6r",
+    "ur",
+    "ur_batch",
+    "UR_POSTURES",
 ]
 
 #: PUMA 560 standard DH (P. Corke's Robotics Toolbox ``Puma560``, as in :func:`robokin.robots.puma560`).
@@ -189,3 +193,117 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
     from .robots import rpr_self_motion as _sm
 
     return _sm(point, t1, num)
+
+
+_UR_KEYS = ("d1", "a2", "a3", "d4", "d5", "d6")
+_UR_CHAINS: dict = {}
+
+
+def _ur_chain(robot) -> Chain:
+    """``robot`` as a Chain: a Chain as it is, or the UR arm of a mapping ``d1, a2, a3, d4, d5, d6``."""
+    if isinstance(robot, Chain):
+        return robot
+    if not isinstance(robot, dict) or set(robot) != set(_UR_KEYS):
+        raise ValueError(f"robot: expected a Chain or a dict with the keys {', '.join(_UR_KEYS)}, got {robot!r}")
+    try:
+        key = tuple(float(robot[k]) for k in _UR_KEYS)
+    except (TypeError, ValueError):
+        raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
+    if not all(math.isfinite(v) for v in key):
+        raise ValueError("robot: the lengths must be finite")
+    if key not in _UR_CHAINS:
+        d1, a2, a3, d4, d5, d6 = key
+        p = math.pi
+        rows = [(0.0, p / 2, d1, 0.0, "R"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R"),
+                (0.0, p / 2, d4, 0.0, "R"), (0.0, -p / 2, d5, 0.0, "R"), (0.0, 0.0, d6, 0.0, "R")]
+        if len(_UR_CHAINS) > 64:
+            _UR_CHAINS.clear()
+        _UR_CHAINS[key] = Chain.from_dh(rows)
+    return _UR_CHAINS[key]
+
+
+_UR_SOLVERS: dict = {}
+
+
+def _ur_solver(robot, limits):
+    """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
+    used last; a chain is held by its entry, so its id cannot be reused while cached."""
+    chain = _ur_chain(robot)
+    if not (limits is None or (isinstance(limits, str) and limits == "default")):
+        return _core._URSolver(chain, limits)
+    key = (id(chain), limits)
+    hit = _UR_SOLVERS.get(key)
+    if hit is None or hit[0] is not chain:
+        if len(_UR_SOLVERS) >= 16:
+            _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
+        hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
+    return hit[1]
+
+
+def ur(target, robot, limits="default") -> IKSolutions:
+    """All (up to 8) solutions of a Universal Robots arm (UR3/5/10/16 and the e-series: three
+    parallel axes 2, 3, 4) for the tool frame ``target``, in closed form.
+
+    The arm is read off ``robot``: standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``,
+    ``(0, pi/2, d4)``, ``(0, -pi/2, d5)``, ``(0, 0, d6)`` (theta offsets, a fixed base before joint 1,
+    offsets along the parallel axes, joints turning about -z and any tool after joint 6 allowed);
+    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``.
+
+    Args:
+        target: Tool frame (4, 4).
+        robot: A Chain such as :func:`robokin.robots.ur5`, or a dict ``{"d1", "a2", "a3", "d4",
+            "d5", "d6"}`` (the UR table; no limits).
+        limits: ``"default"`` for the chain's limits, ``None`` for none, or ``(lower, upper)``.
+
+    Returns:
+        IKSolutions labelled ``"shoulder left|right, elbow up|down, wrist no flip|flip"`` (the 8 of
+        :data:`UR_POSTURES`): shoulder left puts the wrist centre (origin of frame 5) on the -x side
+        of frame 1, elbow up the elbow above the line from the shoulder to the origin of frame 4,
+        and wrist no flip the DH angle of joint 5 in ``[0, pi]``. ``singular`` is set, and postures
+        that coincide are returned once, at the shoulder singularity (wrist centre ``|d4|`` from
+        axis 1: "shoulder singular"), the elbow's (q3 = 0 or pi: "elbow straight" / "elbow
+        folded") and the wrist's (joint 5 at 0 or pi: axes 2, 3, 4 and 6 parallel, a continuum of
+        solutions of which one representative per shoulder and elbow is returned, "wrist
+        singular", chosen with the elbow as near a right angle as the continuum allows).
+    """
+    return _ur_solver(robot, limits).solve(target)
+
+
+def ur_batch(targets, robot, limits="default"):
+    """:func:`ur` for a batch of frames, on every core with the GIL released.
+
+    Args:
+        targets: (N, 4, 4) tool frames.
+        robot, limits: As :func:`ur`.
+
+    Returns:
+        ``(q, singular)``: ``q`` (N, 8, 6), solution ``k`` in row ``k`` of ``q[i]`` for posture
+        ``UR_POSTURES[k]`` and NaN rows where that posture has no solution (unreachable, out of the
+        limits; a singular case keeps its one solution in the first slot of the postures that
+        coincide), and ``singular`` (N,) booleans.
+    """
+    return _ur_solver(robot, limits).solve_batch(targets)
+
+
+def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
+    """Every position solution (at most 4) of a 3R arm of any geometry (any DH table, revolute
+    joints), for the tool point at ``target`` (x, y, z).
+
+    With ``V = Rz(q2) w(q3)`` the point seen from joint 2, the invariants of joint 1 (height along
+    its axis, distance to its origin) are two linear equations in ``V``; with ``|V_xy|`` fixed they
+    leave a trigonometric polynomial of degree 2 in ``q3`` (a quartic in ``exp(i q3)``, solved as
+    the eigenvalues of its companion matrix), of degree 1 when the first two axes are parallel or
+    intersect. Each root gives ``q2`` and ``q1`` in closed form, is polished by Newton's method on
+    the forward model and kept only when ``chain.fk`` puts the tool within 1e-9 x the arm's size of
+    ``target``.
+
+    Args:
+        target: Tool point (3,).
+        chain: A 3-joint revolute chain (e.g. ``Chain.from_dh`` of three "R" rows).
+        limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``.
+
+    Returns:
+        IKSolutions labelled by the sign of det J ("det J > 0", "det J < 0", "singular");
+        ``singular`` is set when a solution is singular or a joint is free (one representative).
+    """
+    return _core.ik_3r(target, chain, limits)

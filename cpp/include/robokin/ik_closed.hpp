@@ -31,6 +31,10 @@ struct JointLimits {
   std::vector<bool> prismatic;  // empty: every joint revolute
 };
 
+// Wraps revolute angles to (-pi, pi] and fits them into the limits (shifting by 2 pi when that
+// helps); false when a joint cannot be brought within its limits.
+bool fit_limits(double* q, int n, const JointLimits& lim);
+
 // Planar RP (seed 003, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the
 // stroke forward (d2 >= 0) and, when the limits allow a negative stroke, the one backwards.
 // At the origin theta1 is free: one solution theta1 = 0, d2 = 0, flagged singular.
@@ -73,5 +77,42 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
 
 // Row of `solutions` nearest to q (Euclidean distance between joint vectors); -1 when empty.
 int nearest_solution(const ClosedFormSolutions& solutions, const double* q);
+
+// ---------------------------------------------------------------------------------------------
+// The Universal Robots family (UR3/5/10/16, e-series): three parallel axes (2, 3, 4), standard DH
+//   (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0), (0, pi/2, d4), (0, -pi/2, d5), (0, 0, d6)
+// read off a Chain: a fixed base before joint 1, theta offsets, joints turning about -z and offsets
+// d2, d3 along the parallel axes are allowed; everything after joint 6 is the tool.
+struct URArm {
+  double d1 = 0, a2 = 0, a3 = 0, d4 = 0, d5 = 0;
+  double theta[6] = {0, 0, 0, 0, 0, 0};  // DH angle = scale * q + theta
+  double scale[6] = {1, 1, 1, 1, 1, 1};  // +1 or -1
+  Rigid base, tool;                      // fixed frames before joint 1 and after joint 6
+};
+
+// The chain's UR geometry; throws std::invalid_argument (naming what differs) when it has not the
+// UR layout.
+URArm ur_arm(const Chain& chain);
+
+// Slots of the 8 UR solutions: shoulder (0 left, 1 right) * 4 + elbow (0 up, 1 down) * 2 + wrist
+// (0 no flip, 1 flip). "shoulder left": the wrist centre (origin of frame 5) on the -x side of
+// frame 1 (x1 horizontal, perpendicular to joint 2's axis); "elbow up": the elbow above the line
+// from the shoulder to the origin of frame 4; "wrist no flip": the DH angle of joint 5 in [0, pi].
+extern const char* const kURPostures[8];
+
+// Every solution of the tool frame T (up to 8), in joint variables of `chain` (the arm of `arm`),
+// each checked by chain.fk and filtered by the limits. slot[k] (when given, size 8) is row k's
+// slot. Singular cases, flagged: at the shoulder (wrist centre at distance |d4| from axis 1) and
+// the elbow (q3 = 0 or pi) two postures coincide and one is returned ("shoulder singular", "elbow
+// straight" / "elbow folded"); at the wrist (joint 5 at 0 or pi) axes 2, 3, 4 and 6 are parallel,
+// a one-parameter continuum of solutions: one representative per shoulder and elbow ("wrist
+// singular"), its q2 + q3 + q4 chosen so that the elbow is as far from stretched as it can be.
+ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
+                          int* slot = nullptr);
+
+// A batch of frames: q_out (count, 8, 6) row-major, solution in its slot, NaN where the slot has
+// none; singular (count,). Runs on every core (parallel_for); callers release the GIL.
+void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
+                 double* q_out, bool* singular, Progress* progress = nullptr);
 
 }  // namespace robokin

@@ -1,0 +1,117 @@
+"""Issue 15 benchmarks: the UR closed form against numerical IK, its batch, and track_postures
+against greedy tracking.
+
+- ``rk.closed.ur`` per call (all 8 solutions) against ``rk.IKSolver.solve`` (LM with restarts, one
+  solution) on the same UR5 poses, the same process; goal <= 0.2 x.
+- ``rk.closed.ur_batch`` on 1e6 poses, every core, against 1e6 single calls' time.
+- ``rk.track_postures`` on a 1,000-waypoint line of the PUMA 560 against ``closed.puma560_path``
+  (greedy nearest solution): time and reconfigurations.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+import numpy as np
+
+import robokin as rk
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _timing import once, per_call  # noqa: E402
+
+
+def main():
+    goals = []
+    ur5 = rk.robots.ur5()
+    rng = np.random.default_rng(0)
+    Q = rng.uniform(-np.pi, np.pi, (200, 6))
+    poses = ur5.fk(Q)
+    # --- per call: closed form (8 solutions) vs numerical (1 solution, restarts) ---
+    solver = rk.IKSolver(ur5, restarts=20, seed=0)
+    q0 = np.zeros(6)
+    it = {"i": 0}
+
+    def closed_call():
+        it["i"] = (it["i"] + 1) % len(poses)
+        return rk.closed.ur(poses[it["i"]], ur5)
+
+    def numerical_call():
+        it["i"] = (it["i"] + 1) % len(poses)
+        return solver.solve(poses[it["i"]], q0)
+
+    ok = sum(solver.solve(T, q0).success for T in poses)
+    found = sum(len(rk.closed.ur(T, ur5)) for T in poses)
+    t_closed, _ = per_call("closed_call()", {"closed_call": closed_call}, budget=0.3)
+    t_num, _ = per_call("numerical_call()", {"numerical_call": numerical_call}, budget=0.3)
+    ratio = t_closed / t_num
+    print(f"UR5, {len(poses)} random poses: closed.ur {1e6 * t_closed:.2f} us/call ({found / len(poses):.2f} "
+          f"solutions/pose), IKSolver(lm, restarts=20) {1e6 * t_num:.2f} us/call ({ok}/{len(poses)} solved, 1 "
+          f"solution): ratio {ratio:.4f}")
+    goals.append({"name": "closed.ur per call / rk.ik (LM, restarts)", "ratio": ratio, "goal": 0.2,
+                  "met": ratio <= 0.2})
+    # All solutions numerically: LM from 48 random starts per pose (as the completeness test), in
+    # one batch on every core; distinct solutions found against the closed form's.
+    S = 48
+    starts = rng.uniform(-np.pi, np.pi, (len(poses) * S, 6))
+    rep = np.repeat(poses, S, axis=0)
+    t_all, _ = once(lambda: rk.ik_batch(ur5, rep, starts, max_iter=200), repeat=2)
+    res = rk.ik_batch(ur5, rep, starts, max_iter=200)
+    distinct = 0
+    for i in range(len(poses)):
+        sols = res.q[i * S:(i + 1) * S][res.success[i * S:(i + 1) * S]]
+        kept = []
+        for q in sols:
+            if not kept or np.min(np.max(np.abs(np.remainder(np.array(kept) - q + np.pi, 2 * np.pi) - np.pi), axis=1)) > 1e-4:
+                kept.append(q)
+        distinct += len(kept)
+    t_closed_batch, _ = once(lambda: rk.closed.ur_batch(poses, ur5), repeat=5)
+    ratio_all = t_closed_batch / t_all
+    print(f"all solutions: closed.ur_batch {1e6 * t_closed_batch / len(poses):.2f} us/pose ({found / len(poses):.2f} "
+          f"solutions/pose) vs ik_batch from {S} starts {1e6 * t_all / len(poses):.0f} us/pose "
+          f"({distinct / len(poses):.2f} distinct solutions/pose): ratio {ratio_all:.4f}; per solution, closed.ur "
+          f"{1e6 * t_closed * len(poses) / found:.2f} us vs one numerical solve {1e6 * t_num:.2f} us")
+    goals.append({"name": "closed.ur all solutions / ik_batch 48 starts", "ratio": ratio_all, "goal": 0.2,
+                  "met": ratio_all <= 0.2})
+    # --- batch of 1e6 poses on every core ---
+    n = 1_000_000
+    Qb = rng.uniform(-np.pi, np.pi, (n, 6))
+    big = ur5.fk(Qb)
+    t_batch, _ = once(lambda: rk.closed.ur_batch(big, ur5), repeat=2)
+    q, singular = rk.closed.ur_batch(big[:1000], ur5)
+    per_pose = np.sum(~np.isnan(q[:, :, 0])) / 1000
+    print(f"closed.ur_batch, {n} poses on {os.cpu_count()} cores: {t_batch:.3f} s ({1e9 * t_batch / n:.0f} ns/pose, "
+          f"{per_pose:.2f} solutions/pose); {n} single calls would take ~{n * t_closed:.1f} s "
+          f"(batch/single ratio {t_batch / (n * t_closed):.4f})")
+    # --- track_postures vs greedy on a 1,000-waypoint line ---
+    puma = rk.robots.puma560()
+    from robokin.demo_postures import LINE_DIRECTION, LINE_LENGTH, LINE_Q0
+
+    qs = np.array(LINE_Q0, dtype=float)
+    T0 = puma.fk(qs)
+    K = 1000
+    line = np.repeat(T0[None], K, axis=0)
+    direction = np.asarray(LINE_DIRECTION) / np.linalg.norm(LINE_DIRECTION)
+    line[:, :3, 3] += np.linspace(0, LINE_LENGTH, K)[:, None] * direction[None, :]
+    dt, vmax = 0.004, 2.0  # the demo's line and speed, 5 x more waypoints
+    t_plan, _ = once(lambda: rk.track_postures(puma, line, dt, qdot_max=vmax, q0=qs), repeat=3)
+    t_greedy, _ = once(lambda: rk.closed.puma560_path(line, qs), repeat=3)
+    plan = rk.track_postures(puma, line, dt, qdot_max=vmax, q0=qs)
+    qg, okg = rk.closed.puma560_path(line, qs)
+    rg = rk.count_reconfigurations(qg, dt, vmax, q0=qs, chain=puma)
+    print(f"PUMA 560, {K}-waypoint line: track_postures {1e3 * t_plan:.1f} ms, {len(plan.reconfigurations)} "
+          f"reconfiguration(s), motion {plan.motion:.3f} rad; greedy puma560_path {1e3 * t_greedy:.2f} ms, "
+          f"{len(rg)} reconfiguration(s); time ratio {t_plan / t_greedy:.1f}x")
+    t0 = time.perf_counter()
+    ur_line = np.repeat(poses[0][None], K, axis=0)
+    ur_line[:, 2, 3] += np.linspace(0, 0.2, K)
+    up = rk.track_postures(ur5, ur_line, dt, qdot_max=vmax)
+    print(f"UR5, {K}-waypoint line: track_postures {1e3 * (time.perf_counter() - t0):.1f} ms, "
+          f"{len(up.reconfigurations)} reconfiguration(s), {int(up.success.sum())}/{K} reached")
+    return goals
+
+
+if __name__ == "__main__":
+    for g in main():
+        print(g)

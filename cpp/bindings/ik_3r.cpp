@@ -1,0 +1,92 @@
+// General 3R arms: inverse solutions of a point, aspects and cuspidality (use robokin.closed.general_3r
+// and robokin.cuspidal).
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/ik_3r.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace robokin::bind {
+namespace {
+
+Arm3R arm_arg(const Chain& chain) {
+  try {
+    return arm_3r(chain);
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+}
+
+JointLimits limits_3r(const Chain& chain, py::handle limits) {
+  JointLimits lim;
+  if (py::isinstance<py::str>(limits)) {
+    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
+    lim.lower = chain.lower(), lim.upper = chain.upper();
+    if (lim.lower.size() != 3) lim.lower.resize(0), lim.upper.resize(0);
+    return lim;
+  }
+  if (limits.is_none()) return lim;
+  if (!py::isinstance<py::sequence>(limits) || py::len(limits) != 2)
+    fail("limits: expected 'default', None or a pair (lower, upper)");
+  py::sequence pair = py::reinterpret_borrow<py::sequence>(limits);
+  lim.lower = as_vector(pair[0], "limits", 3, false);
+  lim.upper = as_vector(pair[1], "limits", 3, false);
+  for (int i = 0; i < 3; ++i) {
+    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
+    if (lim.lower(i) > lim.upper(i)) fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
+  }
+  return lim;
+}
+
+}  // namespace
+
+void bind_ik_3r(py::module_& m) {
+  m.def(
+      "ik_3r",
+      [](py::handle target, const Chain& chain, py::handle limits) {
+        const Eigen::VectorXd p = as_vector(target, "target", 3);
+        const Arm3R arm = arm_arg(chain);
+        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_3r(chain, limits));
+      },
+      py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
+  m.def(
+      "det_3r",
+      [](const Chain& chain, double q2, double q3) {
+        if (!std::isfinite(q2) || !std::isfinite(q3)) fail("q: must be finite");
+        return det_3r(arm_arg(chain), q2, q3);
+      },
+      py::arg("chain"), py::arg("q2"), py::arg("q3"));
+  m.def(
+      "cuspidal_3r",
+      [](const Chain& chain, int resolution) {
+        if (resolution < 16 || resolution > 4096) fail("resolution: expected an integer in [16, 4096]");
+        const Arm3R arm = arm_arg(chain);
+        CuspidalResult r;
+        {
+          py::gil_scoped_release release;
+          r = cuspidal_3r(arm, resolution);
+        }
+        py::array_t<double> cusps({static_cast<py::ssize_t>(r.cusps.size()), py::ssize_t{4}});
+        double* c = cusps.mutable_data();
+        for (size_t k = 0; k < r.cusps.size(); ++k) {
+          c[4 * k] = r.cusps[k].q2, c[4 * k + 1] = r.cusps[k].q3, c[4 * k + 2] = r.cusps[k].rho, c[4 * k + 3] = r.cusps[k].z;
+        }
+        py::array_t<signed char> sign({static_cast<py::ssize_t>(resolution), static_cast<py::ssize_t>(resolution)});
+        std::copy(r.sign.begin(), r.sign.end(), sign.mutable_data());
+        py::array_t<int> label({static_cast<py::ssize_t>(resolution), static_cast<py::ssize_t>(resolution)});
+        std::copy(r.label.begin(), r.label.end(), label.mutable_data());
+        py::dict out;
+        out["label"] = label;
+        out["cuspidal"] = r.cuspidal;
+        out["cusps"] = cusps;
+        out["aspects"] = r.aspects;
+        out["sign"] = sign;
+        return out;
+      },
+      py::arg("chain"), py::arg("resolution") = 256);
+}
+
+}  // namespace robokin::bind

@@ -1,0 +1,302 @@
+"""Path tracking with the fewest reconfigurations (IKLink's objective: Y. Wang,
+C. Sifferman, M. Gleicher, "IKLink: End-Effector Trajectory Tracking with Minimal
+Reconfigurations", ICRA 2024).
+
+At every waypoint, the set of inverse solutions (the closed forms of :mod:`robokin.closed` when the
+arm has one, otherwise numerical IK from many starts with duplicates merged); between consecutive
+waypoints, a step is *continuous* when no joint moves more than ``qdot_max * dt`` and a
+*reconfiguration* otherwise (the arm must leave the path to change posture). A dynamic programme
+over the layered graph of solutions picks one solution per waypoint minimising first the number of
+reconfigurations, then the joint motion (the sum over steps of the Euclidean norm of the joint
+change). Greedy tracking (the solution nearest the previous one, :func:`robokin.closed.puma560_path`)
+is one path of that graph: the plan never has more reconfigurations.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import List, Optional
+
+import numpy as np
+
+from . import _core, closed
+from ._checks import real_array
+from ._core import Chain
+
+__all__ = ["TrackPosturesResult", "track_postures", "count_reconfigurations"]
+
+
+@dataclass
+class TrackPosturesResult:
+    """Result of :func:`track_postures`.
+
+    Attributes:
+        q: (K, n) joints; a waypoint without solution repeats the previous joints (the next
+            solution's for a leading one).
+        success: (K,) booleans: the waypoint has an inverse solution (within the limits).
+        reconfigurations: Indices ``k`` where the step from waypoint ``k - 1`` (``q0`` for ``k = 0``)
+            to ``k`` exceeds ``qdot_max * dt`` on some joint.
+        motion: Sum over the steps of the norm of the joint change (rad).
+        solutions: The solution set of each waypoint, (m_k, n) arrays.
+        postures: The posture label of each chosen solution (closed forms), else None.
+    """
+
+    q: np.ndarray
+    success: np.ndarray
+    reconfigurations: np.ndarray
+    motion: float
+    solutions: List[np.ndarray]
+    postures: Optional[List[Optional[str]]]
+
+
+def _continuous(chain: Chain) -> np.ndarray:
+    """Joints whose range spans a whole turn: their steps are taken the short way round."""
+    lo, hi = chain.limits
+    kinds = chain.joint_types
+    return np.array([k == "R" and (hi[i] - lo[i]) >= 2 * math.pi for i, k in enumerate(kinds)])
+
+
+def _step(a, b, cont):
+    """Joint change from a to b (broadcast), the short way round on continuous joints."""
+    d = b - a
+    return np.where(cont, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d)
+
+
+def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chain] = None) -> np.ndarray:
+    """Indices ``k`` where the joint path ``q`` (K, n) steps more than ``qdot_max * dt`` on some joint
+    from ``k - 1`` (from ``q0`` for ``k = 0`` when given). With ``chain``, joints whose limits span a
+    whole turn are compared the short way round.
+
+    Args:
+        q: (K, n) joint path.
+        dt: Time between waypoints (s), positive.
+        qdot_max: Joint speed limit, a positive scalar or (n,).
+        q0: Optional (n,) joints before the path.
+        chain: Optional chain (for its continuous joints).
+    """
+    q = real_array(q, "q")
+    if q.ndim != 2 or q.shape[0] < 1 or not np.all(np.isfinite(q)):
+        raise ValueError(f"q: expected a finite (K, n) array, K >= 1, got shape {q.shape}")
+    n = q.shape[1]
+    lim = _speed(qdot_max, n) * _dt(dt)
+    cont = _continuous(chain) if chain is not None else np.zeros(n, bool)
+    if chain is not None and chain.dof != n:
+        raise ValueError(f"q: expected {chain.dof} columns for the chain, got {n}")
+    path = q
+    if q0 is not None:
+        path = np.vstack([_vector(q0, n, "q0"), q])
+    jumps = np.any(np.abs(_step(path[:-1], path[1:], cont)) > lim * (1 + 1e-9), axis=1)
+    idx = np.nonzero(jumps)[0]
+    return idx if q0 is not None else idx + 1
+
+
+def _dt(dt) -> float:
+    try:
+        v = float(dt)
+    except (TypeError, ValueError):
+        raise ValueError(f"dt: expected a positive number, got {dt!r}") from None
+    if not (v > 0 and math.isfinite(v)):
+        raise ValueError(f"dt: expected a positive finite number, got {dt!r}")
+    return v
+
+
+def _speed(qdot_max, n) -> np.ndarray:
+    v = real_array(qdot_max, "qdot_max")
+    if v.ndim == 0:
+        v = np.full(n, float(v))
+    if v.shape != (n,) or not np.all(v > 0) or not np.all(np.isfinite(v)):
+        raise ValueError(f"qdot_max: expected a positive finite scalar or ({n},) array, got {qdot_max!r}")
+    return v
+
+
+def _vector(v, n, name) -> np.ndarray:
+    a = real_array(v, name)
+    if a.shape != (n,) or not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: expected a finite ({n},) array, got shape {a.shape}")
+    return a
+
+
+def _is_puma560(chain: Chain) -> bool:
+    from .robots import puma560
+
+    if chain.dof != 6 or chain.joint_types != "RRRRRR":
+        return False
+    q = np.array([[0.3, -0.7, 1.1, 0.5, -0.9, 2.0], [-1.2, 0.4, -0.3, 2.2, 0.6, -1.5], [0.0] * 6])
+    return bool(np.allclose(chain.fk(q), puma560().fk(q), atol=1e-12, rtol=0))
+
+
+def _closed_sets(chain: Chain, poses):
+    """Solutions and labels per pose from a closed form; None when the chain has none."""
+    try:
+        _core.ur_geometry(chain)
+        is_ur = True
+    except ValueError:
+        is_ur = False
+    if is_ur:
+        q, _ = closed.ur_batch(poses, chain)
+        names = list(closed.UR_POSTURES)
+        sets, labels = [], []
+        for row in q:
+            keep = ~np.isnan(row[:, 0])
+            sets.append(row[keep])
+            labels.append([names[k] for k in np.nonzero(keep)[0]])
+        return sets, labels
+    if _is_puma560(chain):
+        sets, labels = [], []
+        g = closed.PUMA560
+        for T in poses:
+            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], limits=chain)
+            sets.append(s.q)
+            labels.append(list(s.postures))
+        return sets, labels
+    return None
+
+
+def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont):
+    from .ik import ik_batch
+
+    n = chain.dof
+    lo, hi = chain.limits
+    lo_s = np.where(np.isfinite(lo), np.maximum(lo, -math.pi), -math.pi)
+    hi_s = np.where(np.isfinite(hi), np.minimum(hi, math.pi), math.pi)
+    hi_s = np.maximum(hi_s, lo_s)
+    rng = np.random.default_rng(seed)
+    K = len(poses)
+    q0 = rng.uniform(lo_s, hi_s, (K * starts, n))
+    res = ik_batch(chain, np.repeat(poses, starts, axis=0), q0, seed=seed)
+    sets = []
+    for k in range(K):
+        sl = slice(k * starts, (k + 1) * starts)
+        found = res.q[sl][res.success[sl]]
+        distinct: list = []
+        for q in found:
+            if not distinct or np.min(np.max(np.abs(_step(np.array(distinct), q, cont)), axis=1)) > 1e-6:
+                distinct.append(q)
+        sets.append(np.array(distinct).reshape(-1, n))
+    return sets
+
+
+def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str = "closed", q0=None,
+                   starts: int = 32, seed: int = 0) -> TrackPosturesResult:
+    """Follows the tool frames ``poses`` with the fewest reconfigurations, then the least joint motion.
+
+    Args:
+        chain: The arm. ``method="closed"`` needs a closed form: a UR-layout arm
+            (:func:`robokin.closed.ur`) or the PUMA 560 (:func:`robokin.robots.puma560`, any limits).
+        poses: (K, 4, 4) tool frames, one per waypoint.
+        dt: Time between waypoints (s).
+        qdot_max: Joint speed limit (rad/s, m/s), a scalar or (n,): a step moving some joint more
+            than ``qdot_max * dt`` is a reconfiguration.
+        method: ``"closed"`` or ``"numerical"`` (:func:`robokin.ik_batch` from ``starts`` random starts
+            per waypoint, seeded by ``seed``, duplicates within 1e-6 rad merged).
+        q0: Optional (n,) joints before the path: the step to the first waypoint counts too.
+            Without it the plan starts in whichever posture is best.
+        starts, seed: For ``method="numerical"``.
+
+    Returns:
+        TrackPosturesResult (``q``, ``success``, ``reconfigurations``, ``motion``, ``solutions``,
+        ``postures``). Joints whose limits span a whole turn step the short way round (and the path
+        keeps them continuous, shifted by whole turns within the limits).
+    """
+    if not isinstance(chain, Chain):
+        raise ValueError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    n = chain.dof
+    P = real_array(poses, "poses")
+    if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
+        raise ValueError(f"poses: expected a (K, 4, 4) array, K >= 1, got shape {P.shape}")
+    if not np.all(np.isfinite(P)):
+        raise ValueError("poses: contains NaN or inf")
+    step_dt = _dt(dt)
+    vmax = _speed(qdot_max, n)
+    if method not in ("closed", "numerical"):
+        raise ValueError(f"method: expected 'closed' or 'numerical', got {method!r}")
+    if not isinstance(starts, (int, np.integer)) or isinstance(starts, bool) or not 1 <= starts <= 10_000:
+        raise ValueError(f"starts: expected an integer in [1, 10000], got {starts!r}")
+    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool):
+        raise ValueError(f"seed: expected an integer, got {seed!r}")
+    start = None if q0 is None else _vector(q0, n, "q0")
+    cont = _continuous(chain)
+    labels = None
+    if method == "closed":
+        got = _closed_sets(chain, P)
+        if got is None:
+            raise ValueError("method: 'closed' needs a UR-layout arm or the PUMA 560; use method='numerical'")
+        sets, labels = got
+    else:
+        sets = _numerical_sets(chain, P, int(starts), int(seed), cont)
+    K = len(sets)
+    success = np.array([len(s) > 0 for s in sets])
+    layers = np.nonzero(success)[0]
+    q = np.zeros((K, n))
+    chosen: list = [None] * K
+    if len(layers) == 0:
+        q[:] = start if start is not None else 0.0
+        return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
+                                   [None] * K if labels is not None else None)
+
+    def edge(a, b, steps):
+        D = _step(a[:, None, :], b[None, :, :], cont)
+        jump = np.any(np.abs(D) > vmax * step_dt * steps * (1 + 1e-9), axis=2)
+        return jump.astype(np.int64), np.linalg.norm(D, axis=2)
+
+    first = layers[0]
+    if start is not None:
+        j, m = edge(start[None, :], sets[first], first + 1)
+        cost_r, cost_m = j[0], m[0]
+    else:
+        cost_r, cost_m = np.zeros(len(sets[first]), np.int64), np.zeros(len(sets[first]))
+    back = {}
+    prev = first
+    for k in layers[1:]:
+        j, m = edge(sets[prev], sets[k], k - prev)
+        R = cost_r[:, None] + j
+        M = cost_m[:, None] + m
+        rmin = R.min(axis=0)
+        best = np.argmin(np.where(R == rmin[None, :], M, np.inf), axis=0)
+        cols = np.arange(R.shape[1])
+        cost_r, cost_m = R[best, cols], M[best, cols]
+        back[k] = best
+        prev = k
+    # The best end, then back along the choices.
+    end = int(np.lexsort((cost_m, cost_r))[0])
+    pick = {prev: end}
+    for a, b in zip(layers[::-1][:-1], layers[::-1][1:]):
+        pick[b] = int(back[a][pick[a]])
+    # Joint path: continuous joints unwrapped along the path, by whole turns within the limits.
+    lo, hi = chain.limits
+    last = start
+    for k in range(K):
+        if k in pick:
+            v = sets[k][pick[k]].copy()
+            if last is not None:
+                turns = np.round((last - v) / (2 * math.pi))
+                shifted = v + 2 * math.pi * turns
+                ok = cont & (shifted >= lo) & (shifted <= hi)
+                v = np.where(ok, shifted, v)
+            q[k] = v
+            last = v
+            chosen[k] = labels[k][pick[k]] if labels is not None else None
+        elif last is not None:
+            q[k] = last
+    q[:first] = q[first] if start is None else start
+    recon = count_reconfigurations(q, step_dt, vmax, q0=start, chain=chain)
+    # A failed waypoint repeats the joints: the step over the gap is judged over its duration.
+    if not np.all(success):
+        keep = []
+        for k in recon:
+            a = k - 1
+            while a >= 0 and not success[a]:
+                a -= 1
+            if not success[k]:
+                continue
+            base = (start if a < 0 else q[a]) if (a >= 0 or start is not None) else None
+            if base is None:
+                continue
+            d = _step(base, q[k], cont)
+            if np.any(np.abs(d) > vmax * step_dt * (k - a) * (1 + 1e-9)):
+                keep.append(k)
+        recon = np.array(keep, dtype=np.intp)
+    steps = q if start is None else np.vstack([start, q])
+    motion = float(np.sum(np.linalg.norm(_step(steps[:-1], steps[1:], cont), axis=1)))
+    return TrackPosturesResult(q, success, recon, motion, sets, chosen if labels is not None else None)

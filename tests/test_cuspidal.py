@@ -1,0 +1,194 @@
+"""General 3R arms: rk.closed.general_3r (every position solution) and rk.cuspidal (issue 15).
+
+Truth: the forward model (KDL's, chain._fk_kdl), numerical IK from many random starts (every
+distinct solution it finds must be in the closed-form set), KDL's Jacobian for the singular curve,
+and the definitions themselves: at a cusp the image of the singular curve turns back (the
+workspace point moves as the square of the distance along the curve, not linearly), and a
+cuspidal arm has points with two solutions in one aspect (a non-cuspidal one never has).
+
+Literature:
+- Seed 003 (after P. Wenger and D. Chablat, "Robots cuspidaux : theorie et applications",
+  Techniques de l'Ingenieur, 2021): a 3R arm whose first two or last two axes are parallel or
+  intersect is not cuspidal.
+- Orthogonal 3R arms in the parametrisation of M. Baili, P. Wenger, D. Chablat, "A classification of
+  3R orthogonal manipulators by the topology of their workspace", ICRA 2004 (Craig's modified DH,
+  alpha = (0, -90, 90) deg, link lengths d2, d3, d4, offsets r2, r3): the arm d2 = 1, d3 = 2,
+  d4 = 1.5, r2 = 1, r3 = 0, the example of P. Wenger, "Cuspidal and noncuspidal robot
+  manipulators", Robotica 25(6), 2007, is cuspidal (four cusps on its singular curves). The
+  parameters are quoted from memory of that paper (its text was not at hand): the test does not
+  rest on the citation alone but checks each cusp and the posture change from their definitions.
+- D. H. Salunkhe, C. Spartalis, J. Capco, D. Chablat, P. Wenger, "Necessary and sufficient condition
+  for a generic 3R serial manipulator to be cuspidal", Mechanism and Machine Theory 171, 2022: a
+  cusp point exists if and only if the arm is cuspidal.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+P = math.pi
+
+
+def standard(rows):
+    return rk.Chain.from_dh([tuple(r) + ("R",) for r in rows])
+
+
+def orthogonal(d2, d3, d4, r2, r3):
+    """Baili, Wenger and Chablat's orthogonal 3R (modified DH), tool d4 along x3."""
+    tool = np.eye(4)
+    tool[0, 3] = d4
+    rows = [(0.0, 0.0, 0.0, 0.0, "R"), (d2, -P / 2, r2, 0.0, "R"), (d3, P / 2, r3, 0.0, "R")]
+    return rk.Chain.from_dh(rows, modified=True, tool=tool)
+
+
+WENGER_CUSPIDAL = dict(d2=1.0, d3=2.0, d4=1.5, r2=1.0, r3=0.0)
+
+
+def random_arm(rng, condition=None):
+    a = rng.uniform(0.3, 1.5, 3)
+    alpha = rng.uniform(-P, P, 3)
+    d = rng.uniform(-1.0, 1.0, 3)
+    if condition == "first parallel":
+        alpha[0] = 0.0
+    elif condition == "first intersect":
+        a[0] = 0.0
+    elif condition == "last parallel":
+        alpha[1] = 0.0
+    elif condition == "last intersect":
+        a[1] = 0.0
+    return standard([(a[i], alpha[i], d[i], 0.0) for i in range(3)])
+
+
+def wrapped(a, b):
+    return np.max(np.abs(np.remainder(np.asarray(a) - np.asarray(b) + P, 2 * P) - P), axis=-1)
+
+
+@pytest.mark.parametrize("condition", [None, "first parallel", "first intersect", "last parallel", "last intersect"])
+def test_every_solution_reaches_and_numerical_ik_finds_no_other(condition, rng):
+    for _ in range(4):
+        chain = random_arm(rng, condition)
+        Q = rng.uniform(-P, P, (6, 3))
+        for q in Q:
+            p = chain.fk(q)[:3, 3]
+            s = rk.closed.general_3r(p, chain, limits=None)
+            assert 1 <= len(s) <= 4
+            for row in s.q:
+                assert np.linalg.norm(chain._fk_kdl(row)[:3, 3] - p) < 1e-9
+            assert np.min(wrapped(s.q, q)) < 1e-7
+            starts = rng.uniform(-P, P, (24, 3))
+            res = rk.ik_batch(chain, np.repeat(p[None], 24, axis=0), starts, task="position", max_iter=200)
+            for qn in res.q[res.success]:
+                if abs(np.linalg.det(chain.jacobian(qn, task="position"))) < 1e-6:
+                    continue  # a near-singular solution (two roots merging): closed-form rounding
+                assert np.min(wrapped(s.q, qn)) < 1e-5, (condition, q, qn, s)
+
+
+def test_four_solutions_somewhere_and_labels_follow_det_j(rng):
+    chain = orthogonal(**WENGER_CUSPIDAL)
+    counts = []
+    for q in rng.uniform(-P, P, (60, 3)):
+        s = rk.closed.general_3r(chain.fk(q)[:3, 3], chain, limits=None)
+        counts.append(len(s))
+        for row, label in zip(s.q, s.postures):
+            d = np.linalg.det(chain.jacobian(row, task="position"))
+            assert label == ("det J > 0" if d > 0 else "det J < 0") or label == "singular"
+    assert max(counts) == 4 and min(counts) == 2
+
+
+@pytest.mark.parametrize("condition", ["first parallel", "first intersect", "last parallel", "last intersect"])
+def test_seed_conditions_are_not_cuspidal(condition, rng):
+    for _ in range(3):
+        chain = random_arm(rng, condition)
+        c = rk.cuspidal(chain, resolution=128)
+        assert not c.cuspidal, (condition, c.cusps)
+        assert len(c.cusps) == 0 and c.path is None
+        assert "no cusp" in c.evidence
+
+
+def aspect_of(c, q):
+    """The aspect of the grid cell of q, or None when a neighbouring cell is in another one (q too
+    near a singular curve for the grid to tell)."""
+    n = len(c.grid)
+    h = 2 * P / n
+    i = int(round((np.remainder(q[1] + P, 2 * P) - 0.37 * h) / h)) % n
+    j = int(round((np.remainder(q[2] + P, 2 * P) - 0.37 * h) / h)) % n
+    around = {c.label[(i + a) % n, (j + b) % n] for a in (-1, 0, 1) for b in (-1, 0, 1)}
+    return c.label[i, j] if len(around) == 1 else None
+
+
+def two_in_one_aspect(chain, c, rng, samples=150):
+    """Some point with two solutions in the same aspect (solutions away from the singular curves)."""
+    for q in rng.uniform(-P, P, (samples, 3)):
+        s = rk.closed.general_3r(chain.fk(q)[:3, 3], chain, limits=None)
+        labs = [aspect_of(c, r) for r in s.q]
+        labs = [a for a in labs if a is not None]
+        if len(labs) != len(set(labs)):
+            return True
+    return False
+
+
+def test_wenger_orthogonal_arm_is_cuspidal_with_cusps_and_a_nonsingular_posture_change(rng):
+    chain = orthogonal(**WENGER_CUSPIDAL)
+    c = rk.cuspidal(chain, resolution=256)
+    assert c.cuspidal
+    assert len(c.cusps) == 4  # Wenger (2007): four cusps on the inner singular curve
+    # Each cusp: on the singular curve (KDL's Jacobian), and the curve's image turns back there.
+    for q2, q3, rho, z in c.cusps:
+        q = np.array([0.0, q2, q3])
+        J = chain.jacobian(q, task="position")
+        assert abs(np.linalg.det(J)) < 1e-7
+        p = chain._fk_kdl(q)[:3, 3]
+        assert math.hypot(p[0], p[1]) == pytest.approx(rho, abs=1e-9) and p[2] == pytest.approx(z, abs=1e-9)
+        # points on the curve at distance e and 2e along it: their images move ~ e^2 (a cusp), not ~ e
+        grad = np.array([np.linalg.det(chain.jacobian([0, q2 + s2, q3 + s3], task="position"))
+                         for s2, s3 in ((1e-6, 0), (-1e-6, 0), (0, 1e-6), (0, -1e-6))])
+        g = np.array([grad[0] - grad[1], grad[2] - grad[3]])
+        tau = np.array([-g[1], g[0]]) / np.linalg.norm(g)
+
+        def on_curve(e):
+            x = np.array([q2, q3]) + e * tau
+            for _ in range(20):
+                f = np.linalg.det(chain.jacobian([0, *x], task="position"))
+                h = 1e-7
+                gx = np.array([np.linalg.det(chain.jacobian([0, x[0] + h, x[1]], task="position")) - f,
+                               np.linalg.det(chain.jacobian([0, x[0], x[1] + h], task="position")) - f]) / h
+                x = x - f * gx / (gx @ gx)
+            pe = chain._fk_kdl([0, *x])[:3, 3]
+            return np.array([math.hypot(pe[0], pe[1]) - rho, pe[2] - z])
+
+        d1, d2 = np.linalg.norm(on_curve(1e-3)), np.linalg.norm(on_curve(2e-3))
+        assert 3.0 < d2 / d1 < 5.0  # quadratic: ratio 4 (a fold would give 2)
+    # The evidence path: two solutions of one point, det J of one sign along the whole path.
+    assert c.path is not None and c.point is not None
+    start, end = c.path[0], c.path[-1]
+    assert wrapped(start, end) > 1e-3
+    for q in (start, end):
+        assert np.linalg.norm(chain._fk_kdl(q)[:3, 3] - c.point) < 1e-9
+    dets = [np.linalg.det(chain.jacobian(q, task="position")) for q in c.path]
+    assert np.all(np.sign(dets) == np.sign(dets[0]))
+    # and such points exist elsewhere too (an independent sample)
+    assert two_in_one_aspect(chain, c, rng)
+
+
+def test_non_cuspidal_arms_never_have_two_solutions_in_one_aspect(rng):
+    for condition in ("first intersect", "last parallel"):
+        chain = random_arm(rng, condition)
+        c = rk.cuspidal(chain, resolution=128)
+        assert not c.cuspidal
+        assert not two_in_one_aspect(chain, c, rng, samples=60)
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="chain"):
+        rk.cuspidal(rk.robots.ur5())
+    with pytest.raises(ValueError, match="chain"):
+        rk.cuspidal("arm")
+    with pytest.raises(ValueError, match="resolution"):
+        rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), resolution=3)
+    with pytest.raises(ValueError, match="target"):
+        rk.closed.general_3r([0, 0], orthogonal(**WENGER_CUSPIDAL))
+    with pytest.raises(ValueError, match="chain"):
+        rk.closed.general_3r([0, 0, 0], rk.robots.ur5())
