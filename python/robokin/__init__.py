@@ -5,11 +5,13 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 """
 
 from . import closed, paths, robots
-from . import pose, trajfrom ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
+from . import pose, traj
+from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
-from .resolved_rate import ServoResult, resolved_rate, servofrom .postures import TrackPosturesResult, count_reconfigurations, track_postures
+from .resolved_rate import ServoResult, resolved_rate, servo
+from .postures import TrackPosturesResult, count_reconfigurations, track_postures
 from .cuspidality import Cuspidality, cuspidal
 
 __version__ = "0.1.0"
@@ -33,7 +35,7 @@ __all__ = [
     "reach",
     "robots",
     "track",
-      "ServoResult",
+    "ServoResult",
     "pose",
     "resolved_rate",
     "servo",
