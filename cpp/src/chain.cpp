@@ -24,15 +24,6 @@
 namespace robokin {
 namespace {
 
-Rigid to_rigid(const KDL::Frame& f) {
-  Rigid r;
-  for (int i = 0; i < 3; ++i) {
-    r.p(i) = f.p(i);
-    for (int j = 0; j < 3; ++j) r.R(i, j) = f.M(i, j);
-  }
-  return r;
-}
-
 KDL::Frame to_kdl(const Matrix4& m) {
   return KDL::Frame(KDL::Rotation(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0),
                                   m(2, 1), m(2, 2)),
@@ -91,6 +82,15 @@ Matrix4 Rigid::matrix() const {
   return m;
 }
 
+Rigid Rigid::from_kdl(const KDL::Frame& f) {
+  Rigid r;
+  for (int i = 0; i < 3; ++i) {
+    r.p(i) = f.p(i);
+    for (int j = 0; j < 3; ++j) r.R(i, j) = f.M(i, j);
+  }
+  return r;
+}
+
 Rigid Rigid::from_matrix(const Matrix4& m) { return {m.topLeftCorner<3, 3>(), m.topRightCorner<3, 1>()}; }
 
 Chain::Chain(KDL::Chain chain, const Vector& lower, const Vector& upper)
@@ -144,7 +144,7 @@ void Chain::build_fast_path() {
   for (const KDL::Segment& seg : kdl_.segments) {
     const KDL::Joint& joint = seg.getJoint();
     if (joint.getType() == KDL::Joint::Fixed) {
-      since_motion = since_motion * to_rigid(seg.pose(0.0));
+      since_motion = since_motion * Rigid::from_kdl(seg.pose(0.0));
       continue;
     }
     const bool prismatic = joint.getType() >= KDL::Joint::TransAxis;
@@ -153,7 +153,7 @@ void Chain::build_fast_path() {
     // KDL: joint.pose(q) = Frame(Rot(axis, scale q + offset), origin), so joint.pose(q) =
     // P0 * G Mz(scale q) G^-1 with G a rotation taking z to the axis (no translation).
     const Rigid G = frame_with_z(axis);
-    const Rigid P0 = to_rigid(joint.pose(0.0)), P1 = to_rigid(joint.pose(1.0));
+    const Rigid P0 = Rigid::from_kdl(joint.pose(0.0)), P1 = Rigid::from_kdl(joint.pose(1.0));
     // The joint's scale: how far one unit of q moves it (1 for every chain robokin builds).
     double scale;
     if (prismatic) {
@@ -168,7 +168,7 @@ void Chain::build_fast_path() {
     if (links_.empty()) base_ = before;
     else links_.back().after = make_fixed(before);
     links_.push_back({prismatic, scale, Fixed()});
-    since_motion = G.inverse() * P0.inverse() * to_rigid(seg.pose(0.0));
+    since_motion = G.inverse() * P0.inverse() * Rigid::from_kdl(seg.pose(0.0));
   }
   links_.back().after = make_fixed(since_motion);
 }
@@ -441,7 +441,7 @@ Matrix4 Chain::fk_kdl(const Vector& q) const {
   KDL::ChainFkSolverPos_recursive solver(kdl_);
   KDL::Frame f;
   if (solver.JntToCart(to_jnt(q), f) < 0) throw std::runtime_error("KDL forward kinematics failed");
-  return to_rigid(f).matrix();
+  return Rigid::from_kdl(f).matrix();
 }
 
 Matrix6X Chain::jacobian_kdl(const Vector& q) const {
@@ -460,10 +460,10 @@ std::vector<Matrix4> Chain::frames(const Vector& q) const {
     T = T * seg.pose(moves ? q(j) : 0.0);
     if (moves) {
       ++j;
-      out.push_back(to_rigid(T).matrix());
+      out.push_back(Rigid::from_kdl(T).matrix());
     }
   }
-  out.back() = to_rigid(T).matrix();  // trailing fixed segments (the tool) belong to the last frame
+  out.back() = Rigid::from_kdl(T).matrix();  // trailing fixed segments (the tool) belong to the last frame
   return out;
 }
 

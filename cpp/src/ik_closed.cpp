@@ -407,15 +407,6 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
 namespace robokin {
 namespace {
 
-Rigid kdl_rigid(const KDL::Frame& f) {
-  Rigid r;
-  for (int i = 0; i < 3; ++i) {
-    r.p(i) = f.p(i);
-    for (int j = 0; j < 3; ++j) r.R(i, j) = f.M(i, j);
-  }
-  return r;
-}
-
 // Labels of the UR postures: shoulder (left, right, singular) x elbow (up, down, straight,
 // folded) x wrist (no flip, flip, singular), built once.
 const char* ur_label(int shoulder, int elbow, int wrist) {
@@ -453,13 +444,13 @@ URArm ur_arm(const Chain& chain) {
   for (const KDL::Segment& seg : chain.kdl().segments) {
     const KDL::Joint& joint = seg.getJoint();
     if (joint.getType() == KDL::Joint::Fixed) {
-      since = since * kdl_rigid(seg.pose(0.0));
+      since = since * Rigid::from_kdl(seg.pose(0.0));
       continue;
     }
     ++j;
     if (joint.getType() >= KDL::Joint::TransAxis) not_ur("joint " + std::to_string(j + 1) + " is prismatic");
     // The joint must turn about the z axis of the frame it starts from: pose(q) = Rz(+-q).
-    const Rigid P0 = kdl_rigid(joint.pose(0.0)), P1 = kdl_rigid(joint.pose(0.5));
+    const Rigid P0 = Rigid::from_kdl(joint.pose(0.0)), P1 = Rigid::from_kdl(joint.pose(0.5));
     const bool plus = (P1.R - rot_z(0.5)).cwiseAbs().maxCoeff() < 1e-12;
     const bool minus = (P1.R - rot_z(-0.5)).cwiseAbs().maxCoeff() < 1e-12;
     if ((P0.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-12 || P0.p.norm() > 0 || P1.p.norm() > 0 ||
@@ -468,7 +459,7 @@ URArm ur_arm(const Chain& chain) {
     arm.scale[j] = plus ? 1.0 : -1.0;
     if (j == 0) arm.base = since;
     else after[j - 1] = since;
-    since = kdl_rigid(seg.pose(0.0));
+    since = Rigid::from_kdl(seg.pose(0.0));
     size += since.p.norm();
   }
   arm.tool = since;

@@ -25,6 +25,7 @@ struct Rigid {
   Rigid inverse() const { return {R.transpose(), -(R.transpose() * p)}; }
   Matrix4 matrix() const;
   static Rigid from_matrix(const Matrix4& m);
+  static Rigid from_kdl(const KDL::Frame& f);
 };
 
 // One row of a Denavit-Hartenberg table; `prismatic` says which of theta / d the joint moves.
