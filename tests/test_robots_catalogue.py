@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
+from dh_reference import rot_x as rx, rot_z as rz, trans
 
 P = math.pi
 INF = math.inf
@@ -74,22 +75,6 @@ SPECS = {
 
 NEW_ARMS = sorted(SPECS)
 OLD = ["planar_3r", "prr", "puma560", "rp", "rpr"]
-
-
-def rx(t):
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
-
-
-def rz(t):
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
-
-
-def trans(x, y, z):
-    m = np.eye(4)
-    m[:3, 3] = (x, y, z)
-    return m
 
 
 def rpy_of(R):
