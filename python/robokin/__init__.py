@@ -6,7 +6,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 
 from . import closed, paths, robots
 from . import pose, traj
-from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
+from ._core import RRR3, Chain, ReachOptions, ReachResult, TrackResult, joint_limit_cost
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
@@ -24,6 +24,7 @@ __all__ = [
     "IKResult",
     "IKSolver",
     "RRR3",
+    "ReachOptions",
     "ReachResult",
     "TrackResult",
     "UnreachableError",

@@ -4,7 +4,7 @@ Arrays are float64; bad input raises ValueError naming the argument.
 """
 
 import os
-from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
+from typing import ClassVar, Dict, Iterator, Optional, Sequence, Tuple, Union
 from typing import Mapping
 
 import numpy as np
@@ -84,6 +84,18 @@ class Chain:
 
 # --- Reach and tracking (cpp/bindings/reach.cpp) ---------------------------------------------
 
+class ReachOptions:
+    """The options of one Reach (seed 000, Algorithm 1); the seed's values by default."""
+    fields: ClassVar[Tuple[str, ...]]
+    max_iter: int
+    tol: float
+    gain: float
+    dt: float
+    saturate: bool
+    damping: float
+    def __init__(self, *, max_iter: int = 25, tol: float = 1e-5, gain: float = 0.75, dt: float = 0.025,
+                 saturate: bool = True, damping: float = 0.0) -> None: ...
+
 class ReachResult:
     @property
     def q(self) -> NDArray: ...
@@ -105,14 +117,14 @@ class TrackResult:
     def iterations(self) -> npt.NDArray[np.int32]: ...
 
 def reach(
-    chain: Chain, target: ArrayLike, q: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
-    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
-    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+    chain: Chain, target: ArrayLike, q: ArrayLike, task: str = "xy", *,
+    nullspace: Union[None, str, ArrayLike] = None, max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True, damping: float = 0.0,
 ) -> ReachResult: ...
 def track(
-    chain: Chain, points: ArrayLike, q0: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
-    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
-    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+    chain: Chain, points: ArrayLike, q0: ArrayLike, task: str = "xy", *,
+    nullspace: Union[None, str, ArrayLike] = None, max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True, damping: float = 0.0,
 ) -> TrackResult: ...
 
 def joint_limit_cost(chain: Chain, q: ArrayLike) -> Union[float, NDArray]:
