@@ -59,14 +59,6 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
   return r;
 }
 
-// A read-only numpy view of a result's buffer, kept alive by the result object.
-template <class T>
-py::array view(py::handle owner, const T* data, std::vector<py::ssize_t> shape) {
-  py::array a = py::array_t<T>(shape, data, owner);
-  a.attr("setflags")(py::arg("write") = false);
-  return a;
-}
-
 }  // namespace
 
 void bind_reach(py::module_& m) {
@@ -86,19 +78,19 @@ void bind_reach(py::module_& m) {
   py::class_<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.")
       .def_property_readonly("q", [](py::handle self) {
         const auto& r = self.cast<const TrackResult&>();
-        return view(self, r.q.data(), {r.q.rows(), r.q.cols()});
+        return result_view(self, r.q.data(), {r.q.rows(), r.q.cols()});
       }, "(K, dof) joints after each point.")
       .def_property_readonly("error", [](py::handle self) {
         const auto& r = self.cast<const TrackResult&>();
-        return view(self, r.error.data(), {r.error.size()});
+        return result_view(self, r.error.data(), {r.error.size()});
       }, "(K,) task error after each point.")
       .def_property_readonly("converged", [](py::handle self) {
         const auto& r = self.cast<const TrackResult&>();
-        return view(self, r.converged.data(), {r.converged.size()});
+        return result_view(self, r.converged.data(), {r.converged.size()});
       }, "(K,) True where the point was reached within tol.")
       .def_property_readonly("iterations", [](py::handle self) {
         const auto& r = self.cast<const TrackResult&>();
-        return view(self, r.iterations.data(), {r.iterations.size()});
+        return result_view(self, r.iterations.data(), {r.iterations.size()});
       }, "(K,) Reach iterations per point.")
       .def("__repr__", [](py::handle self) { return repr_fields(self, {"q", "error", "converged", "iterations"}); });
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
