@@ -11,6 +11,8 @@ from . import _core
 from ._options import with_options
 from .errors import PrecisionWarning
 
+__all__ = ["reach", "track"]
+
 Nullspace = Union[None, str, np.ndarray]
 
 
