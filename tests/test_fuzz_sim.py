@@ -9,8 +9,11 @@ import math
 
 import numpy as np
 import sim_helpers  # noqa: F401  (SDL dummy drivers before pygame is imported)
-from hypothesis import given
+import robokin as rk
+from fuzz import arrays, check_call, finite_arrays
+from hypothesis import given, settings
 from hypothesis import strategies as st
+from robokin import plots
 
 from robokin_sim.config import MODES, Config, parse_args
 from robokin_sim.keys import ALIASES, HELD_KEYS, KEYS, MAX_HOLD, KeyScript, parse_script
@@ -18,7 +21,8 @@ from robokin_sim.scene_serial import SerialScene
 from robokin_sim.scenes import SCENES
 
 COVERS = {"sim.parse_args", "sim.parse_script", "sim.KeyScript.inputs", "sim.Rrr3Scene", "sim.RprScene",
-          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.SerialScene", "sim.Scene.pointer"}
+          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.SerialScene", "sim.Scene.pointer",
+          "plots.joint_axes", "plots.plot_chain", "plots.animate_chain"}
 
 OPTIONS = ["--robot", "--mode", "--headless", "--demo", "--frames", "--record", "--record-every", "--record-width",
            "--log", "--screenshot", "--keys", "--no-avoid", "--size", "--fps", "-h", "--help", "--rob", "--bogus", "--"]
@@ -154,3 +158,38 @@ def test_scene_any_key_sequence(robot_mode, avoid, inputs):
         assert np.allclose(state.frames[-1], scene.chain.fk(state.q), atol=1e-12)
         assert np.all(np.isfinite(state.axes)) and -math.pi / 2 <= state.camera.elevation <= math.pi / 2
         assert state.state in ("none", "near", "singular", "limit", "unreachable")
+
+
+# --- the serial chains' drawings (robokin.plots) -------------------------------------------------
+
+UR5 = rk.robots.ur5()
+
+
+@given(q=st.one_of(arrays([(6,), (5,), (6, 1), ()]), finite_arrays((6,), -1e6, 1e6)))
+def test_joint_axes_any_q(q):
+    axes = check_call(lambda: plots.joint_axes(UR5, q), "q")
+    if axes is not None:
+        assert axes.shape == (6, 2, 3) and np.all(np.isfinite(axes))
+        assert np.allclose(np.linalg.norm(axes[:, 1], axis=1), 1.0)
+
+
+@settings(max_examples=30)
+@given(q=st.one_of(arrays([(6,), (7,)]), finite_arrays((6,), -10, 10)))
+def test_plot_chain_any_q(q):
+    ax = check_call(lambda: plots.plot_chain(UR5, q), "q")
+    if ax is not None:
+        assert ax.name == "3d" and len(ax.lines) > 6
+
+
+@settings(max_examples=30)
+@given(Q=st.one_of(arrays([(1, 6), (2, 6), (2, 5), (0, 6)]), finite_arrays((2, 6), -3, 3)),
+       fps=st.one_of(st.floats(-1, 200), st.sampled_from([True, "10", None, math.nan])),
+       size=st.one_of(st.tuples(st.integers(0, 3000), st.integers(0, 3000)), st.sampled_from([None, "big", (1,)])),
+       suffix=st.sampled_from([".gif", ".mp4", ".png", ""]))
+def test_animate_chain_any_arguments(tmp_path_factory, Q, fps, size, suffix):
+    directory = tmp_path_factory.mktemp("anim")
+    size = size if not isinstance(size, tuple) or len(size) != 2 or max(size) < 700 else (64, 64)
+    out = check_call(lambda: plots.animate_chain(UR5, Q, directory / f"a{suffix}", fps=fps, size=size),
+                     "Q", "fps", "size", "path")
+    names = sorted(p.name for p in directory.iterdir())
+    assert names == ([f"a{suffix}"] if out is not None else [])

@@ -34,6 +34,7 @@ from typing import FrozenSet, Optional, Tuple
 
 import numpy as np
 import robokin as rk
+from robokin.plots import joint_axes
 
 from . import serial_model as model
 from .camera import VIEW_ORDER, Camera
@@ -149,7 +150,6 @@ class SerialScene(Scene):
         self.rpy = rk.pose.rpy(tool)
         self.w = float(self.chain.manipulability(self.q))
         self.ratio = self.w / self.w_ref
-        self._jacobian = None
         at_limit = np.any(np.isclose(self.q, self.lower, rtol=0, atol=1e-9) | np.isclose(self.q, self.upper, rtol=0,
                                                                                             atol=1e-9))
         if self.ratio < model.SINGULAR_RATIO:
@@ -158,28 +158,6 @@ class SerialScene(Scene):
             self.sing = "near"
         else:
             self.sing = "limit" if at_limit else "none"
-
-    def _axes(self) -> np.ndarray:
-        """(dof, 2, 3): a point on each joint's axis near the joint and the axis's direction, from
-        the Jacobian's columns (revolute: w_i, and the foot p + w_i x v_i of the tool point's
-        perpendicular; prismatic: v_i through the frame after the joint)."""
-        if self._jacobian is None:
-            self._jacobian = self.chain.jacobian(self.q)
-        jac, out = self._jacobian, np.zeros((self.dof, 2, 3))
-        origins = self.frames[:, :3, 3]
-        for i, kind in enumerate(self.chain.joint_types):
-            v, w = jac[:3, i], jac[3:, i]
-            if kind == "R":
-                direction = w / max(np.linalg.norm(w), 1e-300)
-                foot = self.position + np.cross(direction, v)
-                # The joint's point: the frame origin before or after it nearest the axis, put on it.
-                cands = [origins[i], origins[i + 1]]
-                dist = [np.linalg.norm(np.cross(c - foot, direction)) for c in cands]
-                c = cands[int(np.argmin(dist))]
-                out[i] = (foot + np.dot(c - foot, direction) * direction, direction)
-            else:
-                out[i] = (origins[i + 1], v / max(np.linalg.norm(v), 1e-300))
-        return out
 
     def _damping(self) -> float:
         if self.ratio >= model.NEAR_RATIO:
@@ -477,7 +455,8 @@ class SerialScene(Scene):
     def state(self) -> SerialState:
         ellipsoid = self.chain.ellipsoid(self.q) if self.show_ellipsoid else None
         return SerialState(
-            title=self.title, q=self.q, frames=self.frames, joint_types=self.chain.joint_types, axes=self._axes(),
+            title=self.title, q=self.q, frames=self.frames, joint_types=self.chain.joint_types,
+            axes=joint_axes(self.chain, self.q),
             lower=self.lower, upper=self.upper, selected=self.selected, position=self.position, rpy=self.rpy,
             manipulability=self.w, ratio=self.ratio, state=self.sing, mode=self.mode, posture=self.posture,
             ellipsoid=ellipsoid, path=self.path, missed=self.missed,
