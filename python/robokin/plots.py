@@ -189,17 +189,20 @@ def joint_axes(chain: Chain, q) -> np.ndarray:
     frames = chain.frames(q)
     jac = chain.jacobian(q)
     origins, tool = frames[:, :3, 3], frames[-1][:3, 3]
-    out = np.zeros((chain.dof, 2, 3))
-    for i, kind in enumerate(chain.joint_types):
-        v, w = jac[:3, i], jac[3:, i]
-        if kind == "R":
-            direction = w / max(float(np.linalg.norm(w)), 1e-300)
-            foot = tool + np.cross(direction, v)
-            near = min((origins[i], origins[i + 1]), key=lambda c: float(np.linalg.norm(np.cross(c - foot, direction))))
-            out[i] = (foot + np.dot(near - foot, direction) * direction, direction)
-        else:
-            out[i] = (origins[i + 1], v / max(float(np.linalg.norm(v)), 1e-300))
-    return out
+    v, w = jac[:3].T, jac[3:].T  # (dof, 3) each
+    revolute = np.array([kind == "R" for kind in chain.joint_types])
+    direction = np.where(revolute[:, None], w, v)
+    direction = direction / np.maximum(np.linalg.norm(direction, axis=1), 1e-300)[:, None]
+    foot = tool + np.cross(direction, v)
+    # The frame origins before and after each joint; the one nearest the axis, put on it.
+    candidates = np.stack([origins[:-1], origins[1:]], axis=1)  # (dof, 2, 3)
+    offsets = candidates - foot[:, None]
+    along = np.einsum("ikj,ij->ik", offsets, direction)
+    distance = np.linalg.norm(offsets - along[..., None] * direction[:, None], axis=2)
+    pick = np.argmin(distance, axis=1)
+    rows = np.arange(chain.dof)
+    points = np.where(revolute[:, None], foot + along[rows, pick][:, None] * direction, origins[1:])
+    return np.stack([points, direction], axis=1)
 
 
 def _chain_q(chain, q, name: str = "q") -> np.ndarray:

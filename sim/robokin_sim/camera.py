@@ -84,11 +84,15 @@ class Camera:
 
     def basis(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(right, up, towards the viewer), unit vectors in the world frame."""
+        key = (self.azimuth, self.elevation)
+        if getattr(self, "_basis", (None,))[0] == key:
+            return self._basis[1]
         ca, sa = math.cos(self.azimuth), math.sin(self.azimuth)
         ce, se = math.cos(self.elevation), math.sin(self.elevation)
         d = np.array([ce * ca, ce * sa, se])
         r = np.array([-sa, ca, 0.0])
-        return r, np.cross(d, r), d
+        self._basis = (key, (r, np.array([-se * ca, -se * sa, ce]), d))  # u = d x r, written out
+        return self._basis[1]
 
     def project(self, points) -> Tuple[np.ndarray, np.ndarray]:
         """World points (..., 3) to pixels (..., 2) (floats) and depths (...,) (nearer is larger)."""

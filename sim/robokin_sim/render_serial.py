@@ -116,10 +116,10 @@ class SerialRenderer:
         for i in range(len(origins) - 1):
             if np.linalg.norm(origins[i + 1] - origins[i]) > 1e-9:
                 items.append((0.5 * (depth[i] + depth[i + 1]), "link", (px[i], px[i + 1], shade(0.5 * (depth[i] + depth[i + 1])))))
-        for i, (point, direction) in enumerate(state.axes):
-            half = AXIS * state.size * direction
-            ends, d = cam.project(np.array([point - half, point + half]))
-            items.append((float(np.max(d)) + 1e-6, "axis", (ends, state.joint_types[i], i == state.selected)))
+        half = AXIS * state.size * state.axes[:, 1]
+        ends, ends_depth = cam.project(np.stack([state.axes[:, 0] - half, state.axes[:, 0] + half], axis=1))
+        for i in range(len(state.axes)):
+            items.append((float(np.max(ends_depth[i])) + 1e-6, "axis", (ends[i], state.joint_types[i], i == state.selected)))
         for i in range(1, len(origins) - 1):
             items.append((depth[i] + 2e-6, "joint", (px[i], i - 1 == state.selected)))
         items.sort(key=lambda item: item[0])
@@ -147,10 +147,11 @@ class SerialRenderer:
     def _triad(self, surface: pygame.Surface, state) -> None:
         cam, tool = state.camera, state.frames[-1]
         o = tool[:3, 3]
-        for k, colour in enumerate((theme.FRAME_X, theme.FRAME_Y, theme.FRAME_Z)):
-            a, b = cam.pixels([o, o + TRIAD * state.size * tool[:3, k]])
-            pygame.draw.line(surface, colour, a, b, 3)
-        pygame.draw.circle(surface, theme.TARGET, cam.pixels([o])[0], 4)
+        px = cam.pixels(np.vstack([o, o + TRIAD * state.size * tool[:3, :3].T]))
+        if len(px) == 4:
+            for k, colour in enumerate((theme.FRAME_X, theme.FRAME_Y, theme.FRAME_Z)):
+                pygame.draw.line(surface, colour, px[0], px[k + 1], 3)
+            pygame.draw.circle(surface, theme.TARGET, px[0], 4)
 
     def _ellipsoid(self, surface: pygame.Surface, state) -> None:
         cam = state.camera

@@ -150,8 +150,7 @@ class SerialScene(Scene):
         self.rpy = rk.pose.rpy(tool)
         self.w = float(self.chain.manipulability(self.q))
         self.ratio = self.w / self.w_ref
-        at_limit = np.any(np.isclose(self.q, self.lower, rtol=0, atol=1e-9) | np.isclose(self.q, self.upper, rtol=0,
-                                                                                            atol=1e-9))
+        at_limit = bool(np.any((self.q - self.lower <= 1e-9) | (self.upper - self.q <= 1e-9)))
         if self.ratio < model.SINGULAR_RATIO:
             self.sing = "singular"
         elif self.ratio < model.NEAR_RATIO:
