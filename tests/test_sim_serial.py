@@ -17,7 +17,7 @@ from test_urdf import PUMA_DH, SMALL, UR5_DH, urdf_from_dh
 
 from robokin_sim import theme
 from robokin_sim.render_common import Hud
-from robokin_sim.render_serial import SerialRenderer
+from robokin_sim.render_serial import ELLIPSOID_SECONDS, SerialRenderer
 from robokin_sim.scene_serial import JOINT_STEP, MAX_JOINT_STEP, MOVE_STEP, TURN_STEP, SerialScene
 from robokin_sim.serial_model import start_posture
 
@@ -111,7 +111,7 @@ def test_ellipsoid_is_drawn_along_its_principal_axes():
     hits = 0
     for k in range(3):
         for sign in (-1, 1):
-            x, y = np.rint(scene.camera.project(tip + sign * 0.3 * s[k] * u[:, k])[0]).astype(int)
+            x, y = np.rint(scene.camera.project(tip + sign * ELLIPSOID_SECONDS * s[k] * u[:, k])[0]).astype(int)
             window = rgb[max(x - 1, 0):x + 2, max(y - 1, 0):y + 2].reshape(-1, 3)
             hits += any(tuple(c) == theme.ELLIPSOID for c in window)
     assert hits >= 5
@@ -381,3 +381,16 @@ def test_every_catalogue_arm_runs_every_mode_headless(tmp_path):
             assert list(rows[0])[3:3 + dof] == [f"q_{i}" for i in range(dof)]
             values = np.array([[float(r[c]) for c in list(r)[3:-1]] for r in rows])
             assert np.all(np.isfinite(values)), (name, mode)
+
+
+def test_the_readme_lists_every_key_of_the_serial_scene():
+    from robokin_sim.scenes import SERIAL_HELP
+
+    readme = open(os.path.join(os.path.dirname(__file__), "..", "README.md"), encoding="utf-8").read()
+    section = readme[readme.index("### Serial arms in the simulator"):readme.index("## A tour of the Python API")]
+    for keys, _ in SERIAL_HELP:
+        for key in keys.replace(" - ", " / ").split(" / "):
+            assert f"`{key}`" in section, key
+    assert "step,time,mode,q_0..q_{n-1},x,y,z,roll,pitch,yaw,manipulability,state" in section
+    assert "docs/sim_puma560.png" in section and os.path.getsize(os.path.join(os.path.dirname(__file__), "..", "docs",
+                                                                              "sim_puma560.png")) < 200_000

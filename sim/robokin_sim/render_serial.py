@@ -19,7 +19,7 @@ from .panel import Text, draw_overlays, draw_panel, number
 from .render_common import Hud, draw_rec, fps_rows, polyline
 
 #: Velocity ellipsoid drawn as the tool's displacement in this many seconds at unit joint speed.
-ELLIPSOID_SECONDS = 0.3
+ELLIPSOID_SECONDS = 0.15
 #: Triad and joint-axis lengths relative to the arm's size.
 TRIAD, AXIS = 0.12, 0.07
 #: Joint-state colours.

@@ -132,8 +132,11 @@ class SerialScene(Scene):
         self.size = model.size_of(chain, self.q_start)
         self.w_ref = model.reference_manipulability(chain)
         self.solver = model.posture_solver(name, chain, self.q_start)
-        target = (0.0, 0.0, 0.0) if self.planar else (0.0, 0.0, 0.3 * self.size)
-        self.camera = Camera(target, (1.05 if self.planar else 0.62) * self.size, "top" if self.planar else "iso")
+        # Planar arms: the disc of their reach from above; others: the box of the start posture's
+        # frame origins and the floor under the base, from the iso view.
+        origins = np.vstack([self.chain.frames(self.q_start)[:, :3, 3], np.zeros(3)])
+        target = np.zeros(3) if self.planar else 0.5 * (origins.min(axis=0) + origins.max(axis=0))
+        self.camera = Camera(target, (1.05 if self.planar else 0.6) * self.size, "top" if self.planar else "iso")
         self.start_mode = mode
         self.start_avoid = bool(avoid)
         self.trail: deque = deque(maxlen=TRAIL)
