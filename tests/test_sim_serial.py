@@ -394,3 +394,25 @@ def test_the_readme_lists_every_key_of_the_serial_scene():
     assert "step,time,mode,q_0..q_{n-1},x,y,z,roll,pitch,yaw,manipulability,state" in section
     assert "docs/sim_puma560.png" in section and os.path.getsize(os.path.join(os.path.dirname(__file__), "..", "docs",
                                                                               "sim_puma560.png")) < 200_000
+
+
+def test_recording_and_random_keys_while_drawing(tmp_path):
+    from PIL import Image
+
+    gif = tmp_path / "ur5.gif"
+    run_sim("--robot", "ur5", "--mode", "line", "--frames", "40", "--record", str(gif), "--record-width", "200",
+            "--size", "640x400")
+    with Image.open(gif) as im:
+        assert im.n_frames == 20 and im.size == (200, 125)
+    rng = np.random.default_rng(3)
+    from robokin_sim.keys import KEYS
+
+    keys = [k for k in KEYS if k != "esc"]
+    for name in ("panda", "planar_3r"):
+        items = [f"{k}*{int(rng.integers(1, 30))}" for k in rng.choice(keys, size=80)]
+        items += [f"shift+{k}*{int(rng.integers(1, 30))}" for k in rng.choice(["up", "left", "pageup"], size=10)]
+        rng.shuffle(items)
+        res = run_sim("--robot", name, "--keys", ",".join(items), "--screenshot", str(tmp_path / f"{name}.png"))
+        assert res.frames > 80 and (tmp_path / f"{name}.png").stat().st_size > 0
+        q = res.scene.q
+        assert np.all(np.isfinite(q)) and np.all(q >= res.scene.lower) and np.all(q <= res.scene.upper)

@@ -243,7 +243,11 @@ class SerialScene(Scene):
             pose, solutions = self._postures
         else:
             pose = self.frames[-1].copy()
-            solutions = self.solver(pose)
+            try:
+                solutions = self.solver(pose)
+            except ValueError as exc:  # a closed form that does not apply here after all
+                self.message = f"no closed-form postures here: {exc}"
+                return
         if len(solutions) == 0:
             self.message = "the closed form finds no posture within the limits here"
             return
