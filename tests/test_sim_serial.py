@@ -16,6 +16,7 @@ from sim_helpers import read_log, run_sim
 from test_urdf import PUMA_DH, SMALL, UR5_DH, urdf_from_dh
 
 from robokin_sim import theme
+from robokin_sim.camera import CENTRE
 from robokin_sim.render_common import Hud
 from robokin_sim.render_serial import ELLIPSOID_SECONDS, SerialRenderer
 from robokin_sim.scene_serial import JOINT_STEP, MAX_JOINT_STEP, MOVE_STEP, TURN_STEP, SerialScene
@@ -63,7 +64,8 @@ def test_drawn_joints_are_the_projection_of_the_frames(name, rng):
         u = np.cross(d, r)
         scale = zoom * min(size) / (2 * cam.extent)
         p = chain.frames(q)[:, :3, 3] - cam.target
-        expected = np.column_stack([size[0] / 2 + scale * p @ r, size[1] / 2 - scale * p @ u])
+        cx, cy = CENTRE[0] * size[0], CENTRE[1] * size[1]
+        expected = np.column_stack([cx + scale * p @ r, cy - scale * p @ u])
         assert np.array_equal(np.array(renderer.joint_pixels), np.rint(expected).astype(int))
         rgb = pygame.surfarray.array3d(surface)  # (w, h, 3)
         pixels = [tuple(p) for p in np.rint(expected).astype(int)]

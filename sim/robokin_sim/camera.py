@@ -3,7 +3,8 @@
 The camera looks at ``target`` from the direction ``d = (cos el cos az, cos el sin az, sin el)``
 (azimuth ``az`` about the base z axis from +x, elevation ``el`` above the floor). The screen's
 right is ``r = (-sin az, cos az, 0)``, its up ``u = d x r``; a world point ``p`` is drawn at
-``centre + scale (r . (p - target), -u . (p - target))`` pixels, and ``d . (p - target)`` is its
+``centre + scale (r . (p - target), -u . (p - target))`` pixels (``centre`` a little right of and
+below the window's middle, :data:`CENTRE`, clear of the panel at the top left), and ``d . (p - target)`` is its
 depth (larger is nearer the viewer). Preset views: front (from +x), side (from -y), top (from
 +z, x right and y up, as the planar scenes) and iso.
 """
@@ -19,6 +20,8 @@ import numpy as np
 VIEWS = {"front": (0.0, 0.0), "side": (-90.0, 0.0), "top": (-90.0, 90.0), "iso": (-50.0, 25.0)}
 #: The order ``v`` cycles through them (and f1 .. f4).
 VIEW_ORDER = ("front", "side", "top", "iso")
+#: Where ``target`` is drawn, as shares of the window's width and height.
+CENTRE = (0.57, 0.56)
 #: Radians of orbit per pixel dragged.
 ORBIT_PER_PIXEL = 0.01
 #: Zoom factor per wheel click, and the zoom's bounds.
@@ -74,7 +77,7 @@ class Camera:
         """Fits the view to a window of ``size`` pixels."""
         w, h = max(int(size[0]), 1), max(int(size[1]), 1)
         self.size = (w, h)
-        self.centre = np.array([w / 2.0, h / 2.0])
+        self.centre = np.array([CENTRE[0] * w, CENTRE[1] * h])
 
     # --- the projection -----------------------------------------------------------------------
     @property

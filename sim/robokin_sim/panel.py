@@ -43,7 +43,8 @@ def number(value: float, fmt: str = "{:+.4f}") -> str:
 
 
 def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, str, Optional[Colour]]],
-               topleft=(8, 8), bars: Sequence[Tuple[str, float, float, float]] = (), label_w: int = 92) -> pygame.Rect:
+               topleft=(8, 8), bars: Sequence[Tuple[str, float, float, float]] = (), label_w: int = 92,
+               bar_w: int = 160) -> pygame.Rect:
     """Draws a box of ``label: value`` rows (value in ``colour`` when given) and joint bars.
 
     Args:
@@ -52,13 +53,14 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
         rows: ``(label, value, colour)``; colour None draws the value in the text colour.
         topleft: Pixel position of the box.
         label_w: Width of the label column (pixels).
+        bar_w: Width of the joint bars (pixels).
         bars: ``(label, value, lower, upper[, selected])`` drawn as a bar filled up to the value
             (a tick within one turn when a limit is infinite), outlined when selected.
 
     Returns:
         The box's rectangle.
     """
-    pad, value_w, bar_w = 8, 118, 160
+    pad, value_w = 8, 118
     line = text.height
     height = pad * 2 + line * len(rows) + (line + 4) * len(bars)
     widest = max([value_w] + [text.render(value, colour or theme.TEXT).get_width() + (14 if colour else 0) + 4

@@ -43,8 +43,10 @@ class SerialRenderer:
 
     def __init__(self, size) -> None:
         self.size = tuple(size)
-        self.text = Text(18)
-        self.small = Text(16)
+        # Smaller text in small windows and recordings (a GIF is 480 px wide): the panel of a
+        # 7-joint arm would cover the arm.
+        self.text = Text(18 if min(size) >= 600 else 15)
+        self.small = Text(16 if min(size) >= 600 else 14)
         self._floor = (None, None)
         #: Integer pixels of the frames' origins drawn last (base first).
         self.joint_pixels: list = []
@@ -189,4 +191,6 @@ class SerialRenderer:
             bars.append((f"q{i + 1}", float(state.q[i]), float(state.lower[i]), float(state.upper[i]),
                          i == state.selected))
         #: Where the panel covers the scene (after a draw).
-        self.panel_rect = draw_panel(surface, self.text, rows, bars=bars, label_w=112)
+        small = self.text.height < 16
+        self.panel_rect = draw_panel(surface, self.text, rows, bars=bars, label_w=92 if small else 112,
+                                     bar_w=110 if small else 160)
