@@ -10,7 +10,8 @@ from . import robots
 from ._checks import planar_points, real_array
 from ._core import Chain, TrackResult, joint_limit_cost
 
-__all__ = ["MAX_DRAWN", "draw_planar_chain", "rpr_line_figure", "trajectory_figure"]
+__all__ = ["ISO_VIEW", "MAX_DRAWN", "MAX_FRAMES", "animate_chain", "draw_planar_chain", "joint_axes", "plot_chain",
+           "rpr_line_figure", "trajectory_figure"]
 
 
 def _new_figure(**kwargs):
@@ -171,9 +172,9 @@ def trajectory_figure(trajectory, names=None, title: Optional[str] = None):
 
 #: Colours of :func:`plot_chain` (as the simulator's serial scene): links from near to far, joints,
 #: joint axes, the tool triad's x, y, z.
-LINK_NEAR, LINK_FAR = "#2e62b2", "#96b0d6"
-JOINT_EDGE, JOINT_AXIS = "#1e1e1e", "#78788c"
-TRIAD = ("#d23232", "#32a03c", "#3250dc")
+_LINK_NEAR, _LINK_FAR = "#2e62b2", "#96b0d6"
+_JOINT_EDGE, _JOINT_AXIS = "#1e1e1e", "#78788c"
+_TRIAD = ("#d23232", "#32a03c", "#3250dc")
 #: Preset view of :func:`plot_chain` (elevation, azimuth in degrees): the simulator's iso view.
 ISO_VIEW = (25.0, -50.0)
 
@@ -231,7 +232,7 @@ def _draw_chain(ax, chain: Chain, q: np.ndarray, size: float) -> None:
     origins = frames[:, :3, 3]
     elev, azim = np.radians(ax.elev), np.radians(ax.azim)
     view = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
-    near, far = np.array(to_rgb(LINK_NEAR)), np.array(to_rgb(LINK_FAR))
+    near, far = np.array(to_rgb(_LINK_NEAR)), np.array(to_rgb(_LINK_FAR))
     spacing = 10 ** np.floor(np.log10(size / 4.0))
     k = int(np.ceil(1.25 * size / spacing))
     for c in np.arange(-k, k + 1) * spacing:
@@ -246,10 +247,10 @@ def _draw_chain(ax, chain: Chain, q: np.ndarray, size: float) -> None:
         ax.plot(*np.stack([a, b]).T, color=near + (far - near) * t, lw=7, solid_capstyle="round")
     for point, direction in joint_axes(chain, q):
         ends = np.stack([point - 0.07 * size * direction, point + 0.07 * size * direction])
-        ax.plot(*ends.T, color=JOINT_AXIS, lw=2)
-    ax.scatter(*origins[:-1].T, s=40, facecolor="white", edgecolor=JOINT_EDGE, depthshade=False)
+        ax.plot(*ends.T, color=_JOINT_AXIS, lw=2)
+    ax.scatter(*origins[:-1].T, s=40, facecolor="white", edgecolor=_JOINT_EDGE, depthshade=False)
     tool = frames[-1]
-    for k, colour in enumerate(TRIAD):
+    for k, colour in enumerate(_TRIAD):
         ax.plot(*np.stack([tool[:3, 3], tool[:3, 3] + 0.12 * size * tool[:3, k]]).T, color=colour, lw=2.5)
 
 
