@@ -362,6 +362,11 @@ def test_a_serial_arm_jogs_and_orbits_by_a_mouse_drag_in_a_real_window(xserver, 
         after = sim.last()
         assert all(after[f"q_{i}"] == resting[f"q_{i}"] for i in range(6))
 
+        # Resizing: the scene is drawn at the new size (background beyond the old 480 px).
+        sim.xdo("windowsize", sim.window, "640", "420")
+        wait_for("the new size", lambda: sim.geometry()[2:] == (640, 420))
+        wait_for("the drawing at the new size",
+                 lambda: near(window_pixels(sim, fb)[415, 635], theme.BACKGROUND, tol=30))
         # n moves to the next closed-form posture, animated ("posture" rows), then stops there.
         sim.press("n")
         wait_for("the posture change", lambda: sim.last()["mode"] == "posture")

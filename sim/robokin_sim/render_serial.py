@@ -123,7 +123,10 @@ class SerialRenderer:
         for i in range(len(state.axes)):
             items.append((float(np.max(ends_depth[i])) + 1e-6, "axis", (ends[i], state.joint_types[i], i == state.selected)))
         for i in range(1, len(origins) - 1):
-            items.append((depth[i] + 2e-6, "joint", (px[i], i - 1 == state.selected)))
+            items.append((depth[i] + 2e-6, "joint", (px[i], False)))
+        if 0 <= state.selected < len(state.axes):  # the selected joint: a ring on its axis, over its neighbours
+            point, d = cam.project(state.axes[state.selected, 0])
+            items.append((float(d) + 3e-6, "joint", (point, True)))
         items.sort(key=lambda item: item[0])
         base = np.rint(px[0]).astype(int)
         pygame.draw.polygon(surface, theme.BASE, [(base[0] - 14, base[1] + 12), (base[0] + 14, base[1] + 12),
