@@ -275,8 +275,11 @@ def test_the_circle_is_traced_with_the_orientation_kept(tmp_path):
     radius = 0.12 * scene.size
     centre = p[:360].mean(axis=0)
     assert np.allclose(np.linalg.norm(p - centre, axis=1), radius, rtol=0, atol=1e-6)
-    assert np.allclose(centre + np.array([0, 0, 0]), T0[:3, 3] - radius * np.cross([0, 0, 1], T0[:3, 3] * [1, 1, 0])
-                       / np.linalg.norm(T0[:2, 3]), atol=1e-6)
+    # Through the start's tool point, in the vertical plane facing the robot (normal: the horizontal
+    # direction from the base to the tool).
+    out = T0[:3, 3] * [1, 1, 0] / np.linalg.norm(T0[:2, 3])
+    assert np.allclose(centre, T0[:3, 3] - radius * np.cross([0, 0, 1], out), atol=1e-6)
+    assert np.allclose((p - centre) @ out, 0, atol=1e-9)
     for r in rows[::37]:
         assert np.allclose(chain.fk(joints(r, 6))[:3, :3], T0[:3, :3], atol=1e-8)
     assert {r["mode"] for r in rows} == {"circle"} and "unreachable" not in {r["state"] for r in rows}

@@ -184,7 +184,7 @@ class SerialScene(Scene):
     def _go_free(self, kind: str) -> None:
         self.mode = kind
         self.path = self.missed = self._path_q = None
-        self._index, self._direction = 0, 1
+        self._index = 0
         self._motion, self._after = None, None
         self._command = self.frames[-1].copy()
         self._jog = None  # (joint, value at selection, whole steps since)
@@ -325,7 +325,7 @@ class SerialScene(Scene):
         points, _, q, missed = self._path(name)
         self.trail.clear()
         self.path, self.missed, self._path_q = points, missed, q
-        self._index, self._direction = 0, 1
+        self._index = 0
         n_missed = int(np.count_nonzero(missed))
         self._path_message = (f"{name}: {len(points)} points, all reached" if not n_missed else
                               f"{name}: {n_missed} of {len(points)} points unreachable (red)")
