@@ -196,7 +196,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--log", type=_output(()), metavar="OUT.csv", help="write one CSV row per simulation step")
     parser.add_argument("--screenshot", type=_output(()), metavar="OUT.png", help="save the last frame drawn as a PNG")
     parser.add_argument("--keys", type=_keys, default=KeyScript(()), metavar="SCRIPT",
-                        help="scripted key presses, e.g. right*20,down*10,l*10 (hold KEY for N steps; shift+up*5 holds two keys)")
+                        help="scripted key presses, e.g. right*20,down*10,l*10 (hold KEY for N steps; "
+                        "shift+up*5 holds two keys)")
     parser.add_argument("--no-avoid", dest="avoid", action="store_false",
                         help="3-RRR: singularity avoidance off; RPR and redundant arms: minimum-norm (no "
                         "null-space joint-limit avoidance)")
