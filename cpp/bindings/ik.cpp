@@ -176,31 +176,14 @@ void bind_ik(py::module_& m) {
       .def("__repr__", [](py::handle self) {
         return repr_fields(self, {"success", "iterations", "attempts", "error_p", "error_r", "q"});
       });
-  py::class_<IkBatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).")
-      .def_property_readonly("q", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.q.data(), {r.q.rows(), r.q.cols()});
-      }, "(N, dof) joints.")
-      .def_property_readonly("success", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.success.data(), {r.success.size()});
-      }, "(N,) verified successes.")
-      .def_property_readonly("iterations", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.iterations.data(), {r.iterations.size()});
-      }, "(N,) iterations.")
-      .def_property_readonly("attempts", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.attempts.data(), {r.attempts.size()});
-      }, "(N,) attempts (1 + restarts used).")
-      .def_property_readonly("error_p", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.error_p.data(), {r.error_p.size()});
-      }, "(N,) position errors (m).")
-      .def_property_readonly("error_r", [](py::handle self) {
-        const auto& r = self.cast<const IkBatchResult&>();
-        return result_view(self, r.error_r.data(), {r.error_r.size()});
-      }, "(N,) orientation errors (rad).")
+  py::class_<IkBatchResult> batch(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).");
+  def_array(batch, "q", &IkBatchResult::q, "(N, dof) joints.");
+  def_array(batch, "success", &IkBatchResult::success, "(N,) verified successes.");
+  def_array(batch, "iterations", &IkBatchResult::iterations, "(N,) iterations.");
+  def_array(batch, "attempts", &IkBatchResult::attempts, "(N,) attempts (1 + restarts used).");
+  def_array(batch, "error_p", &IkBatchResult::error_p, "(N,) position errors (m).");
+  def_array(batch, "error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).");
+  batch
       .def("__len__", [](const IkBatchResult& r) { return r.success.size(); })
       .def("__repr__", [](py::handle self) {
         return repr_fields(self, {"q", "success", "iterations", "attempts", "error_p", "error_r"});

@@ -85,6 +85,17 @@ py::array result_view(py::handle owner, const V* data, std::vector<py::ssize_t> 
   return a;
 }
 
+// A result's Eigen member (vector, array or matrix) as a read-only numpy view: (rows,) for a
+// column, (rows, cols) otherwise.
+template <class T, class M>
+void def_array(py::class_<T>& cls, const char* name, M T::*member, const char* doc) {
+  cls.def_property_readonly(name, [member](py::handle self) {
+    const M& a = self.cast<const T&>().*member;
+    if constexpr (M::ColsAtCompileTime == 1) return result_view(self, a.data(), {a.rows()});
+    else return result_view(self, a.data(), {a.rows(), a.cols()});
+  }, doc);
+}
+
 // Whether T has `void validate() const` (options checked on their own, not against a model).
 template <class T, class = void>
 struct HasValidate : std::false_type {};

@@ -75,23 +75,12 @@ void bind_reach(py::module_& m) {
       .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
       .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
       .def("__repr__", [](py::handle self) { return repr_fields(self, {"converged", "iterations", "error", "q"}); });
-  py::class_<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.")
-      .def_property_readonly("q", [](py::handle self) {
-        const auto& r = self.cast<const TrackResult&>();
-        return result_view(self, r.q.data(), {r.q.rows(), r.q.cols()});
-      }, "(K, dof) joints after each point.")
-      .def_property_readonly("error", [](py::handle self) {
-        const auto& r = self.cast<const TrackResult&>();
-        return result_view(self, r.error.data(), {r.error.size()});
-      }, "(K,) task error after each point.")
-      .def_property_readonly("converged", [](py::handle self) {
-        const auto& r = self.cast<const TrackResult&>();
-        return result_view(self, r.converged.data(), {r.converged.size()});
-      }, "(K,) True where the point was reached within tol.")
-      .def_property_readonly("iterations", [](py::handle self) {
-        const auto& r = self.cast<const TrackResult&>();
-        return result_view(self, r.iterations.data(), {r.iterations.size()});
-      }, "(K,) Reach iterations per point.")
+  py::class_<TrackResult> track_result(m, "TrackResult", "What tracking a path did, one row per path point.");
+  def_array(track_result, "q", &TrackResult::q, "(K, dof) joints after each point.");
+  def_array(track_result, "error", &TrackResult::error, "(K,) task error after each point.");
+  def_array(track_result, "converged", &TrackResult::converged, "(K,) True where the point was reached within tol.");
+  def_array(track_result, "iterations", &TrackResult::iterations, "(K,) Reach iterations per point.");
+  track_result
       .def("__repr__", [](py::handle self) { return repr_fields(self, {"q", "error", "converged", "iterations"}); });
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
         py::arg("nullspace") = py::none(),
