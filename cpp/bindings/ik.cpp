@@ -186,6 +186,7 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
 
 // A solver bound to a chain and options: the per-call cost is the target and q0 only.
 struct BoundSolver {
+  py::object owner;  // the Python Chain, kept alive
   const Chain* chain;
   IkOptions options;
   IkSolver solver;
@@ -193,8 +194,9 @@ struct BoundSolver {
   std::uint64_t seed = 0, calls = 0;
   std::mutex busy;  // the GIL may be released during a solve: one solve at a time
 
-  BoundSolver(const Chain& c, const IkOptions& o, py::handle seed_obj)
-      : chain(&c), options(o), solver(c, o), seeded(!seed_obj.is_none()), seed(seed_arg(seed_obj)) {}
+  BoundSolver(py::object c, const IkOptions& o, bool seeded_, std::uint64_t seed_, std::uint64_t calls_ = 0)
+      : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o), solver(*chain, o), seeded(seeded_),
+        seed(seed_), calls(calls_) {}
 
   IkResult solve(py::handle target, py::handle q0_obj) {
     const Target t = one_target(options.task, target);
@@ -213,6 +215,33 @@ struct BoundSolver {
     return checked(r);
   }
 };
+
+// Pickling: versioned state tuples (the result types, and IKSolver with its chain and options).
+constexpr int kSolverStateVersion = 1, kResultStateVersion = 1;
+
+void check_version(const py::tuple& t, size_t size, int version, const char* what) {
+  if (t.size() != size || !py::isinstance<py::int_>(t[0]) || t[0].cast<int>() != version)
+    fail(std::string(what) + " state: not a state of this robokin (version " + std::to_string(version) + ", " +
+         std::to_string(size) + " entries)");
+}
+
+std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
+  check_version(t, 13, kSolverStateVersion, "IKSolver");
+  IkOptions o;
+  o.method = parse_ik_method(t[2].cast<std::string>());
+  o.task = parse_task(t[3].cast<std::string>());
+  o.tol_p = t[4].cast<double>();
+  o.tol_r = t[5].cast<double>();
+  o.max_iter = t[6].cast<int>();
+  o.restarts = t[7].cast<int>();
+  o.timeout = t[8].cast<double>();
+  o.damping = t[9].cast<double>();
+  if (!(o.tol_p > 0) || !(o.tol_r > 0) || o.max_iter < 1 || o.restarts < 0 || o.restarts > kMaxRestarts ||
+      !(o.timeout >= 0) || !(o.damping >= 0))
+    fail("IKSolver state: options out of range");
+  return std::make_unique<BoundSolver>(py::reinterpret_borrow<py::object>(t[1]), o, t[10].cast<bool>(),
+                                       t[11].cast<std::uint64_t>(), t[12].cast<std::uint64_t>());
+}
 
 std::string repr(const IkResult& r) {
   char buf[200];
@@ -235,6 +264,22 @@ void bind_ik(py::module_& m) {
       .def_readonly("error_p", &IkResult::error_p, "Position error at q (m).")
       .def_readonly("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
       .def("__bool__", [](const IkResult& r) { return r.success; })
+      .def(py::pickle(
+          [](const IkResult& r) {
+            return py::make_tuple(kResultStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
+                                  r.error_r);
+          },
+          [](const py::tuple& t) {
+            check_version(t, 7, kResultStateVersion, "IKResult");
+            IkResult r;
+            r.q = as_vector(t[1], "q", -1, false);
+            r.success = t[2].cast<bool>();
+            r.iterations = t[3].cast<int>();
+            r.attempts = t[4].cast<int>();
+            r.error_p = t[5].cast<double>();
+            r.error_r = t[6].cast<double>();
+            return r;
+          }))
       .def("__repr__", &repr);
   py::class_<BatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target.")
       .def_readonly("q", &BatchResult::q, "(N, dof) joints.")
@@ -244,6 +289,17 @@ void bind_ik(py::module_& m) {
       .def_readonly("error_p", &BatchResult::error_p, "(N,) position errors (m).")
       .def_readonly("error_r", &BatchResult::error_r, "(N,) orientation errors (rad).")
       .def("__len__", [](const BatchResult& r) { return r.success.size(); })
+      .def(py::pickle(
+          [](const BatchResult& r) {
+            return py::make_tuple(kResultStateVersion, r.q, r.success, r.iterations, r.attempts, r.error_p, r.error_r);
+          },
+          [](const py::tuple& t) {
+            check_version(t, 7, kResultStateVersion, "IKBatchResult");
+            // Copies, so that the result owns its arrays as one made by ik_batch does.
+            return BatchResult{py::array_t<double>(t[1]).attr("copy")(), py::array_t<double>(t[5]).attr("copy")(),
+                               py::array_t<double>(t[6]).attr("copy")(), py::array_t<bool>(t[2]).attr("copy")(),
+                               py::array_t<int>(t[3]).attr("copy")(), py::array_t<int>(t[4]).attr("copy")()};
+          }))
       .def("__repr__", [](const BatchResult& r) {
         const long n = r.success.size();
         long ok = 0;
@@ -300,12 +356,22 @@ void bind_ik(py::module_& m) {
                        double tol_r, int max_iter, py::handle restarts, py::handle seed, py::handle timeout,
                        py::handle damping) {
              return std::make_unique<BoundSolver>(
-                 chain, options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), seed);
+                 py::cast(chain, py::return_value_policy::reference),  // the caller's Chain object (registered)
+                 options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), !seed.is_none(),
+                 seed_arg(seed));
            }),
            py::arg("chain"), py::arg("method") = method_d, py::arg("task") = task_d, py::arg("tol_p") = d.tol_p,
            py::arg("tol_r") = d.tol_r, py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(),
            py::arg("seed") = py::none(), py::arg("timeout") = py::none(), py::arg("damping") = py::none(),
            py::keep_alive<1, 2>())
+      .def(py::pickle(
+          // (version, chain, method, task, tol_p, tol_r, max_iter, restarts, timeout, damping, seeded, seed, calls)
+          [](const BoundSolver& b) {
+            const IkOptions& o = b.options;
+            return py::make_tuple(kSolverStateVersion, b.owner, ik_method_name(o.method), task_name(o.task), o.tol_p,
+                                  o.tol_r, o.max_iter, o.restarts, o.timeout, o.damping, b.seeded, b.seed, b.calls);
+          },
+          [](const py::tuple& t) { return solver_from_state(t); }))
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })

@@ -419,6 +419,23 @@ void bind_rrr3(py::module_& m) {
            "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
            "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
            "why there is none (the two poses are in different singularity-free regions of the mode).")
+      .def(py::pickle(  // (version, base_radius, platform_radius, l1, l2)
+          [](const RRR3& r) { return py::make_tuple(1, r.base_radius(), r.platform_radius(), r.l1(), r.l2()); },
+          [](const py::tuple& t) {
+            if (t.size() != 5 || !py::isinstance<py::int_>(t[0]) || t[0].cast<int>() != 1)
+              fail("RRR3 state: not a state of this robokin (version 1, 5 entries)");
+            return RRR3(t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(), t[4].cast<double>());
+          }))
+      .def(
+          "__eq__",
+          [](const RRR3& a, const RRR3& b) {
+            return a.base_radius() == b.base_radius() && a.platform_radius() == b.platform_radius() &&
+                   a.l1() == b.l1() && a.l2() == b.l2();
+          },
+          py::is_operator())
+      .def("__hash__", [](const RRR3& r) {
+        return py::hash(py::make_tuple(r.base_radius(), r.platform_radius(), r.l1(), r.l2()));
+      })
       .def("__repr__", [](const RRR3& r) {
         return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
                exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";
