@@ -217,16 +217,8 @@ struct BoundSolver {
 };
 
 // Pickling: versioned state tuples (the result types, and IKSolver with its chain and options).
-constexpr int kSolverStateVersion = 1, kResultStateVersion = 1;
-
-void check_version(const py::tuple& t, size_t size, int version, const char* what) {
-  if (t.size() != size || !py::isinstance<py::int_>(t[0]) || t[0].cast<int>() != version)
-    fail(std::string(what) + " state: not a state of this robokin (version " + std::to_string(version) + ", " +
-         std::to_string(size) + " entries)");
-}
-
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
-  check_version(t, 13, kSolverStateVersion, "IKSolver");
+  check_state(t, 13, "IKSolver");
   IkOptions o;
   o.method = parse_ik_method(t[2].cast<std::string>());
   o.task = parse_task(t[3].cast<std::string>());
@@ -266,11 +258,11 @@ void bind_ik(py::module_& m) {
       .def("__bool__", [](const IkResult& r) { return r.success; })
       .def(py::pickle(
           [](const IkResult& r) {
-            return py::make_tuple(kResultStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
+            return py::make_tuple(kStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
                                   r.error_r);
           },
           [](const py::tuple& t) {
-            check_version(t, 7, kResultStateVersion, "IKResult");
+            check_state(t, 7, "IKResult");
             IkResult r;
             r.q = as_vector(t[1], "q", -1, false);
             r.success = t[2].cast<bool>();
@@ -291,10 +283,10 @@ void bind_ik(py::module_& m) {
       .def("__len__", [](const BatchResult& r) { return r.success.size(); })
       .def(py::pickle(
           [](const BatchResult& r) {
-            return py::make_tuple(kResultStateVersion, r.q, r.success, r.iterations, r.attempts, r.error_p, r.error_r);
+            return py::make_tuple(kStateVersion, r.q, r.success, r.iterations, r.attempts, r.error_p, r.error_r);
           },
           [](const py::tuple& t) {
-            check_version(t, 7, kResultStateVersion, "IKBatchResult");
+            check_state(t, 7, "IKBatchResult");
             // Copies, so that the result owns its arrays as one made by ik_batch does.
             return BatchResult{py::array_t<double>(t[1]).attr("copy")(), py::array_t<double>(t[5]).attr("copy")(),
                                py::array_t<double>(t[6]).attr("copy")(), py::array_t<bool>(t[2]).attr("copy")(),
@@ -368,7 +360,7 @@ void bind_ik(py::module_& m) {
           // (version, chain, method, task, tol_p, tol_r, max_iter, restarts, timeout, damping, seeded, seed, calls)
           [](const BoundSolver& b) {
             const IkOptions& o = b.options;
-            return py::make_tuple(kSolverStateVersion, b.owner, ik_method_name(o.method), task_name(o.task), o.tol_p,
+            return py::make_tuple(kStateVersion, b.owner, ik_method_name(o.method), task_name(o.task), o.tol_p,
                                   o.tol_r, o.max_iter, o.restarts, o.timeout, o.damping, b.seeded, b.seed, b.calls);
           },
           [](const py::tuple& t) { return solver_from_state(t); }))

@@ -89,12 +89,25 @@ void bind_reach(py::module_& m) {
       .def_readonly("converged", &ReachResult::converged, "True when the task error is below tol.")
       .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
       .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
+      .def(py::pickle(  // (version, q, converged, iterations, error)
+          [](const ReachResult& r) { return py::make_tuple(kStateVersion, to_numpy(r.q), r.converged, r.iterations, r.error); },
+          [](const py::tuple& t) {
+            check_state(t, 5, "ReachResult");
+            return ReachResult{as_vector(t[1], "q", -1, false), t[2].cast<bool>(), t[3].cast<int>(), t[4].cast<double>()};
+          }))
       .def("__repr__", &repr);
   py::class_<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.")
       .def_readonly("q", &TrackResult::q, "(K, dof) joints after each point.")
       .def_readonly("error", &TrackResult::error, "(K,) task error after each point.")
       .def_readonly("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
       .def_readonly("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
+      .def(py::pickle(  // (version, q, error, converged, iterations)
+          [](const TrackResult& r) { return py::make_tuple(kStateVersion, r.q, r.error, r.converged, r.iterations); },
+          [](const py::tuple& t) {
+            check_state(t, 5, "TrackResult");
+            return TrackResult{py::array_t<double>(t[1]).attr("copy")(), py::array_t<double>(t[2]).attr("copy")(),
+                               py::array_t<bool>(t[3]).attr("copy")(), py::array_t<int>(t[4]).attr("copy")()};
+          }))
       .def("__repr__", [](const TrackResult& r) {
         const long n = r.error.size();
         long ok = 0;
