@@ -21,8 +21,6 @@ Interrupting (Ctrl-C) a computation started here cancels its tasks on the cluste
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
-
 import numpy as np
 
 try:
@@ -32,6 +30,7 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
     raise ImportError("robokin.dask needs dask: pip install 'robokin[dask]'") from exc
 
 from . import _core, rrr3_design
+from ._checks import real_array
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK, ReachabilityMap, _plan
 
@@ -62,7 +61,8 @@ def fk(chain: _core.Chain, q, chunks="auto"):
     ``chain.fk`` (GIL released). ``q``: a numpy or dask array; ``chunks``: rows per chunk when
     ``q`` is not already a dask array."""
     _check_chain(chain)
-    qd = _rows(q, "q", chunks, (chain.dof,))
+    qd = _rows(q, "q", chunks)
+    chain.fk(np.empty((0,) + qd.shape[1:]))  # the one-machine call's checks (shape), before any work
     return qd.map_blocks(_fk_block, chain, chunks=(qd.chunks[0], (4,), (4,)), new_axis=2, dtype=np.float64,
                          meta=np.empty((0, 4, 4)))
 
@@ -82,9 +82,8 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
         raise ValueError("options: path=True is sequential (each target starts from the previous): use robokin.ik_batch")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
         raise ValueError(f"seed: expected an int in [0, 2**64) (a random seed would differ per chunk), got {seed!r}")
-    task = options.get("task", "pose")
-    tail = (4, 4) if task == "pose" else None
-    td = _rows(targets, "targets", chunks, tail)
+    td = _rows(targets, "targets", chunks)
+    _ik_batch(chain, np.empty((0,) + td.shape[1:]), q0, seed=int(seed), **options)  # the one-machine checks
     n = chain.dof
     packed = td.map_blocks(_ik_block, chain, q0, int(seed), options, chunks=(td.chunks[0], (n + 5,)),
                            drop_axis=list(range(2, td.ndim)), dtype=np.float64, meta=np.empty((0, n + 5)))
@@ -111,7 +110,8 @@ def region_areas(robots, phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: fl
     """The 3-RRR sweep's areas (``RRR3Workspace.area``) of each row ``(base_radius,
     platform_radius, l1, l2)`` of ``robots`` (N, 4) as a dask array (N,), chunk by chunk with the
     core's batch call."""
-    rd = _rows(robots, "robots", chunks, (4,))
+    rd = _rows(robots, "robots", chunks)
+    _core.rrr3_region_areas(np.empty((0,) + rd.shape[1:]), phi, mode, n, tol)  # the one-machine checks
     return rd.map_blocks(_areas_block, float(phi), tuple(mode), int(n), float(tol), drop_axis=1, dtype=np.float64,
                          meta=np.empty((0,)))
 
@@ -166,19 +166,21 @@ def _check_chain(chain) -> None:
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
 
 
-def _rows(a, name: str, chunks, tail: Optional[tuple]):
-    """``a`` as a dask array chunked along its first axis only (whole rows per chunk)."""
+def _rows(a, name: str, chunks):
+    """``a`` as a float64 dask array chunked along its first axis only (whole rows per chunk)."""
     if not isinstance(a, da.Array):
-        try:
-            a = np.asarray(a, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"{name}: expected an array of numbers") from None
+        a = real_array(a, name)
         if a.ndim < 1:
             raise ValueError(f"{name}: expected a batch (N, ...), got a scalar")
+        if not (chunks == "auto" or (isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool)
+                                     and chunks >= 1)):
+            raise ValueError(f"chunks: expected 'auto' or a positive int (rows per chunk), got {chunks!r}")
         a = da.from_array(a, chunks=(chunks,) + (-1,) * (a.ndim - 1))
-    if tail is not None and tuple(a.shape[1:]) != tail:
-        raise ValueError(f"{name}: expected shape (N, {', '.join(map(str, tail))}), got {a.shape}")
-    return a.rechunk({i: -1 for i in range(1, a.ndim)})
+    elif a.dtype.kind not in "biuf":
+        raise TypeError(f"{name}: expected real numbers, got a {a.dtype} dask array")
+    elif a.ndim < 1:
+        raise ValueError(f"{name}: expected a batch (N, ...), got a scalar")
+    return a.astype(np.float64).rechunk({i: -1 for i in range(1, a.ndim)})
 
 
 def _client():

@@ -23,6 +23,7 @@ from typing import Tuple
 import numpy as np
 
 from . import _core
+from ._checks import real_array
 from .ik import ik_batch
 from .pose import from_quaternion
 
@@ -83,14 +84,10 @@ def grid(bounds, resolution) -> Tuple[np.ndarray, ...]:
     centred on the interval."""
     b = _bounds(bounds)
     h = _resolution(resolution)
-    axes = []
-    for lo, hi in b:
-        n = max(1, int(math.ceil((hi - lo) / h - 1e-9)))
-        axes.append((lo + hi) / 2 + (np.arange(n) - (n - 1) / 2) * h)
-    count = math.prod(len(a) for a in axes)
-    if count > MAX_VOXELS:
-        raise ValueError(f"resolution: the grid would have {count} voxels (at most {MAX_VOXELS})")
-    return tuple(axes)
+    counts = [max(1.0, math.ceil((hi - lo) / h - 1e-9)) for lo, hi in b]
+    if math.prod(counts) > MAX_VOXELS:
+        raise ValueError(f"resolution: the grid would have {math.prod(counts):.3g} voxels (at most {MAX_VOXELS})")
+    return tuple((lo + hi) / 2 + (np.arange(int(n)) - (n - 1) / 2) * h for (lo, hi), n in zip(b, counts))
 
 
 def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50, seed: int = 0, task: str = "pose",
@@ -231,10 +228,7 @@ def _uniforms(seed: int, first: int, count: int, per: int) -> np.ndarray:
 
 
 def _bounds(bounds) -> np.ndarray:
-    try:
-        b = np.array(bounds, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError("bounds: expected (lo, hi) pairs of numbers, one per axis") from None
+    b = real_array(bounds, "bounds")
     if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] not in (2, 3):
         raise ValueError(f"bounds: expected shape (2, 2) or (3, 2) ((lo, hi) per axis), got {b.shape}")
     if not np.all(np.isfinite(b)):
