@@ -32,7 +32,8 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
 from . import _core, rrr3_design
 from ._checks import real_array
 from .ik import ik_batch as _ik_batch
-from .reachability import BLOCK, ReachabilityMap, _plan
+from .reachability import BLOCK as _BLOCK
+from .reachability import ReachabilityMap, _plan
 
 __all__ = ["IKBatchArrays", "area_vs_platform_radius", "best_l2", "fk", "ik_batch", "reachability",
            "region_areas"]
@@ -92,7 +93,7 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
 
 
 def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50, seed: int = 0, task: str = "pose",
-                 q0=None, chunks: int = BLOCK, **ik_options) -> ReachabilityMap:
+                 q0=None, chunks: int = _BLOCK, **ik_options) -> ReachabilityMap:
     """:func:`robokin.reachability.reachability` with the voxels cut into chunks of ``chunks``
     voxels, computed with Dask (the active ``distributed.Client`` when there is one). The same
     arguments and the same map, bit for bit, whatever the chunking and the workers."""

@@ -11,6 +11,8 @@ from ._atomic import AtomicPath
 from .plots import _new_figure
 from .reachability import ReachabilityMap
 
+__all__ = ["plot_reachability"]
+
 _AXES = "xyz"
 
 

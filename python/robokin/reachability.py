@@ -27,7 +27,7 @@ from ._checks import real_array
 from .ik import ik_batch
 from .pose import from_quaternion
 
-__all__ = ["ReachabilityMap", "grid", "reachability"]
+__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ReachabilityMap", "grid", "reachability"]
 
 #: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget).
 DEFAULTS = {"method": "lm", "tol_p": 1e-6, "tol_r": 1e-6, "max_iter": 100, "restarts": 10}
