@@ -9,6 +9,7 @@ half-infinite and no limits), for every method, for single solves and batches (p
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -17,7 +18,8 @@ from fuzz import arrays, assert_finite, check_call, floats, wild_floats
 from fuzz_chains import dh_chains, reference_fk, task_errors, task_target
 
 COVERS = {
-    "ik", "ik_batch", "IKSolver.__init__", "IKSolver.solve", "IKSolver.method", "IKSolver.task",
+    "ik", "ik_batch", "IKSolver.__init__", "IKSolver.solve", "IKSolver.method", "IKSolver.task", "IKSolver.options",
+    "IKOptions", "IKOptions.validate",
     "IKResult.q", "IKResult.success", "IKResult.iterations", "IKResult.attempts", "IKResult.error_p",
     "IKResult.error_r", "IKResult.__bool__",
     "IKBatchResult.q", "IKBatchResult.success", "IKBatchResult.iterations", "IKBatchResult.attempts",
@@ -119,10 +121,30 @@ def test_ik_solver_with_arbitrary_arguments(chain, method, task, tol_p, tol_r, m
     if solver is None:
         return
     assert solver.method == method and solver.task == task
+    o = solver.options  # what was given, as given (None where the default rule applies)
+    assert (o.method, o.task, o.tol_p, o.tol_r, o.max_iter, o.restarts) == (method, task, tol_p, tol_r, max_iter,
+                                                                           restarts)
     for target, q0 in calls:
         r = check_call(lambda: solver.solve(target, q0), "target", "q0")
         if r is not None:
             expect_ik_result(chain, r, tol_p, tol_r, task, most_restarts(restarts))
+
+
+@given(options=st.dictionaries(st.sampled_from(["method", "task", "tol_p", "tol_r", "max_iter", "restarts", "timeout",
+                                                "damping", "seed"]),
+                               st.one_of(methods_any, tasks_any, tols_any, iters_any, restarts_any, timeouts_any),
+                               max_size=4))
+def test_ik_options_from_arbitrary_keywords(options):
+    """IKOptions holds exactly what it was given, or a TypeError (unknown name, wrong kind) or a
+    ValueError (a method or task that does not exist, an int beyond C's) names the keyword;
+    validate() then accepts it or names the option out of range."""
+    o = check_call(lambda: rk.IKOptions(**options), *options)
+    if o is None:
+        return
+    for name, value in options.items():
+        got = getattr(o, name)
+        assert got == value or (got != got and value != value), (name, got, value)  # NaN stays NaN
+    check_call(o.validate, *options)
 
 
 # --- reported success equals verified success -----------------------------------------------
@@ -328,13 +350,12 @@ def test_far_targets_give_a_finite_error_or_a_value_error():
 
 
 def test_timeout_and_damping_of_the_wrong_type_name_themselves():
-    """timeout="1" or damping="x" raised pybind11's RuntimeError "Unable to cast ... to C++ type '?'"."""
+    """timeout="1" or damping="x" raised pybind11's RuntimeError "Unable to cast ... to C++ type '?'";
+    a wrong kind of object is a TypeError naming the option and what it takes."""
     for kwargs, name in ((dict(timeout="1"), "timeout"), (dict(damping="x"), "damping"), (dict(damping=[1.0]), "damping")):
         for call in (lambda: rk.ik(UR5, np.eye(4), np.zeros(6), **kwargs),
                      lambda: rk.ik_batch(UR5, np.eye(4)[None], np.zeros(6), **kwargs),
                      lambda: rk.IKSolver(UR5, **kwargs)):
-            try:
+            with pytest.raises(TypeError) as e:
                 call()
-                raise AssertionError("no ValueError")
-            except ValueError as e:
-                assert str(e) == name + ": expected None or a number"
+            assert str(e.value) == f"{name}: expected None or float, got {type(next(iter(kwargs.values()))).__name__}"

@@ -16,7 +16,7 @@ from fuzz import arrays, assert_finite, check_call, floats, wild_floats
 from fuzz_chains import dh_chains, q_within, reference_fk, task_errors, task_target
 
 COVERS = {"reach", "track", "ReachResult.q", "ReachResult.converged", "ReachResult.iterations", "ReachResult.error",
-          "TrackResult.q", "TrackResult.error", "TrackResult.converged", "TrackResult.iterations"}
+          "TrackResult.q", "TrackResult.error", "TrackResult.converged", "TrackResult.iterations", "ReachOptions"}
 
 PI = math.pi
 CHAINS = [rk.robots.rpr(), rk.robots.planar_3r(), rk.robots.ur5(), rk.robots.rp(),
@@ -74,6 +74,26 @@ def test_track_with_arbitrary_arguments(chain, points, q0, task, max_iter, tol, 
     assert r.q.shape == (k, chain.dof) and r.error.shape == r.converged.shape == r.iterations.shape == (k,)
     assert r.converged.dtype == np.bool_ and r.iterations.dtype == np.int32
     expect_result_shapes(chain, r.q, r.error, r.converged, r.iterations, max_iter, tol)
+
+
+@given(options=st.dictionaries(st.sampled_from(["max_iter", "tol", "gain", "dt", "saturate", "damping", "bogus"]),
+                               st.one_of(iters, numbers, saturates), max_size=4))
+def test_reach_options_from_arbitrary_keywords(options):
+    """Arbitrary keywords: an options struct holding exactly what was given, or a ValueError /
+    TypeError naming the keyword (unknown names and kinds at construction, ranges at validation)."""
+    o = check_call(lambda: rk.ReachOptions(**options), *options)
+    if o is None:
+        return
+    for name, value in options.items():
+        got = getattr(o, name)
+        if isinstance(got, bool):
+            assert got is bool(value)  # pybind11's bool caster: truth value (None is False, as before)
+        elif isinstance(value, float) and math.isnan(value):
+            assert math.isnan(got)
+        else:
+            assert got == value
+    if not any(isinstance(v, float) and math.isnan(v) for v in options.values()):
+        assert rk.ReachOptions(**{n: getattr(o, n) for n in rk.ReachOptions.fields}) == o
 
 
 # --- reported convergence equals verified convergence ----------------------------------------

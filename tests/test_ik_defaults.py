@@ -44,13 +44,17 @@ def test_the_defaults_are_the_cores_and_written_once():
                        "restarts": 1_000_000, "timeout": 0.005}
     with pytest.raises(TypeError):
         d["timeout"] = 1.0  # read-only
+    o = rk.IKOptions()  # the core's IkOptions{}; restarts and timeout None resolve to IK_DEFAULTS'
     for f in (rk.ik, rk.ik_batch):
         params = inspect.signature(f).parameters
         for name in ("method", "task", "tol_p", "tol_r", "max_iter"):
-            assert params[name].default == d[name], (f, name)
+            assert params[name].default == d[name] == getattr(o, name), (f, name)
+            assert params[name].kind is inspect.Parameter.KEYWORD_ONLY
         assert params["restarts"].default is None and params["timeout"].default is None
-    assert "restarts=1000000, timeout=0.005)" in repr(rk.IKSolver(rk.robots.ur5()))
-    assert "restarts=3, timeout=None)" in repr(rk.IKSolver(rk.robots.ur5(), restarts=3))
+        assert o.restarts is None and o.timeout is None and o.damping is None
+    assert repr(rk.IKSolver(rk.robots.ur5())) == ("IKSolver(method='lm', task='pose', tol_p=1e-09, tol_r=1e-09, "
+                                                  "max_iter=100, restarts=None, timeout=None, damping=None)")
+    assert rk.IKSolver(rk.robots.ur5(), restarts=3).options == rk.IKOptions(restarts=3)
 
 
 @pytest.mark.parametrize("name", ARMS)

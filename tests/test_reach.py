@@ -1,7 +1,9 @@
 """The Reach loop (seed 000, Algorithm 1), path tracking, null-space joint-limit avoidance and the
 RPR's self-motion set, against the seed's algorithm written literally in numpy."""
 
+import inspect
 import math
+import pickle
 import warnings
 
 import numpy as np
@@ -229,3 +231,49 @@ def test_reach_rejects_bad_targets_and_joints():
         rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], nullspace=[1, 0, 0])
     empty = rk.track(chain, np.zeros((0, 2)), Q1)
     assert empty.q.shape == (0, 3)
+
+
+def test_reach_options_defaults_are_the_seeds():
+    """Seed 000, Algorithm 1: n = 25 iterations, delta = 1e-5 m, d = 0.75, dt = 0.025 s; saturated."""
+    o = rk.ReachOptions()
+    assert (o.max_iter, o.tol, o.gain, o.dt, o.saturate, o.damping) == (25, 1e-5, 0.75, 0.025, True, 0.0)
+    assert rk.ReachOptions.fields == ("max_iter", "tol", "gain", "dt", "saturate", "damping")
+    assert repr(o) == "ReachOptions(max_iter=25, tol=1e-05, gain=0.75, dt=0.025, saturate=True, damping=0.0)"
+    assert pickle.loads(pickle.dumps(rk.ReachOptions(tol=2e-3))) == rk.ReachOptions(tol=2e-3)
+    assert rk.ReachOptions(tol=2e-3) != o
+
+
+@pytest.mark.parametrize("call", [rk.reach, rk.track])
+def test_reach_signature_is_the_options_struct(call):
+    """help() shows every option keyword-only with the core struct's default (written once, in C++)."""
+    params = inspect.signature(call).parameters
+    for name in rk.ReachOptions.fields:
+        assert params[name].kind is inspect.Parameter.KEYWORD_ONLY
+        assert params[name].default == getattr(rk.ReachOptions(), name)
+    assert params["nullspace"].kind is inspect.Parameter.KEYWORD_ONLY
+
+
+def test_reach_options_are_keyword_only_and_named():
+    chain = rk.robots.rpr()
+    with pytest.raises(TypeError, match="positional arguments"):
+        rk.reach(chain, P1, Q1, "xy", 25)
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'iterations' \(options: max_iter, tol"):
+        rk.reach(chain, P1, Q1, iterations=3)
+    with pytest.raises(TypeError, match="tol: expected float, got str"):
+        rk.track(chain, [P1], Q1, tol="small")
+    with pytest.raises(TypeError, match="max_iter: expected int, got float"):
+        rk.reach(chain, P1, Q1, max_iter=2.5)
+    with pytest.raises(ValueError, match="max_iter: out of range"):
+        rk.reach(chain, P1, Q1, max_iter=2**64)
+
+
+def test_track_result_arrays_are_read_only_views():
+    chain = rk.robots.rpr()
+    tr = rk.track(chain, rk.paths.line(P1, [-0.9, 2.2], 0.01), Q1)
+    assert not tr.q.flags.writeable and not tr.error.flags.writeable
+    with pytest.raises(ValueError):
+        tr.q[0, 0] = 1.0
+    q = tr.q
+    del tr  # the view keeps the result alive
+    assert np.all(np.isfinite(q))
+    assert "TrackResult(q=<array (" in repr(rk.track(chain, rk.paths.line(P1, [-0.9, 2.2], 0.001), Q1))

@@ -1,6 +1,7 @@
 // Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "targets.hpp"
 
@@ -11,17 +12,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <mutex>
 
 namespace robokin::bind {
 namespace {
-
-struct BatchResult {
-  py::array_t<double> q, error_p, error_r;
-  py::array_t<bool> success;
-  py::array_t<int> iterations, attempts;
-};
 
 std::uint64_t seed_arg(py::handle seed) {
   if (seed.is_none()) {
@@ -45,19 +39,6 @@ std::uint64_t seed_arg(py::handle seed) {
   return static_cast<std::uint64_t>(v);
 }
 
-// An int argument (anything with __index__, not a bool) in [lo, hi]; the message names it.
-int int_arg(py::handle obj, const char* name, long long lo, long long hi, const char* why) {
-  if (py::isinstance<py::bool_>(obj) || !PyIndex_Check(obj.ptr())) fail(std::string(name) + ": expected an int");
-  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(obj.ptr()));
-  if (!index) throw py::error_already_set();
-  int overflow = 0;
-  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
-  if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
-  if (overflow < 0 || (!overflow && v < lo)) fail(std::string(name) + ": must be >= " + std::to_string(lo));
-  if (overflow > 0 || v > hi) fail(std::string(name) + ": must be at most " + std::to_string(hi) + why);
-  return static_cast<int>(v);
-}
-
 // Finite targets near 1e308 can still be farther from the tool than the largest double: a
 // ValueError naming the target rather than an infinite error in the result.
 void require_finite_errors(const double* error_p, const double* error_r, long count, const char* name) {
@@ -70,59 +51,23 @@ IkResult checked(IkResult r) {
   return r;
 }
 
-// An optional number (None handled by the caller): a string or a list is a ValueError naming it,
-// not pybind11's RuntimeError "Unable to cast".
-double number_arg(py::handle obj, const char* name) {
-  try {
-    return py::cast<double>(obj);
-  } catch (const py::cast_error&) {
-    fail(std::string(name) + ": expected None or a number");
-  }
-}
-
 // Whether a solve may take long enough for the GIL to be worth releasing (a timeout, or more than
 // ~1700 iterations in all): short solves keep it (releasing costs more than they do).
 bool may_be_long(const IkOptions& o) {
-  return o.timeout > 1e-3 || (static_cast<long long>(o.restarts) + 1) * o.max_iter > 1700;
+  return o.budget() > 1e-3 || (static_cast<long long>(o.max_restarts()) + 1) * o.max_iter > 1700;
 }
 
-// The options of a call. Left out (None), `restarts` and `timeout` are IkOptions{}'s: restarts
-// until success within the default time budget. An explicit `restarts` keeps its contract from
-// before the defaults had a budget: that many restarts, no time budget unless `timeout` is given.
-IkOptions options_arg(const std::string& method, const std::string& task, double tol_p, double tol_r, int max_iter,
-                      py::handle restarts, py::handle timeout, py::handle damping) {
-  IkOptions o;
-  o.method = parse_ik_method(method);
-  o.task = parse_task(task);
-  if (!(tol_p > 0) || !std::isfinite(tol_p)) fail("tol_p: must be a positive number");
-  if (!(tol_r > 0) || !std::isfinite(tol_r)) fail("tol_r: must be a positive number");
-  if (max_iter < 1) fail("max_iter: must be at least 1");
-  o.tol_p = tol_p;
-  o.tol_r = o.task == Task::Pose || o.task == Task::XYPhi ? tol_r : INFINITY;
-  o.max_iter = max_iter;
-  if (!restarts.is_none()) {
-    o.restarts = int_arg(restarts, "restarts", 0, kMaxRestarts, " (use timeout to bound the time)");
-    o.timeout = 0.0;  // no budget unless one is given
-  }
-  if (!timeout.is_none()) {
-    const double t = number_arg(timeout, "timeout");
-    if (!(t > 0) || !std::isfinite(t)) fail("timeout: must be None or a positive number of seconds");
-    o.timeout = t;
-  }
-  if (!damping.is_none()) {
-    const double d = number_arg(damping, "damping");
-    if (!(d > 0) || !std::isfinite(d)) fail("damping: must be None or a positive number");
-    o.damping = d;
-  } else {
-    o.damping = default_damping(o.method);  // the C++ default, the one source of truth
-  }
+using IkOptionsClass = OptionsClass<IkOptions>;
+
+// The options of a call: the keyword arguments (IkOptions' fields), validated.
+IkOptions options_arg(const py::kwargs& kwargs) {
+  IkOptions o = IkOptionsClass::from_kwargs(kwargs);
+  o.validate();
   return o;
 }
 
-IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std::string& method,
-            const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts, py::handle seed,
-            py::handle timeout, py::handle damping) {
-  const IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
+IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, py::handle seed, const py::kwargs& kwargs) {
+  const IkOptions o = options_arg(kwargs);
   const Target t = one_target(o.task, target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   const std::uint64_t s = seed_arg(seed);
@@ -140,17 +85,9 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, const std:
   return checked(r);
 }
 
-BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, const std::string& method,
-                        const std::string& task, double tol_p, double tol_r, int max_iter, py::handle restarts,
-                        py::handle seed, py::handle timeout, py::handle damping, bool path) {
-  IkOptions o = options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping);
-  if (path && restarts.is_none()) {
-    // A path warm-starts each target from the previous solution: a random restart could land on
-    // another branch (a jump of the joints between neighbouring points), so by default it does not
-    // restart (restarts=k allows it).
-    o.restarts = 0;
-    if (timeout.is_none()) o.timeout = 0.0;
-  }
+IkBatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, py::handle seed, bool path,
+                          const py::kwargs& kwargs) {
+  const IkOptions o = options_arg(kwargs);
   const int n = chain.dof();
   const std::vector<Target> targets = many_targets(o.task, targets_obj, "targets", "N");
   const long count = static_cast<long>(targets.size());
@@ -168,25 +105,19 @@ BatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q
   }
   require_finite(q0.data(), q0.size(), "q0");
   const std::uint64_t s = seed_arg(seed);
-  const auto N = static_cast<py::ssize_t>(count);
-  BatchResult r{py::array_t<double>({N, static_cast<py::ssize_t>(n)}), py::array_t<double>(N),
-                py::array_t<double>(N), py::array_t<bool>(N), py::array_t<int>(N), py::array_t<int>(N)};
-  double *q = r.q.mutable_data(), *ep = r.error_p.mutable_data(), *er = r.error_r.mutable_data();
-  bool* success = r.success.mutable_data();
-  int *it = r.iterations.mutable_data(), *at = r.attempts.mutable_data();
   PythonProgress progress("ik_batch");
+  IkBatchResult r;
   {
     py::gil_scoped_release release;
-    robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, q, success, it, at, ep, er,
-                      &progress);
+    r = robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, &progress);
   }
-  require_finite_errors(ep, er, count, "targets");
+  require_finite_errors(r.error_p.data(), r.error_r.data(), count, "targets");
   return r;
 }
 
 // A solver bound to a chain and options: the per-call cost is the target and q0 only.
 struct BoundSolver {
-  py::object owner;  // the Python Chain, kept alive
+  py::object owner;  // the Python Chain, kept alive (also in a solver unpickled with its chain)
   const Chain* chain;
   IkOptions options;
   IkSolver solver;
@@ -216,36 +147,65 @@ struct BoundSolver {
   }
 };
 
-// Pickling: versioned state tuples (the result types, and IKSolver with its chain and options).
+// Pickling: versioned state tuples (check_state, arrays.hpp).
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
-  check_state(t, 13, "IKSolver");
-  IkOptions o;
-  o.method = parse_ik_method(t[2].cast<std::string>());
-  o.task = parse_task(t[3].cast<std::string>());
-  o.tol_p = t[4].cast<double>();
-  o.tol_r = t[5].cast<double>();
-  o.max_iter = t[6].cast<int>();
-  o.restarts = t[7].cast<int>();
-  o.timeout = t[8].cast<double>();
-  o.damping = t[9].cast<double>();
-  if (!(o.tol_p > 0) || !(o.tol_r > 0) || o.max_iter < 1 || o.restarts < 0 || o.restarts > kMaxRestarts ||
-      !(o.timeout >= 0) || !(o.damping >= 0))
-    fail("IKSolver state: options out of range");
-  return std::make_unique<BoundSolver>(py::reinterpret_borrow<py::object>(t[1]), o, t[10].cast<bool>(),
-                                       t[11].cast<std::uint64_t>(), t[12].cast<std::uint64_t>());
+  check_state(t, 6, "IKSolver");  // (version, chain, options, seeded, seed, calls)
+  const IkOptions o = t[2].cast<IkOptions>();
+  o.validate();
+  return std::make_unique<BoundSolver>(py::reinterpret_borrow<py::object>(t[1]), o, t[3].cast<bool>(),
+                                       t[4].cast<std::uint64_t>(), t[5].cast<std::uint64_t>());
 }
 
-std::string repr(const IkResult& r) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "IKResult(success=%s, iterations=%d, attempts=%d, error_p=%.3g m, error_r=%.3g rad, q=",
-                r.success ? "True" : "False", r.iterations, r.attempts, r.error_p, r.error_r);
-  return buf + py::repr(to_numpy(r.q)).cast<std::string>() + ")";
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> state_array(py::handle obj, const char* name) {
+  auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) {
+    PyErr_Clear();
+    fail(std::string(name) + ": expected an array in the state");
+  }
+  return a;
+}
+
+IkBatchResult batch_from_state(const py::tuple& t) {
+  check_state(t, 7, "IKBatchResult");  // (version, q, success, iterations, attempts, error_p, error_r)
+  const auto q = state_array<double>(t[1], "q");
+  const auto success = state_array<bool>(t[2], "success");
+  const auto iterations = state_array<int>(t[3], "iterations"), attempts = state_array<int>(t[4], "attempts");
+  const auto ep = state_array<double>(t[5], "error_p"), er = state_array<double>(t[6], "error_r");
+  const py::ssize_t n = success.size();
+  if (q.ndim() != 2 || q.shape(0) != n || iterations.size() != n || attempts.size() != n || ep.size() != n ||
+      er.size() != n)
+    fail("IKBatchResult state: arrays of different lengths");
+  IkBatchResult r;
+  r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n, q.shape(1));
+  r.success = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(success.data(), n);
+  r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
+  r.attempts = Eigen::Map<const Eigen::ArrayXi>(attempts.data(), n);
+  r.error_p = Eigen::Map<const Vector>(ep.data(), n);
+  r.error_r = Eigen::Map<const Vector>(er.data(), n);
+  return r;
 }
 
 }  // namespace
 
 void bind_ik(py::module_& m) {
+  IkOptionsClass options(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.");
+  options
+      .field_as<std::string>("method", [](const IkOptions& o) { return std::string(ik_method_name(o.method)); },
+                             [](IkOptions& o, const std::string& v) { o.method = parse_ik_method(v); },
+                             "'lm', 'gn', 'nr' or 'halley'.")
+      .field_as<std::string>("task", [](const IkOptions& o) { return std::string(task_name(o.task)); },
+                             [](IkOptions& o, const std::string& v) { o.task = parse_task(v); },
+                             "'pose', 'position', 'xy' or 'xyphi'.")
+      .field("tol_p", &IkOptions::tol_p, "Position tolerance (m).")
+      .field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.")
+      .field("max_iter", &IkOptions::max_iter, "Iterations per attempt.")
+      .field("restarts", &IkOptions::restarts,
+             "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.")
+      .field("timeout", &IkOptions::timeout,
+             "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.")
+      .field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
+  options.cls().def("validate", &IkOptions::validate, "Raises ValueError naming an option out of range.");
   py::class_<IkResult>(m, "IKResult", "What one numerical IK solve found.")
       .def_property_readonly("q", [](const IkResult& r) { return to_numpy(r.q); },
                              "(dof,) joints: the solution, or the best point found (within the limits).")
@@ -256,7 +216,7 @@ void bind_ik(py::module_& m) {
       .def_readonly("error_p", &IkResult::error_p, "Position error at q (m).")
       .def_readonly("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
       .def("__bool__", [](const IkResult& r) { return r.success; })
-      .def(py::pickle(
+      .def(py::pickle(  // (version, q, success, iterations, attempts, error_p, error_r)
           [](const IkResult& r) {
             return py::make_tuple(kStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
                                   r.error_r);
@@ -272,61 +232,60 @@ void bind_ik(py::module_& m) {
             r.error_r = t[6].cast<double>();
             return r;
           }))
-      .def("__repr__", &repr);
-  py::class_<BatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target.")
-      .def_readonly("q", &BatchResult::q, "(N, dof) joints.")
-      .def_readonly("success", &BatchResult::success, "(N,) verified successes.")
-      .def_readonly("iterations", &BatchResult::iterations, "(N,) iterations.")
-      .def_readonly("attempts", &BatchResult::attempts, "(N,) attempts (1 + restarts used).")
-      .def_readonly("error_p", &BatchResult::error_p, "(N,) position errors (m).")
-      .def_readonly("error_r", &BatchResult::error_r, "(N,) orientation errors (rad).")
-      .def("__len__", [](const BatchResult& r) { return r.success.size(); })
-      .def(py::pickle(
-          [](const BatchResult& r) {
-            return py::make_tuple(kStateVersion, r.q, r.success, r.iterations, r.attempts, r.error_p, r.error_r);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 7, "IKBatchResult");
-            // Copies, so that the result owns its arrays as one made by ik_batch does.
-            return BatchResult{py::array_t<double>(t[1]).attr("copy")(), py::array_t<double>(t[5]).attr("copy")(),
-                               py::array_t<double>(t[6]).attr("copy")(), py::array_t<bool>(t[2]).attr("copy")(),
-                               py::array_t<int>(t[3]).attr("copy")(), py::array_t<int>(t[4]).attr("copy")()};
-          }))
-      .def("__repr__", [](const BatchResult& r) {
-        const long n = r.success.size();
-        long ok = 0;
-        double worst_p = 0, worst_r = 0;
-        for (long k = 0; k < n; ++k) {
-          ok += r.success.data()[k];
-          worst_p = std::max(worst_p, r.error_p.data()[k]);
-          worst_r = std::max(worst_r, r.error_r.data()[k]);
-        }
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "IKBatchResult(targets=%ld, success=%ld/%ld, max_error_p=%.3g m, max_error_r=%.3g rad)",
-                      n, ok, n, worst_p, worst_r);
-        return std::string(buf);
+      .def("__repr__", [](py::handle self) {
+        return repr_fields(self, {"success", "iterations", "attempts", "error_p", "error_r", "q"});
       });
-  // Every default below is IkOptions{}'s (restarts and timeout: None selects it).
+  py::class_<IkBatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).")
+      .def_property_readonly("q", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.q.data(), {r.q.rows(), r.q.cols()});
+      }, "(N, dof) joints.")
+      .def_property_readonly("success", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.success.data(), {r.success.size()});
+      }, "(N,) verified successes.")
+      .def_property_readonly("iterations", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.iterations.data(), {r.iterations.size()});
+      }, "(N,) iterations.")
+      .def_property_readonly("attempts", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.attempts.data(), {r.attempts.size()});
+      }, "(N,) attempts (1 + restarts used).")
+      .def_property_readonly("error_p", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.error_p.data(), {r.error_p.size()});
+      }, "(N,) position errors (m).")
+      .def_property_readonly("error_r", [](py::handle self) {
+        const auto& r = self.cast<const IkBatchResult&>();
+        return result_view(self, r.error_r.data(), {r.error_r.size()});
+      }, "(N,) orientation errors (rad).")
+      .def("__len__", [](const IkBatchResult& r) { return r.success.size(); })
+      .def(py::pickle(
+          [](py::handle self) {
+            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("success"), self.attr("iterations"),
+                                  self.attr("attempts"), self.attr("error_p"), self.attr("error_r"));
+          },
+          &batch_from_state))
+      .def("__repr__", [](py::handle self) {
+        return repr_fields(self, {"q", "success", "iterations", "attempts", "error_p", "error_r"});
+      });
+  // The defaults as a solve resolves them (restarts and timeout None: until success within 5 ms).
   const IkOptions d;
-  const std::string method_d = ik_method_name(d.method), task_d = task_name(d.task);
   py::dict defaults;
-  defaults["method"] = method_d;
-  defaults["task"] = task_d;
+  defaults["method"] = ik_method_name(d.method);
+  defaults["task"] = task_name(d.task);
   defaults["tol_p"] = d.tol_p;
   defaults["tol_r"] = d.tol_r;
   defaults["max_iter"] = d.max_iter;
-  defaults["restarts"] = d.restarts;
-  defaults["timeout"] = d.timeout;
+  defaults["restarts"] = d.max_restarts();
+  defaults["timeout"] = d.budget();
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
-  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("method") = method_d,
-        py::arg("task") = task_d, py::arg("tol_p") = d.tol_p, py::arg("tol_r") = d.tol_r,
-        py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(), py::arg("seed") = py::none(),
-        py::arg("timeout") = py::none(), py::arg("damping") = py::none(), "Numerical IK. Use robokin.ik.");
-  m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::arg("method") = method_d,
-        py::arg("task") = task_d, py::arg("tol_p") = d.tol_p, py::arg("tol_r") = d.tol_r,
-        py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(), py::arg("seed") = py::none(),
-        py::arg("timeout") = py::none(), py::arg("damping") = py::none(), py::arg("path") = false,
-        "Numerical IK of many targets. Use robokin.ik_batch.");
+  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::kw_only(), py::arg("seed") = py::none(),
+        "Numerical IK; options as keywords (IKOptions). Use robokin.ik.");
+  m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
+        py::arg("seed") = py::none(), py::arg("path") = false,
+        "Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.");
   m.def(
       "_hessian_times",
       [](const Chain& chain, py::handle q_obj, py::handle a_obj) {
@@ -344,38 +303,23 @@ void bind_ik(py::module_& m) {
                           "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
                           "thread for parallel solves (ik_batch is the parallel route).")
-      .def(py::init([](const Chain& chain, const std::string& method, const std::string& task, double tol_p,
-                       double tol_r, int max_iter, py::handle restarts, py::handle seed, py::handle timeout,
-                       py::handle damping) {
-             return std::make_unique<BoundSolver>(
-                 py::cast(chain, py::return_value_policy::reference),  // the caller's Chain object (registered)
-                 options_arg(method, task, tol_p, tol_r, max_iter, restarts, timeout, damping), !seed.is_none(),
-                 seed_arg(seed));
+      .def(py::init([](const Chain& chain, py::handle seed, const py::kwargs& kwargs) {
+             return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
+                                                  options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),
-           py::arg("chain"), py::arg("method") = method_d, py::arg("task") = task_d, py::arg("tol_p") = d.tol_p,
-           py::arg("tol_r") = d.tol_r, py::arg("max_iter") = d.max_iter, py::arg("restarts") = py::none(),
-           py::arg("seed") = py::none(), py::arg("timeout") = py::none(), py::arg("damping") = py::none(),
-           py::keep_alive<1, 2>())
-      .def(py::pickle(
-          // (version, chain, method, task, tol_p, tol_r, max_iter, restarts, timeout, damping, seeded, seed, calls)
-          [](const BoundSolver& b) {
-            const IkOptions& o = b.options;
-            return py::make_tuple(kStateVersion, b.owner, ik_method_name(o.method), task_name(o.task), o.tol_p,
-                                  o.tol_r, o.max_iter, o.restarts, o.timeout, o.damping, b.seeded, b.seed, b.calls);
-          },
-          [](const py::tuple& t) { return solver_from_state(t); }))
+           py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
-      .def("__repr__", [](const BoundSolver& b) {
-        char buf[200];
-        char timeout[32] = "None";
-        if (b.options.timeout > 0) std::snprintf(timeout, sizeof timeout, "%g", b.options.timeout);
-        std::snprintf(buf, sizeof buf,
-                      "IKSolver(method='%s', task='%s', tol_p=%g, tol_r=%g, max_iter=%d, restarts=%d, timeout=%s)",
-                      ik_method_name(b.options.method), task_name(b.options.task), b.options.tol_p, b.options.tol_r,
-                      b.options.max_iter, b.options.restarts, timeout);
-        return std::string(buf);
+      .def_property_readonly("options", [](const BoundSolver& b) { return b.options; }, "The solver's IKOptions (a copy).")
+      .def(py::pickle(  // (version, chain, options, seeded, seed, calls): a copy continues the seed sequence
+          [](const BoundSolver& b) {
+            return py::make_tuple(kStateVersion, b.owner, b.options, b.seeded, b.seed, b.calls);
+          },
+          &solver_from_state))
+      .def("__repr__", [](py::handle self) {
+        const std::string options = py::repr(self.attr("options")).cast<std::string>();
+        return "IKSolver" + options.substr(options.find('('));
       });
   py::class_<KdlIkReference>(m, "_KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
       .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {

@@ -1,32 +1,24 @@
 // The Reach loop and path tracking (seed 000, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "targets.hpp"
 
 #include "robokin/reach.hpp"
 
 #include <cmath>
-#include <cstdio>
+#include <string>
+#include <vector>
 
 namespace robokin::bind {
 namespace {
 
-struct TrackResult {
-  py::array_t<double> q, error;
-  py::array_t<bool> converged;
-  py::array_t<int> iterations;
-};
+using ReachOptionsClass = OptionsClass<ReachOptions>;
 
-ReachOptions make_options(const Chain& chain, int max_iter, double tol, double gain, double dt, bool saturate,
-                          py::handle nullspace, double damping) {
-  ReachOptions o;
-  o.max_iter = max_iter;
-  o.tol = tol;
-  o.gain = gain;
-  o.dt = dt;
-  o.saturate = saturate;
-  o.damping = damping;
+// The options of one call: the keyword arguments, plus the null-space term the chain gives them.
+ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
+  ReachOptions o = ReachOptionsClass::from_kwargs(kwargs);
   if (py::isinstance<py::str>(nullspace)) {
     if (py::cast<std::string>(nullspace) != "joint_limits")
       fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" +
@@ -35,17 +27,16 @@ ReachOptions make_options(const Chain& chain, int max_iter, double tol, double g
   } else if (!nullspace.is_none()) {
     o.nullspace_weights = as_vector(nullspace, "nullspace", chain.dof());
   }
-  check_reach_options(chain, o);
+  o.validate(chain);
   return o;
 }
 
 ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const std::string& task_str,
-                  int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
-                  double damping) {
+                  py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const Target t = one_target(task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
-  Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
+  Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
   ReachResult r = reacher.reach(t, q);
   // Finite inputs near 1e308 can still give an error beyond the largest double: no inf returned.
   if (!std::isfinite(r.error)) fail("target: the task error is not finite (the target is too far away)");
@@ -53,78 +44,91 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
 }
 
 TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
-                  int max_iter, double tol, double gain, double dt, bool saturate, py::handle nullspace,
-                  double damping) {
+                  py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const std::vector<Target> targets = many_targets(task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
-  Reacher reacher(chain, task, make_options(chain, max_iter, tol, gain, dt, saturate, nullspace, damping));
-  const auto count = static_cast<py::ssize_t>(targets.size());
-  TrackResult r{py::array_t<double>({count, static_cast<py::ssize_t>(chain.dof())}),
-                py::array_t<double>(count), py::array_t<bool>(count), py::array_t<int>(count)};
-  double *q = r.q.mutable_data(), *err = r.error.mutable_data();
-  bool* conv = r.converged.mutable_data();
-  int* iters = r.iterations.mutable_data();
+  Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
   PythonProgress progress("track");
+  TrackResult r;
   {
     py::gil_scoped_release release;
-    reacher.track(targets.data(), count, q0, q, err, conv, iters, &progress);
+    r = reacher.track(targets.data(), static_cast<long>(targets.size()), q0, &progress);
   }
-  if (!all_finite(err, count)) fail("points: the task error is not finite (a point is too far away)");
+  if (!r.error.allFinite()) fail("points: the task error is not finite (a point is too far away)");
   return r;
-}
-
-std::string repr(const ReachResult& r) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "ReachResult(converged=%s, iterations=%d, error=%.3g, q=",
-                r.converged ? "True" : "False", r.iterations, r.error);
-  return buf + py::repr(to_numpy(r.q)).cast<std::string>() + ")";
 }
 
 }  // namespace
 
 void bind_reach(py::module_& m) {
+  ReachOptionsClass(m, "ReachOptions", "The options of one Reach (seed 000, Algorithm 1); the seed's values by default.")
+      .field("max_iter", &ReachOptions::max_iter, "Iterations at most (the seed's n), in [1, 100000].")
+      .field("tol", &ReachOptions::tol, "Tolerance on the norm of the task error (the seed's delta).")
+      .field("gain", &ReachOptions::gain, "The seed's gain d: dp = d (p_target - p) / dt.")
+      .field("dt", &ReachOptions::dt, "The seed's time step.")
+      .field("saturate", &ReachOptions::saturate, "Clamp the joints to their limits after every step.")
+      .field("damping", &ReachOptions::damping, "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1.");
   py::class_<ReachResult>(m, "ReachResult", "What one Reach call did.")
       .def_property_readonly("q", [](const ReachResult& r) { return to_numpy(r.q); }, "Joints at the end.")
       .def_readonly("converged", &ReachResult::converged, "True when the task error is below tol.")
       .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
       .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
       .def(py::pickle(  // (version, q, converged, iterations, error)
-          [](const ReachResult& r) { return py::make_tuple(kStateVersion, to_numpy(r.q), r.converged, r.iterations, r.error); },
+          [](const ReachResult& r) {
+            return py::make_tuple(kStateVersion, to_numpy(r.q), r.converged, r.iterations, r.error);
+          },
           [](const py::tuple& t) {
             check_state(t, 5, "ReachResult");
             return ReachResult{as_vector(t[1], "q", -1, false), t[2].cast<bool>(), t[3].cast<int>(), t[4].cast<double>()};
           }))
-      .def("__repr__", &repr);
+      .def("__repr__", [](py::handle self) { return repr_fields(self, {"converged", "iterations", "error", "q"}); });
   py::class_<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.")
-      .def_readonly("q", &TrackResult::q, "(K, dof) joints after each point.")
-      .def_readonly("error", &TrackResult::error, "(K,) task error after each point.")
-      .def_readonly("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
-      .def_readonly("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
+      .def_property_readonly("q", [](py::handle self) {
+        const auto& r = self.cast<const TrackResult&>();
+        return result_view(self, r.q.data(), {r.q.rows(), r.q.cols()});
+      }, "(K, dof) joints after each point.")
+      .def_property_readonly("error", [](py::handle self) {
+        const auto& r = self.cast<const TrackResult&>();
+        return result_view(self, r.error.data(), {r.error.size()});
+      }, "(K,) task error after each point.")
+      .def_property_readonly("converged", [](py::handle self) {
+        const auto& r = self.cast<const TrackResult&>();
+        return result_view(self, r.converged.data(), {r.converged.size()});
+      }, "(K,) True where the point was reached within tol.")
+      .def_property_readonly("iterations", [](py::handle self) {
+        const auto& r = self.cast<const TrackResult&>();
+        return result_view(self, r.iterations.data(), {r.iterations.size()});
+      }, "(K,) Reach iterations per point.")
       .def(py::pickle(  // (version, q, error, converged, iterations)
-          [](const TrackResult& r) { return py::make_tuple(kStateVersion, r.q, r.error, r.converged, r.iterations); },
+          [](py::handle self) {
+            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("error"), self.attr("converged"),
+                                  self.attr("iterations"));
+          },
           [](const py::tuple& t) {
             check_state(t, 5, "TrackResult");
-            return TrackResult{py::array_t<double>(t[1]).attr("copy")(), py::array_t<double>(t[2]).attr("copy")(),
-                               py::array_t<bool>(t[3]).attr("copy")(), py::array_t<int>(t[4]).attr("copy")()};
+            const Array q = as_array(t[1], "q"), error = as_array(t[2], "error");
+            const auto converged = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(t[3]);
+            const auto iterations = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(t[4]);
+            if (!converged || !iterations || q.ndim() != 2 || error.size() != q.shape(0) ||
+                converged.size() != q.shape(0) || iterations.size() != q.shape(0))
+              fail("TrackResult state: arrays of different lengths");
+            const Eigen::Index n = q.shape(0);
+            TrackResult r;
+            r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n,
+                                                                                                         q.shape(1));
+            r.error = Eigen::Map<const Vector>(error.data(), n);
+            r.converged = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(converged.data(), n);
+            r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
+            return r;
           }))
-      .def("__repr__", [](const TrackResult& r) {
-        const long n = r.error.size();
-        long ok = 0;
-        double worst = 0;
-        for (long k = 0; k < n; ++k) ok += r.converged.data()[k], worst = std::max(worst, r.error.data()[k]);
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "TrackResult(points=%ld, converged=%ld/%ld, max_error=%.3g)", n, ok, n, worst);
-        return std::string(buf);
-      });
-  m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy",
-        py::arg("max_iter") = 25, py::arg("tol") = 1e-5, py::arg("gain") = 0.75, py::arg("dt") = 0.025,
-        py::arg("saturate") = true, py::arg("nullspace") = py::none(), py::arg("damping") = 0.0,
-        "One Reach call (seed 000, Algorithm 1). Use robokin.reach, which also warns.");
-  m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = "xy",
-        py::arg("max_iter") = 25, py::arg("tol") = 1e-5, py::arg("gain") = 0.75, py::arg("dt") = 0.025,
-        py::arg("saturate") = true, py::arg("nullspace") = py::none(), py::arg("damping") = 0.0,
-        "Reach every point of a path in turn. Use robokin.track, which also warns.");
+      .def("__repr__", [](py::handle self) { return repr_fields(self, {"q", "error", "converged", "iterations"}); });
+  m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
+        py::arg("nullspace") = py::none(),
+        "One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");
+  m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = "xy", py::kw_only(),
+        py::arg("nullspace") = py::none(),
+        "Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.");
   m.def(
       "joint_limit_cost",
       [](const Chain& chain, py::handle q_obj) -> py::object {

@@ -94,12 +94,38 @@ double default_damping(IkMethod method) {
   return 0.0;
 }
 
+void IkOptions::validate() const {
+  if (!(tol_p > 0) || !std::isfinite(tol_p)) throw std::invalid_argument("tol_p: must be a positive number");
+  if (!(tol_r > 0) || !std::isfinite(tol_r)) throw std::invalid_argument("tol_r: must be a positive number");
+  if (max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
+  if (restarts && *restarts < 0) throw std::invalid_argument("restarts: must be >= 0");
+  if (restarts && *restarts > kMaxRestarts)
+    throw std::invalid_argument("restarts: must be at most " + std::to_string(kMaxRestarts) +
+                                " (use timeout to bound the time)");
+  if (timeout && !(*timeout > 0 && std::isfinite(*timeout)))
+    throw std::invalid_argument("timeout: must be None or a positive number of seconds");
+  if (damping && !(*damping > 0 && std::isfinite(*damping)))
+    throw std::invalid_argument("damping: must be None or a positive number");
+}
+
+IkOptions IkOptions::for_path() const {
+  IkOptions o = *this;
+  if (!restarts) {
+    o.restarts = 0;
+    if (!timeout) o.timeout = 0.0;
+  }
+  return o;
+}
+
 IkSolver::IkSolver(const Chain& chain, const IkOptions& options) { reset(chain, options); }
 
 void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   chain_ = &chain;
   opt_ = options;
-  if (!(opt_.damping > 0) || !std::isfinite(opt_.damping)) opt_.damping = default_damping(opt_.method);
+  restarts_ = options.max_restarts();
+  timeout_ = options.budget();
+  damping_ = options.damping_or_default();
+  tol_r_ = options.task == Task::Pose || options.task == Task::XYPhi ? options.tol_r : INFINITY;
   const int n = chain.dof(), m = task_rows(options.task);
   if (n == n_ && m == m_) return;  // the workspace fits already
   n_ = n;
@@ -203,7 +229,7 @@ void IkSolver::select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const {
   }
 }
 
-bool IkSolver::met(double ep, double er) const { return ep < opt_.tol_p && er < opt_.tol_r; }
+bool IkSolver::met(double ep, double er) const { return ep < opt_.tol_p && er < tol_r_; }
 
 // The active set: solve for a step; a joint that would leave its limits (after wrapping) stops on
 // the limit and the step is solved again for the others with the residual it leaves. A joint
@@ -266,13 +292,13 @@ void IkSolver::damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq
     const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> Jf(J.data(), 6, n_);
     M6 A;
     A.noalias() = Jf * Jf.transpose();
-    A.diagonal().array() += opt_.damping * opt_.damping;
+    A.diagonal().array() += damping_ * damping_;
     const V6 y = A.llt().solve(Eigen::Map<const V6>(r.data()));
     dq.noalias() = Jf.transpose() * y;
     return;
   }
   Am_.noalias() = J * J.transpose();
-  Am_.diagonal().array() += opt_.damping * opt_.damping;
+  Am_.diagonal().array() += damping_ * damping_;
   llt_m_.compute(Am_);
   ym_ = llt_m_.solve(r);
   dq.noalias() = J.transpose() * ym_;
@@ -329,7 +355,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   };
   double mu = 0, nu = 2;
   if (opt_.method == IkMethod::LM) {
-    mu = opt_.damping * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
+    mu = damping_ * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
   }
   double window_cost = cost;
   for (int it = 0; it < budget; ++it) {
@@ -439,22 +465,22 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
 
 IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t seed, Progress* progress) {
   IkResult r;
-  Budget clock(opt_.timeout);
+  Budget clock(timeout_);
   Vector q = Eigen::Map<const Vector>(q0, n_);
   for (int i = 0; i < n_; ++i)
     if (!fit(i, q(i))) q(i) = clamp(i, q(i));
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   std::mt19937_64 rng(seed);
-  for (int k = 0; k <= opt_.restarts; ++k) {
+  for (int k = 0; k <= restarts_; ++k) {
     if (k > 0) {
       if (clock.spent()) break;
       random_q(rng, q);
     }
     ++r.attempts;
-    report(progress, k, opt_.restarts + 1);
-    PartProgress this_attempt(progress, k, opt_.restarts + 1);
-    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, clock, k < opt_.restarts,
+    report(progress, k, restarts_ + 1);
+    PartProgress this_attempt(progress, k, restarts_ + 1);
+    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, clock, k < restarts_,
                             progress ? &this_attempt : nullptr);
     double ep, er;
     errors(target, q.data(), ep, er);
@@ -482,32 +508,39 @@ void IkSolver::finalise(const Target& target, IkResult& r) const {
   r.success = r.q.allFinite() && std::isfinite(r.error_p) && std::isfinite(r.error_r) && met(r.error_p, r.error_r);
 }
 
-void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count, const double* q0,
-              long q0_stride, bool path, std::uint64_t seed, double* q_out, bool* success, int* iterations,
-              int* attempts, double* error_p, double* error_r, Progress* progress) {
+IkBatchResult ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count,
+                       const double* q0, long q0_stride, bool path, std::uint64_t seed, Progress* progress) {
   const int n = chain.dof();
-  auto store = [&](long k, const IkResult& r) {
-    Eigen::Map<Vector>(q_out + k * n, n) = r.q;
-    success[k] = r.success;
-    iterations[k] = r.iterations;
-    attempts[k] = r.attempts;
-    error_p[k] = r.error_p;
-    error_r[k] = r.error_r;
+  IkBatchResult r;
+  r.q.resize(count, n);
+  r.success.resize(count);
+  r.iterations.resize(count);
+  r.attempts.resize(count);
+  r.error_p.resize(count);
+  r.error_r.resize(count);
+  auto store = [&](long k, const IkResult& one) {
+    r.q.row(k) = one.q.transpose();
+    r.success(k) = one.success;
+    r.iterations(k) = one.iterations;
+    r.attempts(k) = one.attempts;
+    r.error_p(k) = one.error_p;
+    r.error_r(k) = one.error_r;
   };
   if (path) {
-    IkSolver solver(chain, options);
+    IkSolver solver(chain, options.for_path());
     for (long k = 0; k < count; ++k) {
       report(progress, k, count);
-      const double* start = k == 0 ? q0 : q_out + (k - 1) * n;
+      const double* start = k == 0 ? q0 : r.q.row(k - 1).data();
       store(k, solver.solve(targets[k], start, seed + static_cast<std::uint64_t>(k)));
     }
-    return;
+    return r;
   }
   parallel_for(count, 16, [&](long begin, long end) {
     IkSolver solver(chain, options);
     for (long k = begin; k < end; ++k)
       store(k, solver.solve(targets[k], q0 + k * q0_stride, seed + static_cast<std::uint64_t>(k)));
   }, progress);
+  return r;
 }
 
 }  // namespace robokin

@@ -14,7 +14,8 @@
 
 namespace robokin {
 
-void check_reach_options(const Chain& chain, const ReachOptions& o) {
+void ReachOptions::validate(const Chain& chain) const {
+  const ReachOptions& o = *this;
   auto positive = [](double v, const char* name) {
     if (!(std::isfinite(v) && v > 0))
       throw std::invalid_argument(std::string(name) + ": must be a positive finite number");
@@ -69,7 +70,7 @@ double joint_limit_cost(const Chain& chain, const double* q) {
 
 Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
     : chain_(chain), task_(task), opt_(options), m_(task_rows(task)), n_(chain.dof()) {
-  check_reach_options(chain, options);
+  options.validate(chain);
   qbar_ = joint_middles(chain);
   q_.resize(n_);
   J6_.resize(6, n_);
@@ -161,18 +162,23 @@ ReachResult Reacher::reach(const Target& target, const Vector& q0) {
   return r;
 }
 
-void Reacher::track(const Target* targets, long count, const Vector& q0, double* q_out,
-                    double* err_out, bool* converged_out, int* iterations_out, Progress* progress) {
+TrackResult Reacher::track(const Target* targets, long count, const Vector& q0, Progress* progress) {
+  TrackResult r;
+  r.q.resize(count, n_);
+  r.error.resize(count);
+  r.converged.resize(count);
+  r.iterations.resize(count);
   q_ = q0;
   chain_.fk_jacobian(q_.data(), T_, J6_.data());
   for (long k = 0; k < count; ++k) {
     if (k % 256 == 0 || opt_.max_iter > 1000) report(progress, k, count);  // a point may be slow
     double error = 0.0;
-    iterations_out[k] = run(targets[k], error);
-    err_out[k] = error;
-    converged_out[k] = error < opt_.tol;
-    Eigen::Map<Vector>(q_out + k * n_, n_) = q_;
+    r.iterations(k) = run(targets[k], error);
+    r.error(k) = error;
+    r.converged(k) = error < opt_.tol;
+    r.q.row(k) = q_.transpose();
   }
+  return r;
 }
 
 }  // namespace robokin

@@ -6,9 +6,9 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 
 from . import closed, paths, robots
 from . import pose, traj
-from ._core import RRR3, Chain, ReachResult, TrackResult, joint_limit_cost
+from ._core import RRR3, Chain, ReachOptions, ReachResult, TrackResult, joint_limit_cost
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
-from .ik import IKBatchResult, IKResult, IKSolver, ik, ik_batch
+from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 from .resolved_rate import ServoResult, resolved_rate, servo
 from .postures import TrackPosturesResult, count_reconfigurations, track_postures
@@ -21,9 +21,11 @@ __all__ = [
     "NoRouteError",
     "PrecisionWarning",
     "IKBatchResult",
+    "IKOptions",
     "IKResult",
     "IKSolver",
     "RRR3",
+    "ReachOptions",
     "ReachResult",
     "TrackResult",
     "UnreachableError",

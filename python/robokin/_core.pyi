@@ -4,7 +4,7 @@ Arrays are float64; bad input raises ValueError naming the argument.
 """
 
 import os
-from typing import Dict, Iterator, Optional, Sequence, Tuple, Union
+from typing import ClassVar, Dict, Iterator, Optional, Sequence, Tuple, Union
 from typing import Mapping
 
 import numpy as np
@@ -93,6 +93,18 @@ class Chain:
 
 # --- Reach and tracking (cpp/bindings/reach.cpp) ---------------------------------------------
 
+class ReachOptions:
+    """The options of one Reach (seed 000, Algorithm 1); the seed's values by default."""
+    fields: ClassVar[Tuple[str, ...]]
+    max_iter: int
+    tol: float
+    gain: float
+    dt: float
+    saturate: bool
+    damping: float
+    def __init__(self, *, max_iter: int = 25, tol: float = 1e-5, gain: float = 0.75, dt: float = 0.025,
+                 saturate: bool = True, damping: float = 0.0) -> None: ...
+
 class ReachResult:
     @property
     def q(self) -> NDArray: ...
@@ -114,14 +126,14 @@ class TrackResult:
     def iterations(self) -> npt.NDArray[np.int32]: ...
 
 def reach(
-    chain: Chain, target: ArrayLike, q: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
-    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
-    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+    chain: Chain, target: ArrayLike, q: ArrayLike, task: str = "xy", *,
+    nullspace: Union[None, str, ArrayLike] = None, max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True, damping: float = 0.0,
 ) -> ReachResult: ...
 def track(
-    chain: Chain, points: ArrayLike, q0: ArrayLike, task: str = "xy", max_iter: int = 25, tol: float = 1e-5,
-    gain: float = 0.75, dt: float = 0.025, saturate: bool = True,
-    nullspace: Union[None, str, ArrayLike] = None, damping: float = 0.0,
+    chain: Chain, points: ArrayLike, q0: ArrayLike, task: str = "xy", *,
+    nullspace: Union[None, str, ArrayLike] = None, max_iter: int = 25, tol: float = 1e-5,
+    gain: float = 0.75, dt: float = 0.025, saturate: bool = True, damping: float = 0.0,
 ) -> TrackResult: ...
 
 def joint_limit_cost(chain: Chain, q: ArrayLike) -> Union[float, NDArray]:
@@ -405,7 +417,7 @@ class IKResult:
     def __bool__(self) -> bool: ...
 
 class IKBatchResult:
-    """What ik_batch found, one row per target."""
+    """What ik_batch found, one row per target (read-only arrays)."""
     @property
     def q(self) -> NDArray: ...
     @property
@@ -420,32 +432,49 @@ class IKBatchResult:
     def error_r(self) -> NDArray: ...
     def __len__(self) -> int: ...
 
-# The defaults (= ...) are the core's IkOptions{}, readable as IK_DEFAULTS. restarts and timeout
-# None: restart until success within IK_DEFAULTS["timeout"] seconds (of the solving thread's CPU
-# time); an explicit restarts count without a timeout has no time budget. damping None: the C++ default_damping, lm 1e-1 (initial mu
-# relative to max diag(J^T J)), nr 1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by
-# gn. restarts <= 1_000_000; seed in [0, 2**64).
+class IKOptions:
+    """The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.
+
+    restarts and timeout None: restart until success within IK_DEFAULTS["timeout"] seconds (of the
+    solving thread's CPU time); an explicit restarts count without a timeout has no time budget.
+    damping None: the C++ default_damping, lm 1e-1 (initial mu relative to max diag(J^T J)), nr
+    1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by gn. restarts <= 1_000_000.
+    """
+    fields: ClassVar[Tuple[str, ...]]
+    method: str
+    task: str
+    tol_p: float
+    tol_r: float
+    max_iter: int
+    restarts: Optional[int]
+    timeout: Optional[float]
+    damping: Optional[float]
+    def __init__(self, *, method: str = "lm", task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9,
+                 max_iter: int = 100, restarts: Optional[int] = None, timeout: Optional[float] = None,
+                 damping: Optional[float] = None) -> None: ...
+    def validate(self) -> None: ...
+
+# The defaults as a solve resolves them: restarts 1_000_000 and timeout 0.005 when neither is given.
 IK_DEFAULTS: Mapping[str, Union[str, float, int]]
 def ik(
-    chain: Chain, target: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
-    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
-    timeout: Optional[float] = None, damping: Optional[float] = None,
+    chain: Chain, target: ArrayLike, q0: ArrayLike, *, seed: Optional[int] = None, method: str = "lm",
+    task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9, max_iter: int = 100,
+    restarts: Optional[int] = None, timeout: Optional[float] = None, damping: Optional[float] = None,
 ) -> IKResult: ...
 def ik_batch(
-    chain: Chain, targets: ArrayLike, q0: ArrayLike, method: str = ..., task: str = ..., tol_p: float = ...,
-    tol_r: float = ..., max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
-    timeout: Optional[float] = None, damping: Optional[float] = None, path: bool = False,
+    chain: Chain, targets: ArrayLike, q0: ArrayLike, *, seed: Optional[int] = None, path: bool = False,
+    method: str = "lm", task: str = "pose", tol_p: float = 1e-9, tol_r: float = 1e-9, max_iter: int = 100,
+    restarts: Optional[int] = None, timeout: Optional[float] = None, damping: Optional[float] = None,
 ) -> IKBatchResult: ...
 class IKSolver:
     """A numerical IK solver bound to a chain and options; solve(target, q0) costs only the solve.
 
-    Options as ik (damping None: lm 1e-1, nr 1e-6, halley 1e-9). Like ik, solve releases the GIL
-    when it may be long (a timeout, or more than ~1700 iterations in all); concurrent calls on one
-    solver are serialised.
+    Options as ik (keyword-only, IKOptions). Like ik, solve releases the GIL when it may be long (a
+    timeout, or more than ~1700 iterations in all); concurrent calls on one solver are serialised.
     """
     def __init__(
-        self, chain: Chain, method: str = ..., task: str = ..., tol_p: float = ..., tol_r: float = ...,
-        max_iter: int = ..., restarts: Optional[int] = None, seed: Optional[int] = None,
+        self, chain: Chain, *, seed: Optional[int] = None, method: str = "lm", task: str = "pose",
+        tol_p: float = 1e-9, tol_r: float = 1e-9, max_iter: int = 100, restarts: Optional[int] = None,
         timeout: Optional[float] = None, damping: Optional[float] = None,
     ) -> None: ...
     def solve(self, target: ArrayLike, q0: ArrayLike) -> IKResult: ...
@@ -456,6 +485,8 @@ class IKSolver:
     def method(self) -> str: ...
     @property
     def task(self) -> str: ...
+    @property
+    def options(self) -> IKOptions: ...
 
 def _hessian_times(chain: Chain, q: ArrayLike, a: ArrayLike) -> NDArray: ...
 

@@ -33,6 +33,7 @@ __all__ = [
     "ur",
     "ur_batch",
     "UR_POSTURES",
+    "PUMA560",
 ]
 
 #: PUMA 560 standard DH (P. Corke's Robotics Toolbox ``Puma560``, as in :func:`robokin.robots.puma560`).

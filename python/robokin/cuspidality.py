@@ -25,7 +25,7 @@ from ._core import Chain
 
 __all__ = ["Cuspidality", "cuspidal"]
 
-OFFSET = 0.37  # the grid: q = -pi + (i + OFFSET) 2 pi / N
+_OFFSET = 0.37  # the grid: q = -pi + (i + OFFSET) 2 pi / N
 
 
 @dataclass
@@ -59,7 +59,7 @@ class Cuspidality:
 
 def _cell(q, n):
     h = 2 * math.pi / n
-    return int(round((np.remainder(q + math.pi, 2 * math.pi) - OFFSET * h) / h)) % n
+    return int(round((np.remainder(q + math.pi, 2 * math.pi) - _OFFSET * h) / h)) % n
 
 
 def _grid_path(label, a, b):
@@ -145,7 +145,7 @@ def cuspidal(chain: Chain, resolution: int = 256) -> Cuspidality:
         raise ValueError(f"resolution: expected an integer in [16, 4096], got {resolution!r}")
     r = _core.cuspidal_3r(chain, int(resolution))
     n = int(resolution)
-    grid = -math.pi + (np.arange(n) + OFFSET) * 2 * math.pi / n
+    grid = -math.pi + (np.arange(n) + _OFFSET) * 2 * math.pi / n
     cusps = np.asarray(r["cusps"])
     sign, label = np.asarray(r["sign"]), np.asarray(r["label"])
     point = path = None

@@ -1,5 +1,7 @@
 """Exceptions and warnings raised by robokin (all in one place)."""
 
+__all__ = ["UnreachableError", "NoRouteError", "PrecisionWarning", "URDFWarning"]
+
 
 class UnreachableError(ValueError):
     """A pose the robot cannot reach (a leg or the arm is too short, or a joint limit is in the way)."""

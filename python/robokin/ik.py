@@ -43,29 +43,17 @@ from __future__ import annotations
 from typing import Optional
 
 from . import _core
-from ._core import IKBatchResult, IKResult, IKSolver
+from ._core import IKBatchResult, IKOptions, IKResult, IKSolver
+from ._options import with_options
 
-__all__ = ["IK_DEFAULTS", "IKBatchResult", "IKResult", "IKSolver", "ik", "ik_batch"]
+__all__ = ["IK_DEFAULTS", "IKBatchResult", "IKOptions", "IKResult", "IKSolver", "ik", "ik_batch"]
 
-#: The options of a solve given none (read-only; from the core's IkOptions).
+#: The options of a solve given none, as a solve resolves them (read-only; from the core's IkOptions).
 IK_DEFAULTS = _core.IK_DEFAULTS
-_D = IK_DEFAULTS
 
 
-def ik(
-    chain: _core.Chain,
-    target,
-    q0,
-    method: str = _D["method"],
-    task: str = _D["task"],
-    tol_p: float = _D["tol_p"],
-    tol_r: float = _D["tol_r"],
-    max_iter: int = _D["max_iter"],
-    restarts: Optional[int] = None,
-    seed: Optional[int] = None,
-    timeout: Optional[float] = None,
-    damping: Optional[float] = None,
-) -> IKResult:
+@with_options(IKOptions)
+def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options) -> IKResult:
     """Solves the inverse kinematics of one target numerically.
 
     Args:
@@ -73,25 +61,26 @@ def ik(
         target: ``task="pose"``: a (4, 4) frame; ``"position"``: (x, y, z); ``"xy"``: (x, y);
             ``"xyphi"``: (x, y, phi).
         q0: Start configuration, shape (dof,).
-        method: ``"lm"``, ``"gn"``, ``"nr"`` or ``"halley"`` (see the module docstring).
-        task: Which part of the tool pose is solved for.
-        tol_p: Position tolerance (m).
-        tol_r: Orientation tolerance (rad): the rotation angle between the frames (pose), the
-            planar angle (xyphi); unused for the other tasks.
-        max_iter: Iterations per attempt.
-        restarts: Extra attempts from random configurations drawn uniformly within the limits
-            (revolute joints without limits: ``[-pi, pi]``) when an attempt fails; at most
+        seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
+            None draws one. (With a time budget, how many restarts fit depends on the machine.)
+        **options: Keyword-only, the fields of :class:`IKOptions`:
+            ``method``: ``"lm"``, ``"gn"``, ``"nr"`` or ``"halley"`` (see the module docstring).
+            ``task``: which part of the tool pose is solved for.
+            ``tol_p``: position tolerance (m).
+            ``tol_r``: orientation tolerance (rad): the rotation angle between the frames (pose),
+            the planar angle (xyphi); unused for the other tasks.
+            ``max_iter``: iterations per attempt.
+            ``restarts``: extra attempts from random configurations drawn uniformly within the
+            limits (revolute joints without limits: ``[-pi, pi]``) when an attempt fails; at most
             1,000,000. The restarts stop at the first success. None (the default): as many as
             the time budget allows. An int: at most that many, and no time budget unless
             ``timeout`` is given (on an unreachable target they all run).
-        seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
-            None draws one. (With a time budget, how many restarts fit depends on the machine.)
-        timeout: Time budget in seconds for all the attempts (checked every few iterations),
-            counted in the solving thread's CPU time: a busy machine does not cut a search short
-            (the wall time is then longer). None: ``IK_DEFAULTS["timeout"]`` (5 ms) when
-            ``restarts`` is None, no budget when ``restarts`` is an int. An unreachable target
-            costs the whole budget.
-        damping: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
+            ``timeout``: time budget in seconds for all the attempts (checked every few
+            iterations), counted in the solving thread's CPU time: a busy machine does not cut a
+            search short (the wall time is then longer). None: ``IK_DEFAULTS["timeout"]`` (5 ms)
+            when ``restarts`` is None, no budget when ``restarts`` is an int. An unreachable
+            target costs the whole budget.
+            ``damping``: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
             ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
             lambda (default 1e-9); unused by ``gn``. None selects the default.
 
@@ -101,45 +90,31 @@ def ik(
         of every attempt) and ``success`` is False. ``q`` is always finite.
 
     Raises:
-        ValueError: For a bad argument (the message names it).
+        ValueError: For a bad value (the message names the argument).
+        TypeError: For an unknown option or one of the wrong kind (the message names it).
     """
-    return _core.ik(chain, target, q0, method, task, tol_p, tol_r, max_iter, restarts, seed, timeout, damping)
+    return _core.ik(chain, target, q0, seed=seed, **options)
 
 
-def ik_batch(
-    chain: _core.Chain,
-    targets,
-    q0,
-    method: str = _D["method"],
-    task: str = _D["task"],
-    tol_p: float = _D["tol_p"],
-    tol_r: float = _D["tol_r"],
-    max_iter: int = _D["max_iter"],
-    restarts: Optional[int] = None,
-    seed: Optional[int] = None,
-    timeout: Optional[float] = None,
-    damping: Optional[float] = None,
-    path: bool = False,
-) -> IKBatchResult:
+@with_options(IKOptions)
+def ik_batch(chain: _core.Chain, targets, q0, *, seed: Optional[int] = None, path: bool = False,
+             **options) -> IKBatchResult:
     """Solves many targets in one call, the GIL released.
 
     Args:
         chain: The serial chain.
         targets: ``(N, 4, 4)`` frames for ``task="pose"``, ``(N, rows)`` otherwise.
         q0: ``(dof,)`` start for every target, or ``(N, dof)`` one start per target.
-        method, task, tol_p, tol_r, max_iter, restarts, timeout, damping: As :func:`ik`
-            (``timeout`` applies to each target; ``damping`` None: the method's default).
         seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
         path: The targets are a path: each starts from the previous solution (warm start, no
             branch jumps; sequential). With ``restarts`` None a path does not restart (a random
             restart could jump to another branch): a target the warm start misses is reported
             unsolved; ``restarts=k`` allows restarts. Otherwise the targets are solved in
             parallel on every core.
+        **options: As :func:`ik` (``timeout`` applies to each target).
 
     Returns:
-        IKBatchResult with ``q`` (N, dof), ``success``, ``iterations``, ``attempts``, ``error_p``,
-        ``error_r`` (N,).
+        IKBatchResult with read-only arrays ``q`` (N, dof), ``success``, ``iterations``,
+        ``attempts``, ``error_p``, ``error_r`` (N,).
     """
-    return _core.ik_batch(
-        chain, targets, q0, method, task, tol_p, tol_r, max_iter, restarts, seed, timeout, damping, path
-    )
+    return _core.ik_batch(chain, targets, q0, seed=seed, path=path, **options)

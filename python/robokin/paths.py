@@ -8,6 +8,8 @@ import numpy as np
 
 from ._checks import real_array
 
+__all__ = ["MAX_POINTS", "line", "circle", "clover"]
+
 
 #: Most points a path may have (a typo such as ``step=1e-12`` must not allocate terabytes).
 MAX_POINTS = 10_000_000

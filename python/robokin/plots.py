@@ -10,6 +10,8 @@ from . import robots
 from ._checks import planar_points, real_array
 from ._core import Chain, TrackResult, joint_limit_cost
 
+__all__ = ["MAX_DRAWN", "draw_planar_chain", "rpr_line_figure", "trajectory_figure"]
+
 
 def _new_figure(**kwargs):
     """A Figure outside pyplot's global state (no display needed; save it with fig.savefig)."""

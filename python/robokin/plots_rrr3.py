@@ -9,6 +9,8 @@ import numpy as np
 from . import rrr3_design
 from ._checks import planar_points
 
+__all__ = ["CELL_COLOURS", "plot_robot", "plot_workspace", "plot_design"]
+
 # Workspace cell codes -> colours: unreachable, regular, parallel singular, serial singular.
 CELL_COLOURS = np.array([[1.0, 1.0, 1.0], [0.68, 0.82, 0.93], [0.85, 0.1, 0.1], [0.95, 0.6, 0.1]])
 

@@ -21,6 +21,18 @@ import numpy as np
 from . import _core
 from ._checks import frame_like, real_array
 
+__all__ = [
+    "from_rpy",
+    "rpy",
+    "from_quaternion",
+    "quaternion",
+    "from_axis_angle",
+    "axis_angle",
+    "exp",
+    "log",
+    "error",
+]
+
 
 def _with_position(frames: np.ndarray, position) -> np.ndarray:
     """Frames with their translation set to ``position`` ((3,) or (N, 3), broadcast)."""

@@ -3,29 +3,21 @@
 from __future__ import annotations
 
 import warnings
-from typing import Optional, Union
+from typing import Union
 
 import numpy as np
 
 from . import _core
+from ._options import with_options
 from .errors import PrecisionWarning
+
+__all__ = ["reach", "track"]
 
 Nullspace = Union[None, str, np.ndarray]
 
 
-def reach(
-    chain: _core.Chain,
-    target,
-    q,
-    task: str = "xy",
-    max_iter: int = 25,
-    tol: float = 1e-5,
-    gain: float = 0.75,
-    dt: float = 0.025,
-    saturate: bool = True,
-    nullspace: Nullspace = None,
-    damping: float = 0.0,
-) -> _core.ReachResult:
+@with_options(_core.ReachOptions)
+def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspace = None, **options) -> _core.ReachResult:
     """Moves the joints ``q`` so that the tool reaches a nearby ``target``.
 
     Each iteration takes the seed's damped step ``dq = J^p d (target - p) / dt`` with the
@@ -39,25 +31,29 @@ def reach(
             ``"pose"`` a (4, 4) frame.
         q: Start joints, shape (dof,); the target should be close to the tool at q.
         task: Which rows of the geometric Jacobian are controlled.
-        max_iter: Iterations at most (the seed's n = 25), in [1, 100000].
-        tol: Tolerance on the norm of the task error (metres for positions; 1e-5 in the seed).
-        gain: The seed's damping factor d.
-        dt: The seed's time step.
-        saturate: Clamp to the joint limits after every step.
         nullspace: ``"joint_limits"`` adds the homogeneous term ``(1 - J^p J) h`` with
             ``h = W (qbar - q)``, ``W = diag(1 / (q_max - q_min))`` (seed eqs. 5-7), on the first
             iteration of each call; the remaining iterations are minimum-norm corrections, so the
             tolerance is still met. An array of ``dof`` gains replaces ``W``'s diagonal.
-        damping: lambda of the damped least-squares pseudoinverse, for use near singularities.
+        **options: Keyword-only, the fields of :class:`ReachOptions` (defaults the seed's):
+            ``max_iter`` iterations at most (the seed's n = 25, in [1, 100000]); ``tol`` on the norm
+            of the task error (metres for positions; the seed's 1e-5); ``gain`` the seed's d;
+            ``dt`` the seed's time step; ``saturate`` clamp to the joint limits after every step;
+            ``damping`` lambda of the damped pseudoinverse, for use near singularities.
 
     Returns:
         ReachResult with ``q``, ``converged``, ``iterations`` and ``error``.
 
+    Raises:
+        ValueError: An option out of range, a target or joints of the wrong shape, NaN or inf.
+        TypeError: An unknown option, or one of the wrong kind.
+
     Warns:
         PrecisionWarning: When the tolerance was not reached ("precision not reached").
     """
-    result = _core.reach(chain, target, q, task, max_iter, tol, gain, dt, saturate, nullspace, damping)
+    result = _core.reach(chain, target, q, task, nullspace=nullspace, **options)
     if not result.converged:
+        tol = _core.ReachOptions(**options).tol
         warnings.warn(
             f"precision not reached: task error {result.error:.3g} >= tol {tol:g} "
             f"after {result.iterations} iterations",
@@ -67,36 +63,27 @@ def reach(
     return result
 
 
-def track(
-    chain: _core.Chain,
-    points,
-    q0,
-    task: str = "xy",
-    max_iter: int = 25,
-    tol: float = 1e-5,
-    gain: float = 0.75,
-    dt: float = 0.025,
-    saturate: bool = True,
-    nullspace: Nullspace = None,
-    damping: float = 0.0,
-) -> _core.TrackResult:
+@with_options(_core.ReachOptions)
+def track(chain: _core.Chain, points, q0, task: str = "xy", *, nullspace: Nullspace = None, **options) -> _core.TrackResult:
     """Follows a path: one Reach per point, each starting from the joints the previous one left.
 
     Args:
         chain: The serial chain.
         points: (K, rows) targets for the task ((K, 4, 4) frames for ``"pose"``), close together.
         q0: Joints at the start of the path, shape (dof,).
-        task, max_iter, tol, gain, dt, saturate, nullspace, damping: As for :func:`reach`.
+        task, nullspace, **options: As for :func:`reach` (options keyword-only, :class:`ReachOptions`).
 
     Returns:
-        TrackResult with ``q`` (K, dof), ``error`` (K,), ``converged`` (K,), ``iterations`` (K,).
+        TrackResult with read-only arrays ``q`` (K, dof), ``error`` (K,), ``converged`` (K,),
+        ``iterations`` (K,).
 
     Warns:
         PrecisionWarning: When any point was not reached within ``tol``.
     """
-    result = _core.track(chain, points, q0, task, max_iter, tol, gain, dt, saturate, nullspace, damping)
+    result = _core.track(chain, points, q0, task, nullspace=nullspace, **options)
     missed = int(np.count_nonzero(~result.converged))
     if missed:
+        tol = _core.ReachOptions(**options).tol
         warnings.warn(
             f"precision not reached on {missed} of {len(result.error)} path points "
             f"(worst task error {float(np.max(result.error)):.3g}, tol {tol:g})",

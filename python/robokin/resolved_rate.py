@@ -12,6 +12,8 @@ import numpy as np
 from . import _core
 from ._checks import frame_like
 
+__all__ = ["resolved_rate", "ServoResult", "servo"]
+
 Nullspace = Union[None, str, np.ndarray]
 
 

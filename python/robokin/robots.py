@@ -17,6 +17,10 @@ import numpy as np
 
 from ._core import Chain
 
+__all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
+           "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
+           "irb120", "gen3", "puma560", "names", "get", "rpr_self_motion"]
+
 #: Seed 000's planar RPR: link 1, the prismatic stroke, link 3 (metres).
 RPR_L1, RPR_STROKE, RPR_L3 = 1.5, 1.5, 1.0
 #: Seed 000's joint limits [t1, t2, t3].

@@ -10,6 +10,8 @@ import numpy as np
 
 from . import _core
 
+__all__ = ["AreaCurve", "BestL2", "area_vs_platform_radius", "best_l2"]
+
 
 @dataclass(frozen=True)
 class AreaCurve:

@@ -21,6 +21,8 @@ import numpy as np
 from . import _core
 from ._checks import frame_like, real_array
 
+__all__ = ["Trajectory", "CartesianTrajectory", "quintic", "trapezoidal", "via_points", "cartesian"]
+
 
 @dataclass(frozen=True)
 class Trajectory:

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,16 +21,19 @@ enum class IkMethod { LM, GN, NR, Halley };
 IkMethod parse_ik_method(const std::string& name);  // "lm" | "gn" | "nr" | "halley"
 const char* ik_method_name(IkMethod method);
 
-// The one source of the default damping (IkOptions::damping <= 0 selects it): lm 1e-1 (initial mu
+// The one source of the default damping (IkOptions::damping unset selects it): lm 1e-1 (initial mu
 // relative to max diag(J^T J)), nr 1e-6 and halley 1e-9 (lambda of the damped pseudoinverse), gn 0
 // (unused: gn has its own hair of regularisation).
 double default_damping(IkMethod method);
 
-// The most restarts a solve accepts (the bindings reject more); `timeout` bounds the time.
+// The most restarts a solve accepts (validate() rejects more); `timeout` bounds the time.
 constexpr int kMaxRestarts = 1000000;
 
-// The options of a solve given none: the one place the defaults are written (the bindings read
-// them from IkOptions{} and show them to Python as robokin.IK_DEFAULTS). By default a solve
+// The time budget of a solve given neither restarts nor a timeout (seconds of CPU time).
+constexpr double kDefaultIkTimeout = 5e-3;
+
+// The options of a solve: the one place the defaults are written (the bindings bind these fields
+// one by one and show the resolved defaults to Python as robokin.IK_DEFAULTS). By default a solve
 // restarts from random configurations within the limits until it succeeds or its time budget,
 // 5 ms, runs out: a reachable target is solved (>= 99.9 % of random reachable targets on the
 // catalogue's arms, benchmarks/bench_ik_defaults.py); an unreachable one costs the whole budget.
@@ -39,13 +43,27 @@ struct IkOptions {
   double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
   double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
   int max_iter = 100;      // iterations per attempt
-  int restarts = kMaxRestarts;  // extra attempts from random configurations within the limits
+  // Extra attempts from random configurations within the limits, in [0, kMaxRestarts]. Unset: as
+  // many as the time budget allows.
+  std::optional<int> restarts;
   // Seconds of the solving thread's CPU time for the whole solve (every attempt), so that a busy
-  // machine does not cut a search short (the wall time may then be longer); 0: no time budget.
-  double timeout = 5e-3;
-  // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm);
-  // <= 0 (the default): default_damping(method).
-  double damping = 0.0;
+  // machine does not cut a search short (the wall time may then be longer). Unset:
+  // kDefaultIkTimeout when restarts is unset too, no budget when restarts is given.
+  std::optional<double> timeout;
+  // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm).
+  // Unset: default_damping(method).
+  std::optional<double> damping;
+
+  // Throws std::invalid_argument("name: ...") for an option out of range.
+  void validate() const;
+  // The values a solve runs with.
+  int max_restarts() const { return restarts ? *restarts : kMaxRestarts; }
+  double budget() const { return timeout ? *timeout : (restarts ? 0.0 : kDefaultIkTimeout); }  // 0: none
+  double damping_or_default() const { return damping ? *damping : default_damping(method); }
+  // A path warm-starts each target from the previous solution: a random restart could land on
+  // another branch (a jump of the joints between neighbouring points), so unless restarts are given
+  // it does not restart (and has no budget unless a timeout is given).
+  IkOptions for_path() const;
 };
 
 struct IkResult {
@@ -96,6 +114,9 @@ class IkSolver {
 
   const Chain* chain_ = nullptr;
   IkOptions opt_;
+  // opt_ resolved: restarts, time budget (0: none), damping, tol_r (inf for tasks without orientation).
+  int restarts_ = 0;
+  double timeout_ = 0.0, damping_ = 0.0, tol_r_ = 0.0;
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
@@ -106,13 +127,20 @@ class IkSolver {
   Eigen::LLT<Eigen::MatrixXd> llt_n_, llt_m_;
 };
 
+// What ik_batch found, one row per target.
+struct IkBatchResult {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> q;  // count x dof
+  Eigen::Array<bool, Eigen::Dynamic, 1> success;
+  Eigen::ArrayXi iterations, attempts;
+  Vector error_p, error_r;
+};
+
 // Solves each target; `q0` holds one start per target (stride dof) or one for all (stride 0).
-// path: each target starts from the previous solution (sequential); otherwise targets are solved
-// in parallel on every core with seeds seed + k. The caller releases the GIL.
-void ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count,
-              const double* q0, long q0_stride, bool path, std::uint64_t seed, double* q_out,
-              bool* success, int* iterations, int* attempts, double* error_p, double* error_r,
-              Progress* progress = nullptr);
+// path: each target starts from the previous solution (sequential, options.for_path()); otherwise
+// targets are solved in parallel on every core with seeds seed + k. The caller releases the GIL.
+IkBatchResult ik_batch(const Chain& chain, const IkOptions& options, const Target* targets, long count,
+                       const double* q0, long q0_stride, bool path, std::uint64_t seed,
+                       Progress* progress = nullptr);
 
 // References for the benchmark: KDL's ChainIkSolverPos_LMA ("lma", KDL's default weights) and
 // ChainIkSolverPos_NR_JL ("nr_jl", with ChainIkSolverVel_pinv and the chain's limits), built once

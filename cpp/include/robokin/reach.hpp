@@ -10,6 +10,10 @@
 
 namespace robokin {
 
+// Iterations one Reach may run at most (max_iter).
+constexpr int kMaxReachIterations = 100000;
+
+// The options of one Reach (and of every point of a tracked path): the seed's values by default.
 struct ReachOptions {
   int max_iter = 25;      // n
   double tol = 1e-5;      // delta, on the norm of the task error
@@ -20,6 +24,9 @@ struct ReachOptions {
   // Null-space term h = W (qbar - q). Empty: none. Otherwise the diagonal of W (for the seed's
   // joint-limit avoidance, 1 / (q_max - q_min), 0 where a joint is unlimited).
   Vector nullspace_weights;
+
+  // Throws std::invalid_argument("name: ...") for an option out of range or not fitting the chain.
+  void validate(const Chain& chain) const;
 };
 
 struct ReachResult {
@@ -29,10 +36,15 @@ struct ReachResult {
   double error = 0.0;  // norm of the task error at q
 };
 
-// Validates options against the chain (sizes, positive finite numbers); throws std::invalid_argument.
-void check_reach_options(const Chain& chain, const ReachOptions& options);
+// What tracking a path did, one row per path point.
+struct TrackResult {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> q;  // count x dof
+  Vector error;                                                           // task error per point
+  Eigen::Array<bool, Eigen::Dynamic, 1> converged;                        // error < tol
+  Eigen::ArrayXi iterations;                                              // Reach iterations per point
+};
 
-// The damping and null-space checks of check_reach_options, shared with resolved-rate control.
+// The damping and null-space checks of ReachOptions::validate, shared with resolved-rate control.
 void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& nullspace_weights);
 
 // The middle of each joint's range (the seed's qbar); 0 for an unlimited joint (its weight is 0).
@@ -45,17 +57,13 @@ Vector joint_limit_weights(const Chain& chain);
 // qbar the middle of each limited joint's range.
 double joint_limit_cost(const Chain& chain, const double* q);
 
-// Iterations one Reach may run at most (max_iter).
-constexpr int kMaxReachIterations = 100000;
-
 // Reuses its buffers across calls: one per thread, no allocation per iteration nor per path point.
 class Reacher {
  public:
   Reacher(const Chain& chain, Task task, const ReachOptions& options);
   ReachResult reach(const Target& target, const Vector& q0);
-  // Follows targets in order, each Reach starting from the previous joints. q_out: count x dof.
-  void track(const Target* targets, long count, const Vector& q0, double* q_out, double* err_out,
-             bool* converged_out, int* iterations_out, Progress* progress = nullptr);
+  // Follows targets in order, each Reach starting from the previous joints.
+  TrackResult track(const Target* targets, long count, const Vector& q0, Progress* progress = nullptr);
 
  private:
   const Chain& chain_;

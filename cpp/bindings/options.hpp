@@ -1,0 +1,172 @@
+// Options structs and result structs of the core, bound mechanically.
+//
+// An algorithm's options are one core struct (defaults on its fields, `validate()` with named
+// messages). Here each is bound once, field by field (`def_readwrite`), and filled from a call's
+// keyword arguments by one generic helper; unknown keywords and values of the wrong kind are a
+// TypeError naming the keyword. Results get a generic `__repr__` from their field names.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace robokin::bind {
+
+namespace py = pybind11;
+
+// What a field takes, for messages: "int", "float", "bool", "str", "None or an int", ...
+template <class V>
+struct FieldKind {
+  static constexpr bool integer = std::is_integral_v<V> && !std::is_same_v<V, bool>;
+  static std::string name() {
+    if constexpr (std::is_same_v<V, bool>) return "bool";
+    else if constexpr (integer) return "int";
+    else if constexpr (std::is_floating_point_v<V>) return "float";
+    else return "str";
+  }
+};
+template <class V>
+struct FieldKind<std::optional<V>> {
+  static constexpr bool integer = FieldKind<V>::integer;
+  static std::string name() { return "None or " + FieldKind<V>::name(); }
+};
+
+struct FieldInfo {
+  std::string name, kind;
+  bool integer;  // an int field: bools are refused, ints too large for it are out of range
+};
+
+// T's bound fields, in binding order (for kwargs, __repr__, signatures).
+template <class T>
+std::vector<FieldInfo>& fields_of() {
+  static std::vector<FieldInfo> fields;
+  return fields;
+}
+
+template <class T>
+std::vector<std::string> field_names() {
+  std::vector<std::string> names;
+  for (const FieldInfo& f : fields_of<T>()) names.push_back(f.name);
+  return names;
+}
+
+// `ClassName(a=1, b=array(...))` from the named attributes of obj; arrays of more than 8 numbers
+// are summarised by shape and dtype.
+inline std::string repr_fields(py::handle obj, const std::vector<std::string>& names) {
+  std::string s = py::str(py::type::of(obj).attr("__name__")).cast<std::string>() + "(";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    py::object v = obj.attr(names[i].c_str());
+    std::string text;
+    if (py::isinstance<py::array>(v) && py::reinterpret_borrow<py::array>(v).size() > 8) {
+      const py::array a = py::reinterpret_borrow<py::array>(v);
+      std::string shape = "(";
+      for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
+      text = "<array " + shape + (a.ndim() == 1 ? ",)" : ")") + " " + py::str(a.dtype()).cast<std::string>() + ">";
+    } else {
+      text = py::repr(v).cast<std::string>();
+    }
+    s += (i ? ", " : "") + names[i] + "=" + text;
+  }
+  return s + ")";
+}
+
+// A read-only numpy view of a result struct's buffer, kept alive by the result object (no copy).
+template <class V>
+py::array result_view(py::handle owner, const V* data, std::vector<py::ssize_t> shape) {
+  py::array a = py::array_t<V>(shape, data, owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+// Binds an options struct: a keyword-only constructor, one read-write property per field, equality,
+// a generic __repr__ and `fields` (the names, in order). Fields are declared with `field`.
+template <class T>
+class OptionsClass {
+ public:
+  OptionsClass(py::module_& m, const char* name, const char* doc) : cls_(m, name, doc) {
+    cls_.def(py::init([](const py::kwargs& kwargs) { return from_kwargs(kwargs); }),
+             "Every option as a keyword argument; the ones not given keep their defaults.");
+    cls_.def("__repr__", [](py::handle self) { return repr_fields(self, field_names<T>()); });
+    cls_.def("__eq__", [](py::handle self, py::handle other) {
+      if (!py::isinstance(other, py::type::of(self))) return false;
+      for (const std::string& n : field_names<T>())
+        if (!self.attr(n.c_str()).equal(other.attr(n.c_str()))) return false;
+      return true;
+    });
+    cls_.def(py::pickle([](py::handle self) {
+                          py::dict state;
+                          for (const std::string& n : field_names<T>()) state[n.c_str()] = self.attr(n.c_str());
+                          return state;
+                        },
+                        [](const py::dict& state) { return from_kwargs(state); }));
+    cls_.def_property_readonly_static("fields", [](py::handle) {
+      const std::vector<std::string> names = field_names<T>();
+      py::tuple out(names.size());
+      for (std::size_t i = 0; i < names.size(); ++i) out[i] = py::str(names[i]);
+      return out;
+    }, "The option names, in order.");
+    cls_.def_property_readonly_static("kinds", [](py::handle) {
+      py::tuple out(fields_of<T>().size());
+      for (std::size_t i = 0; i < fields_of<T>().size(); ++i) out[i] = py::str(fields_of<T>()[i].kind);
+      return out;
+    }, "What each option takes, in the order of fields: 'int', 'float', 'bool', 'str', 'None or int', ...");
+  }
+
+  template <class V>
+  OptionsClass& field(const char* name, V T::*member, const char* doc) {
+    cls_.def_readwrite(name, member, doc);
+    fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+    return *this;
+  }
+
+  // A field shown to Python as another type V (an enum as its name): get(const T&) -> V, set(T&, V).
+  template <class V, class Get, class Set>
+  OptionsClass& field_as(const char* name, Get get, Set set, const char* doc) {
+    cls_.def_property(name, get, set, doc);
+    fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+    return *this;
+  }
+
+  py::class_<T>& cls() { return cls_; }
+
+  // T from keyword arguments (a dict): each must name a field and convert to its type.
+  static T from_kwargs(const py::handle& kwargs) {
+    py::object obj = py::cast(T{});
+    for (auto item : py::reinterpret_borrow<py::dict>(kwargs)) {
+      const std::string name = py::str(item.first).cast<std::string>();
+      const auto& fields = fields_of<T>();
+      const auto f = std::find_if(fields.begin(), fields.end(), [&](const FieldInfo& x) { return x.name == name; });
+      if (f == fields.end())
+        throw py::type_error("unexpected keyword argument '" + name + "' (options: " + join(field_names<T>()) + ")");
+      const std::string got = py::str(item.second.get_type().attr("__name__")).cast<std::string>();
+      if (f->integer && PyBool_Check(item.second.ptr())) throw py::type_error(name + ": expected " + f->kind + ", got bool");
+      try {
+        obj.attr(name.c_str()) = item.second;
+      } catch (py::error_already_set& e) {
+        if (!e.matches(PyExc_TypeError)) throw;
+        // An int too large for the field's C type converts to nothing: a bad value, not a bad kind.
+        if (f->integer && PyIndex_Check(item.second.ptr()))
+          throw py::value_error(name + ": out of range, got " + py::repr(item.second).cast<std::string>());
+        throw py::type_error(name + ": expected " + f->kind + ", got " + got);
+      }
+    }
+    return obj.cast<T>();
+  }
+
+ private:
+  py::class_<T> cls_;
+
+  static std::string join(const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+  }
+};
+
+}  // namespace robokin::bind
