@@ -23,6 +23,7 @@ from fuzz import arrays, assert_finite, check_call, floats, wild_floats
 from rrr3_truth import U, base, cross, elbows, platform, seed_jacobians
 
 COVERS = {
+    "RRR3PlanOptions", "RRR3ConnectOptions", "RRR3_DEFAULTS",
     "RRR3.__init__", "RRR3.__repr__", "RRR3.base_radius", "RRR3.platform_radius", "RRR3.l1", "RRR3.l2",
     "RRR3.base_joints", "RRR3.modes", "RRR3.ik", "RRR3.ik_all", "RRR3.ik_batch", "RRR3.ik_newton", "RRR3.fk",
     "RRR3.fk_all", "RRR3.points", "RRR3.jacobians", "RRR3.singularity", "RRR3.workspace", "RRR3.plan",
@@ -273,11 +274,32 @@ def test_workspace_with_any_arguments(robot, phi, mode, n, tol):
 def test_plan_with_any_arguments(robot, points, phi, mode, avoid, max_step, margin, serial_margin, span, resolution,
                                  smoothing):
     names = ("points", "phi", "mode", "avoid", "max_step", "margin", "serial_margin", "span", "resolution", "smoothing")
-    plan = run(lambda: robot.plan(points, phi, mode, avoid, max_step, margin, serial_margin, span, resolution,
-                                  smoothing), *names)
+    plan = run(lambda: robot.plan(points, phi=phi, mode=mode, avoid=avoid, max_step=max_step, margin=margin,
+                                  serial_margin=serial_margin, span=span, resolution=resolution,
+                                  smoothing=smoothing), *names)
     if plan is None:
         return
     check_plan(robot, np.asarray(points, float), plan, phi, mode, avoid, max_step, margin, serial_margin, span)
+
+
+@given(cls=st.sampled_from([rk.RRR3PlanOptions, rk.RRR3ConnectOptions]), data=st.data())
+def test_plan_and_connect_options_from_any_keywords(cls, data):
+    """Any keywords: the options hold what was given, or a TypeError / ValueError names the keyword;
+    validate() then passes or names the option out of range."""
+    names = st.sampled_from([*cls.fields, "bogus"])
+    given = data.draw(st.dictionaries(names, st.one_of(options, modes), max_size=4))
+    o = check_call(lambda: cls(**given), *given)
+    if o is None:
+        return
+    for name, value in given.items():
+        got = getattr(o, name)
+        if name == "mode":
+            assert got == tuple(int(v) for v in np.asarray(value, float))
+        elif isinstance(got, bool):
+            assert got is bool(value)
+        else:
+            assert got == value or (got != got and value != value)
+    check_call(o.validate, *given)
 
 
 def check_route(robot, start, goal, mode, plan, clearance, serial_margin, max_step, max_turn):
@@ -307,7 +329,8 @@ def test_connect_with_any_arguments(robot, start, goal, mode, clearance, serial_
 
     def call():
         try:
-            return robot.connect(start, goal, mode, clearance, serial_margin, max_step, max_turn, resolution, span)
+            return robot.connect(start, goal, mode=mode, clearance=clearance, serial_margin=serial_margin,
+                                 max_step=max_step, max_turn=max_turn, resolution=resolution, span=span)
         except rk.NoRouteError as e:
             assert e.reason in ("start", "goal", "regions") and str(e)
             return None
@@ -336,7 +359,7 @@ def test_connect_routes_are_verified_and_opposite_signs_have_none(data, clearanc
             poses.append((p, np.sign(s.det_a_norm)))
     (start, s0), (goal, s1) = poses
     try:
-        plan = robot.connect(start, goal, mode, clearance=clearance, resolution=0.01)
+        plan = robot.connect(start, goal, mode=mode, clearance=clearance, resolution=0.01)
     except rk.NoRouteError as e:
         event(f"no route: {e.reason}, {'same' if s0 == s1 else 'opposite'} signs")
         assert e.reason == "regions"
@@ -640,7 +663,8 @@ def test_plan_feasible_iff_verified(data, robot, count, avoid, phi, max_step, ra
     walk = np.array(data.draw(st.lists(st.floats(-0.05, 0.05), min_size=2 * count, max_size=2 * count)))
     points = start + np.cumsum(walk.reshape(count, 2) * reach, axis=0)
     resolution = max(max_step / ratio, 0.01)
-    plan = robot.plan(points, phi, mode, avoid, max_step, margin, serial_margin, span, resolution, smoothing)
+    plan = robot.plan(points, phi=phi, mode=mode, avoid=avoid, max_step=max_step, margin=margin,
+                      serial_margin=serial_margin, span=span, resolution=resolution, smoothing=smoothing)
     event(f"feasible={plan.feasible}")
     check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_margin, span)
 

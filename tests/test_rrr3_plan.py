@@ -153,3 +153,31 @@ def test_plan_sizes_are_bounded(robot):
         robot.plan(np.zeros((2_000, 2)), span=1.0, resolution=0.001, max_step=1.0)  # 2e3 x 2001 x 4001
     with pytest.raises(ValueError, match="MiB"):
         robot.plan(np.zeros((2_000_000, 2)), span=1.0, resolution=0.005)  # 8e8 cells
+
+
+def test_plan_and_connect_options_are_the_cores():
+    """The seed's robot and tolerance (seed 002: R_b 0.13, R_e 0.07, l1 = l2 = 0.12 m; det A detected
+    at 1e-3) are the core's named constants; plan's and connect's options are core structs, keyword-only."""
+    d = rk.RRR3_DEFAULTS
+    assert (d["base_radius"], d["platform_radius"], d["l1"], d["l2"], d["singular_tol"]) == (0.13, 0.07, 0.12, 0.12, 1e-3)
+    robot = rk.RRR3()
+    assert (robot.base_radius, robot.platform_radius, robot.l1, robot.l2) == (0.13, 0.07, 0.12, 0.12)
+    assert rk.RRR3PlanOptions().margin == rk.RRR3ConnectOptions().clearance == d["near_distance"] == 0.05
+    assert rk.RRR3PlanOptions().serial_margin == rk.RRR3ConnectOptions().serial_margin == d["serial_margin"]
+    assert "plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True" in rk.RRR3.plan.__doc__
+    assert "connect(start, goal, *, mode=(1, 1, 1), clearance=0.05" in rk.RRR3.connect.__doc__
+    points = rk.paths.circle(50)
+    with pytest.raises(TypeError, match="incompatible function arguments"):
+        robot.plan(points, 0.3)  # options are keyword-only
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'phase' \(options: phi, mode"):
+        robot.plan(points, phase=0.3)
+    with pytest.raises(ValueError, match=r"span: must be in \[0, pi\]"):
+        robot.plan(points, span=4.0)
+    with pytest.raises(ValueError, match=r"span: must be in \[0, pi\]"):
+        rk.RRR3PlanOptions(span=-1.0).validate()
+    with pytest.raises(ValueError, match="mode: every entry must be"):
+        rk.RRR3ConnectOptions(mode=(1, 0, 1))
+    o = rk.RRR3PlanOptions(phi=0.45, margin=0.1)
+    assert (o.phi, o.margin, o.mode) == (0.45, 0.1, (1, 1, 1))
+    a, b = robot.plan(points, phi=0.45, margin=0.1), robot.plan(points, **{n: getattr(o, n) for n in o.fields})
+    np.testing.assert_array_equal(a.poses, b.poses)

@@ -189,8 +189,7 @@ IkBatchResult batch_from_state(const py::tuple& t) {
 }  // namespace
 
 void bind_ik(py::module_& m) {
-  IkOptionsClass options(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.");
-  options
+  IkOptionsClass(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.")
       .field_as<std::string>("method", [](const IkOptions& o) { return std::string(ik_method_name(o.method)); },
                              [](IkOptions& o, const std::string& v) { o.method = parse_ik_method(v); },
                              "'lm', 'gn', 'nr' or 'halley'.")
@@ -205,7 +204,6 @@ void bind_ik(py::module_& m) {
       .field("timeout", &IkOptions::timeout,
              "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.")
       .field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
-  options.cls().def("validate", &IkOptions::validate, "Raises ValueError naming an option out of range.");
   py::class_<IkResult>(m, "IKResult", "What one numerical IK solve found.")
       .def_property_readonly("q", [](const IkResult& r) { return to_numpy(r.q); },
                              "(dof,) joints: the solution, or the best point found (within the limits).")

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace robokin::bind {
@@ -84,6 +85,12 @@ py::array result_view(py::handle owner, const V* data, std::vector<py::ssize_t> 
   return a;
 }
 
+// Whether T has `void validate() const` (options checked on their own, not against a model).
+template <class T, class = void>
+struct HasValidate : std::false_type {};
+template <class T>
+struct HasValidate<T, std::void_t<decltype(std::declval<const T&>().validate())>> : std::true_type {};
+
 // Binds an options struct: a keyword-only constructor, one read-write property per field, equality,
 // a generic __repr__ and `fields` (the names, in order). Fields are declared with `field`.
 template <class T>
@@ -93,6 +100,8 @@ class OptionsClass {
     cls_.def(py::init([](const py::kwargs& kwargs) { return from_kwargs(kwargs); }),
              "Every option as a keyword argument; the ones not given keep their defaults.");
     cls_.def("__repr__", [](py::handle self) { return repr_fields(self, field_names<T>()); });
+    if constexpr (HasValidate<T>::value)
+      cls_.def("validate", &T::validate, "Raises ValueError naming an option out of range.");
     cls_.def("__eq__", [](py::handle self, py::handle other) {
       if (!py::isinstance(other, py::type::of(self))) return false;
       for (const std::string& n : field_names<T>())
@@ -128,12 +137,17 @@ class OptionsClass {
   // A field shown to Python as another type V (an enum as its name): get(const T&) -> V, set(T&, V).
   template <class V, class Get, class Set>
   OptionsClass& field_as(const char* name, Get get, Set set, const char* doc) {
+    return field_as(name, FieldKind<V>::name(), get, set, doc);
+  }
+
+  // The same with what the field takes said in words (its setter converts and checks the value).
+  template <class Get, class Set>
+  OptionsClass& field_as(const char* name, const std::string& kind, Get get, Set set, const char* doc) {
     cls_.def_property(name, get, set, doc);
-    fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+    fields_of<T>().push_back({name, kind, false});
     return *this;
   }
 
-  py::class_<T>& cls() { return cls_; }
 
   // T from keyword arguments (a dict): each must name a field and convert to its type.
   static T from_kwargs(const py::handle& kwargs) {
@@ -144,7 +158,7 @@ class OptionsClass {
       const auto f = std::find_if(fields.begin(), fields.end(), [&](const FieldInfo& x) { return x.name == name; });
       if (f == fields.end())
         throw py::type_error("unexpected keyword argument '" + name + "' (options: " + join(field_names<T>()) + ")");
-      const std::string got = py::str(item.second.get_type().attr("__name__")).cast<std::string>();
+      const std::string got = py::str(py::type::handle_of(item.second).attr("__name__")).cast<std::string>();
       if (f->integer && PyBool_Check(item.second.ptr())) throw py::type_error(name + ": expected " + f->kind + ", got bool");
       try {
         obj.attr(name.c_str()) = item.second;

@@ -1,6 +1,7 @@
 // robokin.RRR3: the planar 3-RRR parallel robot of seed 002.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 
 #include "robokin/rrr3.hpp"
@@ -62,6 +63,7 @@ py::array_t<double> vec3(const Eigen::Vector3d& v) {
 py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
 
 double positive_tol(double tol) {
+  // (the default, kSingularTol, is the seed's 1e-3)
   if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
   return tol;
 }
@@ -151,28 +153,15 @@ double finite_option(double v, const char* name) {
   return v;
 }
 
-RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode, bool avoid, double max_step,
-              double margin, double serial_margin, double span, double resolution, double smoothing) {
+using PlanOptionsClass = OptionsClass<RRR3PlanOptions>;
+using ConnectOptionsClass = OptionsClass<RRR3ConnectOptions>;
+
+RRR3Plan plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
   Array pts = as_array(points_obj, "points");
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
-  RRR3PlanOptions o;
-  o.phi = finite_option(phi, "phi");
-  o.mode = as_mode(mode);
-  o.avoid = avoid;
-  o.max_step = finite_option(max_step, "max_step");
-  o.margin = finite_option(margin, "margin");
-  o.serial_margin = finite_option(serial_margin, "serial_margin");
-  o.span = finite_option(span, "span");
-  o.resolution = finite_option(resolution, "resolution");
-  o.smoothing = finite_option(smoothing, "smoothing");
-  if (!(o.max_step > 0)) fail("max_step: must be positive");
-  if (!(o.resolution > 0 && o.resolution <= o.max_step)) fail("resolution: must be positive and at most max_step");
-  if (o.span < 0 || o.span > M_PI) fail("span: must be in [0, pi]");
-  if (o.span / o.resolution > 1e5) fail("resolution: too fine for span (more than 2e5 orientations)");
-  if (o.margin < 0) fail("margin: must be >= 0");
-  if (o.serial_margin < 0) fail("serial_margin: must be >= 0");
-  if (o.smoothing < 0) fail("smoothing: must be >= 0");
+  const RRR3PlanOptions o = PlanOptionsClass::from_kwargs(kwargs);
+  o.validate();
   const long count = static_cast<long>(pts.shape(0));
   // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
   PythonProgress progress("RRR3.plan");
@@ -180,27 +169,25 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, double phi, py::handle mode,
   return plan_path(r, pts.data(), count, o, &progress);
 }
 
-RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj, py::handle mode, double clearance,
-                       double serial_margin, double max_step, double max_turn, double resolution, double span) {
-  RRR3ConnectOptions o;
+RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj, const py::kwargs& kwargs) {
   const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
-  o.mode = as_mode(mode);
-  o.clearance = finite_option(clearance, "clearance");
-  o.serial_margin = finite_option(serial_margin, "serial_margin");
-  o.max_step = finite_option(max_step, "max_step");
-  o.max_turn = finite_option(max_turn, "max_turn");
-  o.resolution = finite_option(resolution, "resolution");
-  o.span = finite_option(span, "span");
-  if (!(o.clearance >= 0 && o.clearance < 1)) fail("clearance: must be in [0, 1) (a distance RRR3Singularity.distance)");
-  if (!(o.serial_margin >= 0 && o.serial_margin < 1)) fail("serial_margin: must be in [0, 1)");
-  if (!(o.max_step > 0)) fail("max_step: must be positive");
-  if (!(o.max_turn > 0)) fail("max_turn: must be positive");
-  if (!(o.resolution >= o.max_step && o.resolution <= 1000 * o.max_step))
-    fail("resolution: must be between max_step and 1000 max_step");
-  if (!(o.span >= 0 && o.span <= M_PI)) fail("span: must be in [0, pi]");
+  const RRR3ConnectOptions o = ConnectOptionsClass::from_kwargs(kwargs);
+  o.validate();
   PythonProgress progress("RRR3.connect");
   py::gil_scoped_release release;
   return connect(r, start, goal, o, &progress);
+}
+
+// The working mode as an options field: a tuple in Python.
+py::tuple mode_tuple(const Mode& m) { return py::make_tuple(m[0], m[1], m[2]); }
+
+// "plan(points, *, phi=0.0, mode=(1, 1, 1), ...)": the options with their defaults, for a docstring.
+template <class T>
+std::string keyword_list(const std::string& head) {
+  py::object defaults = py::cast(T{});
+  std::string s = head;
+  for (const std::string& n : field_names<T>()) s += ", " + n + "=" + py::repr(defaults.attr(n.c_str())).cast<std::string>();
+  return s + ")";
 }
 
 long grid_size(long n) {
@@ -427,14 +414,55 @@ void bind_rrr3(py::module_& m) {
         return "RRR3Workspace(n=" + std::to_string(w.n) + ", area=" + std::to_string(w.region_area) + ")";
       });
 
+  PlanOptionsClass(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.")
+      .field("phi", &RRR3PlanOptions::phi, "Nominal orientation (rad).")
+      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3PlanOptions& o) { return mode_tuple(o.mode); },
+                [](RRR3PlanOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode used along the whole path.")
+      .field("avoid", &RRR3PlanOptions::avoid, "False: every pose at the nominal orientation.")
+      .field("max_step", &RRR3PlanOptions::max_step, "Largest orientation change between consecutive points (rad).")
+      .field("margin", &RRR3PlanOptions::margin, "Wanted distance to parallel singularities (RRR3Singularity.distance).")
+      .field("serial_margin", &RRR3PlanOptions::serial_margin, "Smallest |det B| / l1^3 allowed.")
+      .field("span", &RRR3PlanOptions::span, "Largest departure from the nominal orientation (rad), in [0, pi].")
+      .field("resolution", &RRR3PlanOptions::resolution, "Orientation grid step (rad), at most max_step.")
+      .field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.");
+  ConnectOptionsClass(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).")
+      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3ConnectOptions& o) { return mode_tuple(o.mode); },
+                [](RRR3ConnectOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode, kept along the path.")
+      .field("clearance", &RRR3ConnectOptions::clearance, "Smallest distance to parallel singularities, in [0, 1).")
+      .field("serial_margin", &RRR3ConnectOptions::serial_margin, "Smallest |det B| / l1^3, in [0, 1).")
+      .field("max_step", &RRR3ConnectOptions::max_step, "Largest move of E between consecutive poses (m).")
+      .field("max_turn", &RRR3ConnectOptions::max_turn, "Largest rotation between consecutive poses (rad).")
+      .field("resolution", &RRR3ConnectOptions::resolution, "Grid step in x and y (m), max_step to 1000 max_step.")
+      .field("span", &RRR3ConnectOptions::span, "Orientations searched beyond the ends' (rad), in [0, pi].");
+  py::dict defaults;
+  defaults["base_radius"] = kDefaultBaseRadius;
+  defaults["platform_radius"] = kDefaultPlatformRadius;
+  defaults["l1"] = kDefaultL1;
+  defaults["l2"] = kDefaultL2;
+  defaults["singular_tol"] = kSingularTol;
+  defaults["near_distance"] = kNearDistance;
+  defaults["serial_margin"] = kSerialMargin;
+  m.attr("RRR3_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
+
   m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
-        py::arg("mode") = py::make_tuple(kStateVersion, 1, 1), py::arg("n") = 150, py::arg("tol") = 1e-3,
+        py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("n") = 150, py::arg("tol") = kSingularTol,
         "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
 
+  // Docstrings that list the options with their defaults (kept for the module's lifetime).
+  static const std::string plan_doc =
+      keyword_list<RRR3PlanOptions>("plan(points, *") + "\n\n"
+      "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;\n"
+      "options keyword-only (RRR3PlanOptions).";
+  static const std::string connect_doc =
+      keyword_list<RRR3ConnectOptions>("connect(start, goal, *") + "\n\n"
+      "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
+      "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
+      "why there is none (the two poses are in different singularity-free regions of the mode);\n"
+      "options keyword-only (RRR3ConnectOptions).";
   py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
       .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
-           py::arg("base_radius") = 0.13, py::arg("platform_radius") = 0.07, py::arg("l1") = 0.12,
-           py::arg("l2") = 0.12)
+           py::arg("base_radius") = kDefaultBaseRadius, py::arg("platform_radius") = kDefaultPlatformRadius,
+           py::arg("l1") = kDefaultL1, py::arg("l2") = kDefaultL2)
       .def_property_readonly("base_radius", &RRR3::base_radius)
       .def_property_readonly("platform_radius", &RRR3::platform_radius)
       .def_property_readonly("l1", &RRR3::l1)
@@ -459,10 +487,10 @@ void bind_rrr3(py::module_& m) {
       }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.")
       .def("ik", [](const RRR3& r, py::handle pose, py::handle mode) {
         return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
-      }, py::arg("pose"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
       .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
-      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
+      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
       .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = 50,
            py::arg("tol") = 1e-12, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
@@ -474,33 +502,23 @@ void bind_rrr3(py::module_& m) {
            "size, as one). Where the elbows form a triangle congruent to the platform's (e.g. equal\n"
            "alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi\n"
            "fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.")
-      .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
+      .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
-      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
+      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
       .def("singularity", [](const RRR3& r, py::handle pose, py::handle mode, double tol) {
         return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
-      }, py::arg("pose"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1), py::arg("tol") = 1e-3,
+      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = kSingularTol,
            "Classification with tol on the normalised determinants.")
-      .def("workspace", &workspace_map, py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
-           py::arg("n") = 200, py::arg("tol") = 1e-3,
+      .def("workspace", &workspace_map, py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
+           py::arg("n") = 200, py::arg("tol") = kSingularTol,
            "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
-      .def("plan", &plan, py::arg("points"), py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
-           py::arg("avoid") = true, py::arg("max_step") = 0.01, py::arg("margin") = 0.05,
-           py::arg("serial_margin") = 0.02, py::arg("span") = 1.0, py::arg("resolution") = 0.005,
-           py::arg("smoothing") = 10.0,
-           "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.")
-      .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), py::arg("mode") = py::make_tuple(kStateVersion, 1, 1),
-           py::arg("clearance") = 0.05, py::arg("serial_margin") = 0.02, py::arg("max_step") = 0.001,
-           py::arg("max_turn") = 0.01, py::arg("resolution") = 0.005, py::arg("span") = 1.5,
-           "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
-           "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
-           "why there is none (the two poses are in different singularity-free regions of the mode).")
+      .def("plan", &plan, py::arg("points"), plan_doc.c_str())
+      .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())
       .def(py::pickle(  // (version, base_radius, platform_radius, l1, l2)
           [](const RRR3& r) { return py::make_tuple(kStateVersion, r.base_radius(), r.platform_radius(), r.l1(), r.l2()); },
           [](const py::tuple& t) {
-            if (t.size() != 5 || !py::isinstance<py::int_>(t[0]) || t[0].cast<int>() != 1)
-              fail("RRR3 state: not a state of this robokin (version 1, 5 entries)");
+            check_state(t, 5, "RRR3");
             return RRR3(t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(), t[4].cast<double>());
           }))
       .def(

@@ -85,6 +85,19 @@ Pose along(const Pose& a, const Pose& b, long t, long n) { return t == n ? b : P
 
 }  // namespace
 
+void RRR3ConnectOptions::validate() const {
+  auto check = [](bool ok, const std::string& message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  check(clearance >= 0 && clearance < 1, "clearance: must be in [0, 1) (a distance RRR3Singularity.distance)");
+  check(serial_margin >= 0 && serial_margin < 1, "serial_margin: must be in [0, 1)");
+  check(max_step > 0 && std::isfinite(max_step), "max_step: must be positive and finite");
+  check(max_turn > 0 && std::isfinite(max_turn), "max_turn: must be positive and finite");
+  check(resolution >= max_step && resolution <= 1000 * max_step, "resolution: must be between max_step and 1000 max_step");
+  check(span >= 0 && span <= M_PI, "span: must be in [0, pi]");
+  check_mode(mode);
+}
+
 RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const RRR3ConnectOptions& o,
                  Progress* progress) {
   auto check = [](bool ok, const std::string& message) {
@@ -92,13 +105,7 @@ RRR3Plan connect(const RRR3& robot, const Pose& start, const Pose& goal, const R
   };
   check(start.allFinite(), "start: must be finite");
   check(goal.allFinite(), "goal: must be finite");
-  check(o.clearance >= 0 && o.clearance < 1, "clearance: must be in [0, 1)");
-  check(o.serial_margin >= 0 && o.serial_margin < 1, "serial_margin: must be in [0, 1)");
-  check(o.max_step > 0 && std::isfinite(o.max_step), "max_step: must be positive and finite");
-  check(o.max_turn > 0 && std::isfinite(o.max_turn), "max_turn: must be positive and finite");
-  check(o.resolution >= o.max_step && std::isfinite(o.resolution), "resolution: must be finite and at least max_step");
-  check(o.span >= 0 && o.span <= M_PI, "span: must be in [0, pi]");
-  check(o.resolution <= 1000 * o.max_step, "resolution: must be at most 1000 max_step");
+  o.validate();
 
   const Eval es = evaluate(robot, start, o.mode), eg = evaluate(robot, goal, o.mode);
   for (int end = 0; end < 2; ++end) {

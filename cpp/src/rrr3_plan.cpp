@@ -45,20 +45,28 @@ int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 }  // namespace
 
+void RRR3PlanOptions::validate() const {
+  auto check = [](bool ok, const std::string& message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  check(std::isfinite(phi), "phi: must be finite");
+  check(max_step > 0 && std::isfinite(max_step), "max_step: must be positive and finite");
+  check(resolution > 0 && std::isfinite(resolution) && resolution <= max_step,
+        "resolution: must be positive and at most max_step");
+  check(span >= 0 && span <= M_PI, "span: must be in [0, pi]");
+  check(margin >= 0 && std::isfinite(margin), "margin: must be >= 0 and finite");
+  check(serial_margin >= 0 && std::isfinite(serial_margin), "serial_margin: must be >= 0 and finite");
+  check(smoothing >= 0 && std::isfinite(smoothing), "smoothing: must be >= 0 and finite");
+  check_mode(mode);
+}
+
 RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& o,
                    Progress* progress) {
   auto check = [](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(message);
   };
   check(count >= 0, "points: negative count");
-  check(std::isfinite(o.phi), "phi: must be finite");
-  check(o.max_step > 0 && std::isfinite(o.max_step), "max_step: must be positive and finite");
-  check(o.resolution > 0 && std::isfinite(o.resolution), "resolution: must be positive and finite");
-  check(o.resolution <= o.max_step, "resolution: must be positive and at most max_step");
-  check(o.span >= 0 && std::isfinite(o.span), "span: must be >= 0 and finite");
-  check(o.margin >= 0 && std::isfinite(o.margin), "margin: must be >= 0 and finite");
-  check(o.serial_margin >= 0 && std::isfinite(o.serial_margin), "serial_margin: must be >= 0 and finite");
-  check(o.smoothing >= 0 && std::isfinite(o.smoothing), "smoothing: must be >= 0 and finite");
+  o.validate();
   RRR3Plan plan;
   plan.poses.resize(count, 3);
   for (long k = 0; k < count; ++k) plan.poses.row(k) << points[2 * k], points[2 * k + 1], o.phi;

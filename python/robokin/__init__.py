@@ -6,7 +6,8 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 
 from . import closed, paths, robots
 from . import pose, traj
-from ._core import RRR3, Chain, ReachOptions, ReachResult, TrackResult, joint_limit_cost
+from ._core import (RRR3, RRR3_DEFAULTS, Chain, ReachOptions, ReachResult, RRR3ConnectOptions, RRR3PlanOptions,
+                    TrackResult, joint_limit_cost)
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
@@ -25,6 +26,9 @@ __all__ = [
     "IKResult",
     "IKSolver",
     "RRR3",
+    "RRR3_DEFAULTS",
+    "RRR3ConnectOptions",
+    "RRR3PlanOptions",
     "ReachOptions",
     "ReachResult",
     "TrackResult",

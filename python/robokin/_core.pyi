@@ -96,6 +96,7 @@ class Chain:
 class ReachOptions:
     """The options of one Reach (seed 000, Algorithm 1); the seed's values by default."""
     fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
     max_iter: int
     tol: float
     gain: float
@@ -260,6 +261,43 @@ def rrr3_region_areas(robots: ArrayLike, phi: float = 0.0, mode: Sequence[int] =
                       tol: float = 1e-3) -> NDArray:
     """RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2). Use robokin.rrr3_design."""
 
+#: The seed's robot and thresholds (read-only): base_radius 0.13, platform_radius 0.07, l1 0.12, l2 0.12
+#: (m); singular_tol 1e-3 (normalised determinants); near_distance 0.05 (RRR3Singularity.distance kept by
+#: plan and connect); serial_margin 0.02 (|det B| / l1^3).
+RRR3_DEFAULTS: Mapping[str, float]
+
+class RRR3PlanOptions:
+    """The options of RRR3.plan (keywords); defaults as in the seed's simulator."""
+    fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
+    phi: float
+    mode: Tuple[int, int, int]
+    avoid: bool
+    max_step: float
+    margin: float
+    serial_margin: float
+    span: float
+    resolution: float
+    smoothing: float
+    def __init__(self, *, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
+                 max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
+                 resolution: float = 0.005, smoothing: float = 10.0) -> None: ...
+
+class RRR3ConnectOptions:
+    """The options of RRR3.connect (keywords)."""
+    fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
+    mode: Tuple[int, int, int]
+    clearance: float
+    serial_margin: float
+    max_step: float
+    max_turn: float
+    resolution: float
+    span: float
+    def __init__(self, *, mode: Sequence[int] = (1, 1, 1), clearance: float = 0.05, serial_margin: float = 0.02,
+                 max_step: float = 0.001, max_turn: float = 0.01, resolution: float = 0.005,
+                 span: float = 1.5) -> None: ...
+
 class RRR3:
     """The planar 3-RRR parallel robot (seed 002, geometry and conventions of DESIGN.md).
 
@@ -321,7 +359,7 @@ class RRR3:
         """Constant-orientation workspace on an n x n grid around the reachable set, with its
         singular cells and areas; computed on every core."""
     def plan(
-        self, points: ArrayLike, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
+        self, points: ArrayLike, *, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
         max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
         resolution: float = 0.005, smoothing: float = 10.0,
     ) -> RRR3Plan:
@@ -335,7 +373,7 @@ class RRR3:
         the nominal orientation go out and back once (dips are filled), so nothing chatters.
         """
     def connect(
-        self, start: ArrayLike, goal: ArrayLike, mode: Sequence[int] = (1, 1, 1), clearance: float = 0.05,
+        self, start: ArrayLike, goal: ArrayLike, *, mode: Sequence[int] = (1, 1, 1), clearance: float = 0.05,
         serial_margin: float = 0.02, max_step: float = 0.001, max_turn: float = 0.01, resolution: float = 0.005,
         span: float = 1.5,
     ) -> RRR3Plan:
@@ -441,6 +479,7 @@ class IKOptions:
     1e-6, halley 1e-9 (lambda of the damped pseudoinverse), unused by gn. restarts <= 1_000_000.
     """
     fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
     method: str
     task: str
     tol_p: float

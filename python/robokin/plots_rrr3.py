@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import rrr3_design
+from . import _core, rrr3_design
 from ._checks import planar_points
 
 __all__ = ["CELL_COLOURS", "plot_robot", "plot_workspace", "plot_design"]
@@ -68,7 +68,8 @@ def plot_robot(robot, pose, mode=(1, 1, 1), ax=None, path=None):
     return fig, ax
 
 
-def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: float = 1e-3, ax=None):
+def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: float = _core.RRR3_DEFAULTS["singular_tol"],
+                   ax=None):
     """Constant-orientation workspace map: reachable cells in blue, singular ones in red (parallel)
     and orange (serial), the base joints as squares.
 

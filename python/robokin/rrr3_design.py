@@ -70,8 +70,8 @@ def _length(value, name: str) -> float:
 
 
 def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: float = 0.10, l2: float = 0.10,
-                            phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: float = 1e-3, *,
-                            areas=None) -> AreaCurve:
+                            phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: float = _core.RRR3_DEFAULTS["singular_tol"],
+                            *, areas=None) -> AreaCurve:
     """Workspace area as a function of the platform radius (the seed: 0.15 m base radius, 0.10 m links).
 
     The area is RRR3Workspace.area: the largest region of the constant-orientation workspace
@@ -88,7 +88,8 @@ def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: 
 
 
 def best_l2(l1_values, l2_values, base_radius: float = 0.15, platform_radius: float = 0.0866, phi: float = 0.0,
-            mode=(1, 1, 1), n: int = 100, tol: float = 1e-3, *, areas=None) -> BestL2:
+            mode=(1, 1, 1), n: int = 100, tol: float = _core.RRR3_DEFAULTS["singular_tol"], *,
+            areas=None) -> BestL2:
     """For each l1, the l2 (among ``l2_values``) that makes the best use of the links.
 
     The raw area keeps growing with l2 (longer links reach farther), so the criterion is the

@@ -21,6 +21,22 @@ namespace robokin {
 using Pose = Eigen::Vector3d;  // (x, y, phi)
 using Mode = std::array<int, 3>;
 
+// The seed's robot (R_b, R_e, l1, l2 in metres), the default of every RRR3.
+constexpr double kDefaultBaseRadius = 0.13, kDefaultPlatformRadius = 0.07, kDefaultL1 = 0.12, kDefaultL2 = 0.12;
+// The seed's singularity tolerance, on the normalised determinants (det A / R_e, det B / l1^3).
+constexpr double kSingularTol = 1e-3;
+// The distance to parallel singularities (RRR3::distance) that planning keeps: RRR3PlanOptions::margin,
+// RRR3ConnectOptions::clearance, and the simulator's "near".
+constexpr double kNearDistance = 0.05;
+// The smallest |det B| / l1^3 planning allows (never near a serial singularity).
+constexpr double kSerialMargin = 0.02;
+
+// Throws std::invalid_argument unless every m_i is +1 or -1.
+inline void check_mode(const Mode& mode) {
+  for (int m : mode)
+    if (m != 1 && m != -1) throw std::invalid_argument("mode: every entry must be +1 or -1, got " + std::to_string(m));
+}
+
 // A pose a leg cannot reach (|O_i B_i| outside [|l1 - l2|, l1 + l2]).
 class LegUnreachable : public std::domain_error {
  public:

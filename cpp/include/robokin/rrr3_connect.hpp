@@ -12,12 +12,15 @@ namespace robokin {
 
 struct RRR3ConnectOptions {
   Mode mode{1, 1, 1};         // the working mode, kept along the whole path
-  double clearance = 0.05;    // smallest distance to parallel singularities (RRR3::distance)
-  double serial_margin = 0.02;  // smallest |det B| / l1^3 (never near a serial singularity)
+  double clearance = kNearDistance;  // smallest distance to parallel singularities (RRR3::distance)
+  double serial_margin = kSerialMargin;  // smallest |det B| / l1^3 (never near a serial singularity)
   double max_step = 0.001;    // largest move of E between consecutive poses (m)
   double max_turn = 0.01;     // largest rotation between consecutive poses (rad)
   double resolution = 0.005;  // grid step in x and y (m); in phi it is resolution * max_turn / max_step
   double span = 1.5;          // phi is searched within [min(phi_start, phi_goal) - span, max(...) + span]
+
+  // Throws std::invalid_argument("name: ...") for an option out of range.
+  void validate() const;
 };
 
 // No singularity-free path: why, in what() and in reason():

@@ -11,11 +11,14 @@ struct RRR3PlanOptions {
   Mode mode{1, 1, 1};        // the one working mode used along the whole path
   bool avoid = true;         // false: every pose at the nominal orientation
   double max_step = 0.01;    // largest orientation change between consecutive path points (rad)
-  double margin = 0.05;      // wanted distance to parallel singularities (RRR3::distance)
-  double serial_margin = 0.02;  // smallest |det B| / l1^3 allowed (never near a serial singularity)
+  double margin = kNearDistance;  // wanted distance to parallel singularities (RRR3::distance)
+  double serial_margin = kSerialMargin;  // smallest |det B| / l1^3 allowed (never near a serial singularity)
   double span = 1.0;         // largest departure from the nominal orientation (rad)
   double resolution = 0.005;  // orientation grid step (rad), at most max_step
   double smoothing = 10.0;   // weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2
+
+  // Throws std::invalid_argument("name: ...") for an option out of range.
+  void validate() const;
 };
 
 struct RRR3Plan {
