@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 import robokin as rk
-from robokin import _core
+from robokin import _testing
 
 N_TARGETS = 1000
 TOL = 1e-9
@@ -97,7 +97,7 @@ def run_bound(chain, targets, q0, method, restarts):
 
 
 def run_kdl(chain, targets, q0, solver, eps, max_iter):
-    ref = _core._KdlIk(chain, solver, max_iter, eps)
+    ref = _testing.KdlIk(chain, solver, max_iter, eps)
     ok, times, codes = [], [], []
     for T in targets:
         t = time.perf_counter()

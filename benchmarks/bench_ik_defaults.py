@@ -3,7 +3,7 @@ within the limits, unlimited joints within [-pi, pi], FK), solved from the mid-l
 with ``rk.ik``'s defaults (restarts within a 5 ms budget) at TRAC-IK's tolerance, 1e-5 m and 1e-5
 rad, and at robokin's default 1e-9; beside KDL's ChainIkSolverPos_LMA (eps 1e-5, 500 iterations)
 on the same targets in the same run, called from Python per target: in process through robokin's
-``_core._KdlIk`` (the liborocos-kdl robokin links), with KDL's default task-space weights and with
+``robokin._testing.KdlIk`` (the liborocos-kdl robokin links), with KDL's default task-space weights and with
 unit weights, and through Debian's PyKDL (python3-pykdl, KDL's default weights, in a
 /usr/bin/python3 subprocess: benchmarks/_pykdl_ik_worker.py); and beside TRAC-IK's published table
 (quoted below with its source). KDL's default weights count rotations 100 times less than
@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 import robokin as rk
-from robokin import _core
+from robokin import _testing
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -89,7 +89,7 @@ def run_kdl(chain, targets, q0, solver):
     """KDL's ChainIkSolverPos_LMA (eps 1e-5, 500 iterations): "lma" with KDL's default task-space
     weights (1, 1, 1, 0.01, 0.01, 0.01: its eps then lets rotations off by ~1e-4 rad), "lma_unit"
     with unit weights (its eps bounds positions and rotations alike, as the 1e-5 check does)."""
-    ref = _core._KdlIk(chain, solver, 500, 1e-5)
+    ref = _testing.KdlIk(chain, solver, 500, 1e-5)
     qs, times, codes = [], np.zeros(len(targets)), np.zeros(len(targets), bool)
     for k, T in enumerate(targets):
         t = time.perf_counter()

@@ -14,6 +14,7 @@ import robokin_sim.keys
 import robokin_sim.scene
 import robokin_sim.scene_rpr
 import robokin_sim.scene_rrr3
+import robokin_sim.scene_serial
 from robokin import _core, demo, plots, plots_rrr3, rrr3_design
 
 MODULES = {"closed": rk.closed, "paths": rk.paths, "robots": rk.robots, "rrr3_design": rrr3_design,
@@ -26,8 +27,10 @@ MODULES.update({"reachability": sys.modules["robokin.reachability"], "plots_reac
                 "dask": robokin.dask})
 MODEL_CLASSES = [rk.Chain, rk.RRR3, rk.IKSolver, _core.IKSolutions]
 # What the simulator takes from its user: the command line, key scripts, and scenes stepped by keys.
-SIM = {"sim.parse_args", "sim.parse_script", "sim.Rrr3Scene", "sim.RprScene", "sim.Scene.step"}
-SIM_MODULES = [robokin_sim.config, robokin_sim.keys, robokin_sim.scene, robokin_sim.scene_rpr, robokin_sim.scene_rrr3]
+SIM = {"sim.parse_args", "sim.parse_script", "sim.Rrr3Scene", "sim.RprScene", "sim.Scene.step", "sim.SerialScene",
+       "sim.Scene.pointer"}
+SIM_MODULES = [robokin_sim.config, robokin_sim.keys, robokin_sim.scene, robokin_sim.scene_rpr, robokin_sim.scene_rrr3,
+               robokin_sim.scene_serial]
 
 
 def _public(name):

@@ -9,16 +9,20 @@ import math
 
 import numpy as np
 import sim_helpers  # noqa: F401  (SDL dummy drivers before pygame is imported)
-from hypothesis import given
+import robokin as rk
+from fuzz import arrays, check_call, finite_arrays
+from hypothesis import given, settings
 from hypothesis import strategies as st
+from robokin import plots
 
 from robokin_sim.config import MODES, Config, parse_args
-from robokin_sim.keys import ALIASES, KEYS, MAX_HOLD, KeyScript, parse_script
-from robokin_sim.scene_rpr import RprScene
-from robokin_sim.scene_rrr3 import Rrr3Scene
+from robokin_sim.keys import ALIASES, HELD_KEYS, KEYS, MAX_HOLD, KeyScript, parse_script
+from robokin_sim.scene_serial import SerialScene
+from robokin_sim.scenes import SCENES
 
 COVERS = {"sim.parse_args", "sim.parse_script", "sim.KeyScript.inputs", "sim.Rrr3Scene", "sim.RprScene",
-          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row"}
+          "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.SerialScene", "sim.Scene.pointer",
+          "plots.joint_axes", "plots.plot_chain", "plots.animate_chain"}
 
 OPTIONS = ["--robot", "--mode", "--headless", "--demo", "--frames", "--record", "--record-every", "--record-width",
            "--log", "--screenshot", "--keys", "--no-avoid", "--size", "--fps", "-h", "--help", "--rob", "--bogus", "--"]
@@ -71,7 +75,7 @@ def test_parse_script_any_string(text):
     except ValueError as exc:
         assert str(exc).startswith("--keys: ")
         return
-    assert all(name in KEYS and 1 <= n <= MAX_HOLD for name, n in script.items)
+    assert all(all(k in KEYS for k in name.split("+")) and 1 <= n <= MAX_HOLD for name, n in script.items)
     assert script.frames == sum(n for _, n in script.items)
     if script.frames < 2000:
         inputs = list(script.inputs())
@@ -91,11 +95,11 @@ _SCENES = {}
 
 
 def scene_for(robot, mode, avoid):
-    """One scene per (robot, mode, avoid), reset for each example: its orientation plans and
-    workspace maps are caches (planning a path takes ~0.1 s)."""
+    """One scene per (robot, mode, avoid), reset for each example: its orientation plans, workspace
+    maps and paths are caches (planning a 3-RRR path takes ~0.1 s)."""
     key = (robot, mode, avoid)
     if key not in _SCENES:
-        _SCENES[key] = (Rrr3Scene if robot == "rrr3" else RprScene)(mode=mode, avoid=avoid)
+        _SCENES[key] = SCENES[robot].scene(Config(robot=robot, mode=mode, avoid=avoid))
     scene = _SCENES[key]
     scene.reset()
     scene.steps = 0
@@ -105,28 +109,34 @@ def scene_for(robot, mode, avoid):
 NUMERIC = {"rrr3": (3, 11), "rpr": (3, 9)}  # the numeric columns of the log row, [start, stop)
 frames = st.tuples(
     st.frozensets(st.sampled_from(KEYS), max_size=2),  # pressed this frame
-    st.frozensets(st.sampled_from(["left", "right", "up", "down", "k", "l"]), max_size=3),  # held
+    st.frozensets(st.sampled_from(sorted(HELD_KEYS)), max_size=3),  # held
     st.integers(1, 25),  # for this many steps
+    st.tuples(st.integers(-400, 400), st.integers(-400, 400), st.integers(-5, 5)),  # mouse drag and wheel
 )
+ROBOT_MODES = [(r, m) for r in MODES if r != "urdf" for m in MODES[r]]
 
 
-@given(robot_mode=st.sampled_from([(r, m) for r in MODES for m in MODES[r]]), avoid=st.booleans(),
-       inputs=st.lists(frames, max_size=12))
+@given(robot_mode=st.sampled_from(ROBOT_MODES), avoid=st.booleans(), inputs=st.lists(frames, max_size=12))
 def test_scene_any_key_sequence(robot_mode, avoid, inputs):
     robot, mode = robot_mode
     scene = scene_for(robot, mode, avoid)
     steps = 0
-    for pressed, held, n in inputs:
+    for pressed, held, n, (dx, dy, wheel) in inputs:
         for key in sorted(pressed):
-            scene.press(key)
+            scene.press(key, held)
+        scene.pointer((dx, dy), wheel)
         for _ in range(n):
             scene.step(held | pressed)
             steps += 1
             row = scene.row()
             assert len(row) == len(scene.columns) and row[0] == steps
-            lo, hi = NUMERIC[robot]
+            lo, hi = NUMERIC.get(robot, (3, len(row) - 1))
             values = np.array(row[lo:hi], dtype=float)
             assert np.all(np.isfinite(values)), (row, scene.message)
+            if isinstance(scene, SerialScene) and scene.mode == "cartesian":
+                # The tool is on the pose the jog commanded (the task's rows of it).
+                T = scene.chain.fk(scene.q)
+                assert np.allclose(T[:3, 3], scene._command[:3, 3], atol=1e-9) or scene.task != "pose"
         assert isinstance(scene.message, str)
     state = scene.state()
     assert scene.steps == steps and math.isclose(scene.time, steps / 60.0)
@@ -136,8 +146,50 @@ def test_scene_any_key_sequence(robot_mode, avoid, inputs):
         assert all(np.all(np.isfinite(v)) for v in state.points.values())
         # the pose the scene shows is one the robot reaches in its working mode
         assert scene._evaluate(state.pose) is not None
-    else:
+    elif robot == "rpr":
         assert state.mode in ("free", "approach", "line")
         assert np.all(np.isfinite(state.q)) and np.all(np.isfinite(state.frames))
         assert np.allclose(state.frames[-1][:2, 3], scene.tip, atol=1e-12)
         assert np.all(state.q >= state.lower - 1e-9) and np.all(state.q <= state.upper + 1e-9)
+    else:
+        assert state.mode in ("joint", "cartesian", "posture", "approach", "circle", "line")
+        assert np.all(np.isfinite(state.q)) and np.all(np.isfinite(state.frames))
+        assert np.all(state.q >= state.lower) and np.all(state.q <= state.upper)
+        assert np.allclose(state.frames[-1], scene.chain.fk(state.q), atol=1e-12)
+        assert np.all(np.isfinite(state.axes)) and -math.pi / 2 <= state.camera.elevation <= math.pi / 2
+        assert state.state in ("none", "near", "singular", "limit", "unreachable")
+
+
+# --- the serial chains' drawings (robokin.plots) -------------------------------------------------
+
+UR5 = rk.robots.ur5()
+
+
+@given(q=st.one_of(arrays([(6,), (5,), (6, 1), ()]), finite_arrays((6,), -1e6, 1e6)))
+def test_joint_axes_any_q(q):
+    axes = check_call(lambda: plots.joint_axes(UR5, q), "q")
+    if axes is not None:
+        assert axes.shape == (6, 2, 3) and np.all(np.isfinite(axes))
+        assert np.allclose(np.linalg.norm(axes[:, 1], axis=1), 1.0)
+
+
+@settings(max_examples=30)
+@given(q=st.one_of(arrays([(6,), (7,)]), finite_arrays((6,), -10, 10)))
+def test_plot_chain_any_q(q):
+    ax = check_call(lambda: plots.plot_chain(UR5, q), "q")
+    if ax is not None:
+        assert ax.name == "3d" and len(ax.lines) > 6
+
+
+@settings(max_examples=30)
+@given(Q=st.one_of(arrays([(1, 6), (2, 6), (2, 5), (0, 6)]), finite_arrays((2, 6), -3, 3)),
+       fps=st.one_of(st.floats(-1, 200), st.sampled_from([True, "10", None, math.nan])),
+       size=st.one_of(st.tuples(st.integers(0, 3000), st.integers(0, 3000)), st.sampled_from([None, "big", (1,)])),
+       suffix=st.sampled_from([".gif", ".mp4", ".png", ""]))
+def test_animate_chain_any_arguments(tmp_path_factory, Q, fps, size, suffix):
+    directory = tmp_path_factory.mktemp("anim")
+    size = size if not isinstance(size, tuple) or len(size) != 2 or max(size) < 700 else (64, 64)
+    out = check_call(lambda: plots.animate_chain(UR5, Q, directory / f"a{suffix}", fps=fps, size=size),
+                     "Q", "fps", "size", "path")
+    names = sorted(p.name for p in directory.iterdir())
+    assert names == ([f"a{suffix}"] if out is not None else [])

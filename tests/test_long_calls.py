@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from robokin import _core, rrr3_design
+from robokin import _testing, rrr3_design
 
 SIGNAL_AFTER = 0.2
 
@@ -155,7 +155,7 @@ def test_no_progress_bar_when_stderr_is_not_a_terminal():
 def test_exception_on_any_thread_of_a_batch_reaches_python(on_caller, monkeypatch):
     monkeypatch.setenv("ROBOKIN_NUM_THREADS", "2")
     with pytest.raises(RuntimeError, match="thrown on purpose"):
-        _core._parallel_for_throwing(200, on_caller)
+        _testing.parallel_for_throwing(200, on_caller)
 
 
 @pytest.mark.parametrize("kind, error, text", [
@@ -167,4 +167,4 @@ def test_exception_on_any_thread_of_a_batch_reaches_python(on_caller, monkeypatc
 ])
 def test_core_exceptions_become_python_exceptions(kind, error, text):
     with pytest.raises(error, match=text):
-        _core._throw(kind)
+        _testing.throw(kind)

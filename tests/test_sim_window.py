@@ -313,3 +313,66 @@ def test_a_signal_stops_a_window_run_and_leaves_nothing(xserver, tmp_path, sig):
             f"robokin-sim: stopped by {signal.Signals(sig).name}; {sim.log}, {tmp_path / 'run.mp4'} not written"]
     finally:
         sim.kill()
+
+
+def test_a_serial_arm_jogs_and_orbits_by_a_mouse_drag_in_a_real_window(xserver, tmp_path):
+    env, fb = xserver
+    sim = Sim(env, str(tmp_path), "--robot", "ur5")
+    try:
+        start = sim.last()
+        assert start["mode"] == "joint"
+        q = [float(start[f"q_{i}"]) for i in range(6)]
+        # 2 selects joint 2, keypad + moves it (0.01 rad per step), the others stay.
+        sim.press("2")
+        r = sim.hold("KP_Add", "q_1 to grow", lambda r: float(r["q_1"]) >= q[1] + 0.05)
+        assert [float(r[f"q_{i}"]) for i in (0, 2, 3, 4, 5)] == [q[i] for i in (0, 2, 3, 4, 5)]
+        # Right moves the tool along base x, its orientation kept.
+        r0 = sim.last()
+        r = sim.hold("Right", "x to grow", lambda r: float(r["x"]) >= float(r0["x"]) + 0.01)
+        assert r["mode"] == "cartesian" and abs(float(r["y"]) - float(r0["y"])) < 1e-9
+        assert all(abs(float(r[c]) - float(r0[c])) < 1e-9 for c in ("roll", "pitch", "yaw"))
+        # Shift + Up turns the tool about base y: the position stays.
+        r0 = sim.last()
+        sim.xdo("keydown", "shift")
+        try:
+            r = sim.hold("Up", "the tool to turn", lambda r: max(abs(float(r[f"q_{i}"]) - float(r0[f"q_{i}"]))
+                                                                 for i in range(6)) > 0.02)
+        finally:
+            sim.xdo("keyup", "shift")
+        assert all(abs(float(r[c]) - float(r0[c])) < 1e-9 for c in "xyz")
+
+        # A mouse drag orbits the camera: the picture changes, the arm does not move.
+        def settled():
+            n = len(sim.rows())
+            time.sleep(0.3)
+            return len(sim.rows()) > n and sim.rows()[-1]["q_0"] == sim.rows()[n]["q_0"]
+
+        wait_for("the arm at rest", settled)
+        resting = sim.last()
+        before = window_pixels(sim, fb).astype(int)
+        x, y, w, h = sim.geometry()
+        sim.xdo("mousemove", str(x + w // 2), str(y + h // 2))
+        sim.xdo("mousedown", "1")
+        for _ in range(6):
+            sim.xdo("mousemove_relative", "--", "25", "8")
+            time.sleep(0.05)
+        sim.xdo("mouseup", "1")
+        wait_for("the orbit", lambda: np.mean(np.any(np.abs(window_pixels(sim, fb).astype(int) - before) > 30,
+                                                       axis=2)) > 0.01)
+        after = sim.last()
+        assert all(after[f"q_{i}"] == resting[f"q_{i}"] for i in range(6))
+
+        # Resizing: the scene is drawn at the new size (background beyond the old 480 px).
+        sim.xdo("windowsize", sim.window, "640", "420")
+        wait_for("the new size", lambda: sim.geometry()[2:] == (640, 420))
+        wait_for("the drawing at the new size",
+                 lambda: near(window_pixels(sim, fb)[415, 635], theme.BACKGROUND, tol=30))
+        # n moves to the next closed-form posture, animated ("posture" rows), then stops there.
+        sim.press("n")
+        wait_for("the posture change", lambda: sim.last()["mode"] == "posture")
+        wait_for("the new posture", lambda: sim.last()["mode"] in ("joint", "cartesian"))
+        sim.press("Escape")
+        status, out, err = sim.finish()
+        assert status == 0, err
+    finally:
+        sim.kill()

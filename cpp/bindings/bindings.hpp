@@ -12,7 +12,6 @@ void bind_rrr3(pybind11::module_& m);
 void bind_ik_closed(pybind11::module_& m);
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // after bind_chain: adds Chain.from_urdf
-void bind_testing(pybind11::module_& m);  // hooks for the test suite
 // The serial-arm toolkit: trajectories, manipulability, velocity-level IK, pose helpers.
 void bind_traj(pybind11::module_& m);
 void bind_manipulability(pybind11::module_& m);  // after bind_chain: adds Chain methods

@@ -284,17 +284,6 @@ void bind_ik(py::module_& m) {
   m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
         py::arg("seed") = py::none(), py::arg("path") = false,
         "Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.");
-  m.def(
-      "_hessian_times",
-      [](const Chain& chain, py::handle q_obj, py::handle a_obj) {
-        const Vector q = as_vector(q_obj, "q", chain.dof()), a = as_vector(a_obj, "a", chain.dof());
-        Matrix6X J6(6, chain.dof()), out;
-        Rigid T;
-        chain.fk_jacobian(q.data(), T, J6.data());
-        hessian_times(chain, J6, a, out);
-        return to_numpy(out);
-      },
-      py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
   py::class_<BoundSolver>(m, "IKSolver",
                           "A numerical IK solver bound to a chain and options (robokin.ik's arguments):\n"
                           "solve(target, q0) costs only the solve. Call k of a seeded solver uses seed + k.\n"
@@ -319,23 +308,6 @@ void bind_ik(py::module_& m) {
         const std::string options = py::repr(self.attr("options")).cast<std::string>();
         return "IKSolver" + options.substr(options.find('('));
       });
-  py::class_<KdlIkReference>(m, "_KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
-      .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {
-             if (max_iter < 1) fail("max_iter: must be at least 1");
-             if (!(eps > 0)) fail("eps: must be positive");
-             return std::make_unique<KdlIkReference>(chain, solver, max_iter, eps);
-           }),
-           py::arg("chain"), py::arg("solver") = "lma", py::arg("max_iter") = 500, py::arg("eps") = 1e-5)
-      .def(
-          "solve",
-          [](KdlIkReference& k, py::handle target, py::handle q0_obj) {
-            const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-            const Vector q0 = as_vector(q0_obj, "q0", k.dof());
-            Vector q;
-            const int code = k.solve(T, q0, q);
-            return py::make_tuple(to_numpy(q), code);
-          },
-          py::arg("target"), py::arg("q0"), "(q, KDL error code) for one target.");
 }
 
 }  // namespace robokin::bind

@@ -11,7 +11,6 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_ik_closed(m);
   robokin::bind::bind_ik(m);
   robokin::bind::bind_urdf(m);
-  robokin::bind::bind_testing(m);
   // Trajectories, manipulability, velocity-level IK, pose helpers.
   robokin::bind::bind_traj(m);
   robokin::bind::bind_manipulability(m);

@@ -527,13 +527,6 @@ class IKSolver:
     @property
     def options(self) -> IKOptions: ...
 
-def _hessian_times(chain: Chain, q: ArrayLike, a: ArrayLike) -> NDArray: ...
-
-class _KdlIk:
-    """Benchmark reference: KDL's ChainIkSolverPos_LMA ("lma") or ChainIkSolverPos_NR_JL ("nr_jl")."""
-    def __init__(self, chain: Chain, solver: str = "lma", max_iter: int = 500, eps: float = 1e-5) -> None: ...
-    def solve(self, target: ArrayLike, q0: ArrayLike) -> Tuple[NDArray, int]: ...
-
 # --- trajectories (cpp/bindings/traj.cpp); use robokin.traj -----------------
 
 def traj_quintic(q0: ArrayLike, q1: ArrayLike, t: ArrayLike, qd0: Optional[ArrayLike] = None,

@@ -1,4 +1,5 @@
-"""robokin-sim: the pygame simulator of robokin (the 3-RRR parallel robot and the RPR arm).
+"""robokin-sim: the pygame simulator of robokin (the 3-RRR parallel robot, the RPR arm and any serial
+arm: the catalogue's, or a URDF file's; one table of scenes, robokin_sim.scenes).
 
 ``robokin-sim --help`` (or ``python -m robokin_sim --help``) lists the options; ``h`` in the window
 lists the keys. :func:`robokin_sim.loop.run` runs it from Python.

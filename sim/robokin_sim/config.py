@@ -9,9 +9,10 @@ import sys
 from typing import Optional, Sequence, Tuple
 
 from .keys import KeyScript, parse_script
+from .scenes import ROBOTS, SCENES, canonical
 
-#: Modes each robot offers; the first is the default.
-MODES = {"rrr3": ("free", "circle", "clover"), "rpr": ("line", "free")}
+#: Modes each robot offers; the first is the default (from the table of scenes).
+MODES = {name: entry.modes for name, entry in SCENES.items()}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -19,7 +20,7 @@ class Config:
     """Everything a run needs, validated.
 
     Attributes:
-        robot: ``"rrr3"`` or ``"rpr"``.
+        robot: A name of :data:`robokin_sim.scenes.SCENES` (``"urdf"`` with ``urdf`` set).
         mode: The mode the scene starts in (and returns to on ``r``).
         headless: SDL's dummy video driver, no window, no sleeping.
         frames: Stop after this many frames (None: run until ``esc`` or the window closes).
@@ -32,6 +33,9 @@ class Config:
         avoid: 3-RRR singularity avoidance / RPR null-space joint-limit avoidance at the start.
         size: Window size in pixels (width, height).
         fps: Frames per second of the window (one simulation step per frame).
+        urdf: The URDF file of ``--urdf`` (robot ``"urdf"``), or None.
+        base: Its base link (None: the root link).
+        tip: Its tip link (None: the end of the longest branch).
     """
 
     robot: str = "rrr3"
@@ -47,6 +51,9 @@ class Config:
     avoid: bool = True
     size: Tuple[int, int] = (800, 800)
     fps: int = 60
+    urdf: Optional[str] = None
+    base: Optional[str] = None
+    tip: Optional[str] = None
 
 
 #: Default width of GIF recordings (pixels).
@@ -133,18 +140,43 @@ def _recording(text: str) -> str:
     return _output((".gif", ".mp4"))(text)
 
 
+def _robot(text: str) -> str:
+    return canonical(text)
+
+
+def _modes_help() -> str:
+    """``--mode``'s help: each distinct set of modes with the robots offering it."""
+    groups: dict = {}
+    for name in ROBOTS:
+        groups.setdefault(SCENES[name].modes, []).append(name)
+    parts = []
+    for modes, names in groups.items():
+        who = ", ".join(names) if len(names) <= 3 else "the serial arms"
+        parts.append(f"{who}: {'|'.join(modes)} (default {modes[0]})")
+    return "starting mode; " + "; ".join(parts)
+
+
 def build_parser() -> argparse.ArgumentParser:
+    serial = [n for n in ROBOTS if SCENES[n].renderer is SCENES["urdf"].renderer]
     parser = _Parser(
         prog="robokin-sim",
-        description="pygame simulator of the 3-RRR planar parallel robot and the RPR arm (robokin).",
-        epilog="Keys: m free mode, o circle, p clover (RPR: o/p the line), arrows move, k/l rotate, "
-        "s avoidance on/off, space pause, r reset, h help, esc quit.",
+        description="pygame simulator of the 3-RRR planar parallel robot, the RPR arm and the serial arms of "
+        "robokin.robots (or a URDF file).",
+        epilog="Keys: h in the window lists them. 3-RRR: m free mode, o circle, p clover, arrows move, k/l rotate, "
+        "s avoidance on/off. Serial arms: 1-9/tab select a joint, +/- jog it, arrows and pageup/pagedown move the "
+        "tool (with shift: turn it), n next posture, e ellipsoid, f1-f4 views, mouse drag orbits, wheel zooms. "
+        "All: space pause, r reset, h help, esc quit.",
     )
-    parser.add_argument("--robot", choices=sorted(MODES), default="rrr3", help="robot to simulate (default rrr3)")
+    parser.add_argument("--robot", type=_robot, choices=ROBOTS, metavar="ROBOT",
+                        help=f"robot to simulate (default rrr3): rrr3, rpr, or a serial arm: {', '.join(serial)}")
+    parser.add_argument("--urdf", metavar="FILE", help="a serial arm from a URDF file (instead of --robot)")
+    parser.add_argument("--base", metavar="LINK", help="with --urdf: the chain's base link (default: the root link)")
+    parser.add_argument("--tip", metavar="LINK",
+                        help="with --urdf: the chain's tip link (default: the end of the longest branch)")
     parser.add_argument(
         "--mode",
         choices=sorted({m for modes in MODES.values() for m in modes}),
-        help="starting mode: rrr3 free|circle|clover (default free), rpr line|free (default line)",
+        help=_modes_help(),
     )
     parser.add_argument("--headless", action="store_true", help="no window (SDL dummy driver), run flat out")
     parser.add_argument(
@@ -164,9 +196,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--log", type=_output(()), metavar="OUT.csv", help="write one CSV row per simulation step")
     parser.add_argument("--screenshot", type=_output(()), metavar="OUT.png", help="save the last frame drawn as a PNG")
     parser.add_argument("--keys", type=_keys, default=KeyScript(()), metavar="SCRIPT",
-                        help="scripted key presses, e.g. right*20,down*10,l*10 (hold KEY for N steps)")
+                        help="scripted key presses, e.g. right*20,down*10,l*10 (hold KEY for N steps; "
+                        "shift+up*5 holds two keys)")
     parser.add_argument("--no-avoid", dest="avoid", action="store_false",
-                        help="3-RRR: singularity avoidance off; RPR: minimum-norm (no joint-limit avoidance)")
+                        help="3-RRR: singularity avoidance off; RPR and redundant arms: minimum-norm (no "
+                        "null-space joint-limit avoidance)")
     parser.add_argument("--size", type=_size, default=(800, 800), metavar="WxH", help="window size (default 800x800)")
     parser.add_argument("--fps", type=_bounded_int(1, MAX_FPS), default=60,
                         help="frames per second of the window (default 60); one simulation step per frame")
@@ -177,9 +211,22 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> Config:
     """Parses the command line; exits with a usage message on bad input (argparse's behaviour)."""
     parser = build_parser()
     ns = parser.parse_args(argv)
+    if ns.urdf is not None:
+        if ns.robot is not None:
+            parser.error("--urdf and --robot: choose one")
+        ns.robot = "urdf"
+        from .urdf import load
+
+        try:
+            load(ns.urdf, ns.base, ns.tip)
+        except ValueError as exc:
+            parser.error(f"--urdf {ns.urdf}: {exc}")
+    elif ns.base is not None or ns.tip is not None:
+        parser.error("--base and --tip go with --urdf FILE")
+    ns.robot = ns.robot or "rrr3"
     if ns.demo and (ns.headless or not has_display()):
         ns.headless = True
-        ns.mode = ns.mode or ("clover" if ns.robot == "rrr3" else "line")
+        ns.mode = ns.mode or SCENES[ns.robot].demo_mode
         ns.frames = ns.frames or DEMO_FRAMES
         stem = os.path.join("out", f"robokin-sim-{ns.robot}-{ns.mode}")
         ns.record = ns.record or stem + ".gif"
@@ -209,4 +256,7 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> Config:
         avoid=ns.avoid,
         size=ns.size,
         fps=ns.fps,
+        urdf=ns.urdf,
+        base=ns.base,
+        tip=ns.tip,
     )

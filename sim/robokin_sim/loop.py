@@ -20,6 +20,7 @@ from typing import Iterator, Optional
 from .config import Config
 from .keys import HELD_KEYS, NO_INPUT, Input
 from .scene import DT
+from .scenes import entry
 
 #: Frames a headless run lasts when neither --frames nor --keys says: about one clover turn
 #: (628 steps) with its approach.
@@ -40,14 +41,8 @@ class RunResult:
 
 
 def make_scene(config: Config):
-    """The scene for ``config.robot`` in ``config.mode``."""
-    if config.robot == "rpr":
-        from .scene_rpr import RprScene
-
-        return RprScene(mode=config.mode, avoid=config.avoid)
-    from .scene_rrr3 import Rrr3Scene
-
-    return Rrr3Scene(mode=config.mode, avoid=config.avoid)
+    """The scene for ``config.robot`` in ``config.mode`` (from the table of scenes)."""
+    return entry(config.robot).scene(config)
 
 
 def record_size(config: Config, window) -> tuple:
@@ -63,13 +58,7 @@ def record_size(config: Config, window) -> tuple:
 
 def make_renderer(robot: str, size):
     """The renderer drawing ``robot``'s scene states on a surface of ``size`` pixels."""
-    if robot == "rpr":
-        from .render_rpr import RprRenderer
-
-        return RprRenderer(size)
-    from .render_rrr3 import Rrr3Renderer
-
-    return Rrr3Renderer(size)
+    return entry(robot).renderer(size)
 
 
 def _frame_budget(config: Config) -> Optional[int]:
@@ -81,7 +70,8 @@ def _frame_budget(config: Config) -> Optional[int]:
 
 
 class _Keyboard:
-    """Turns pygame's events into :class:`Input`; also reports quit and resize requests."""
+    """Turns pygame's events into :class:`Input`; also reports quit requests, mouse drags (pixels
+    moved with a button down) and wheel turns."""
 
     def __init__(self, pygame) -> None:
         self.pg = pygame
@@ -89,21 +79,37 @@ class _Keyboard:
         self.names = {
             k.K_m: "m", k.K_o: "o", k.K_p: "p", k.K_LEFT: "left", k.K_RIGHT: "right", k.K_UP: "up",
             k.K_DOWN: "down", k.K_k: "k", k.K_l: "l", k.K_s: "s", k.K_SPACE: "space", k.K_r: "r",
-            k.K_h: "h", k.K_ESCAPE: "esc",
+            k.K_h: "h", k.K_ESCAPE: "esc", k.K_TAB: "tab", k.K_PAGEUP: "pageup", k.K_PAGEDOWN: "pagedown",
+            k.K_n: "n", k.K_e: "e", k.K_v: "v", k.K_F1: "f1", k.K_F2: "f2", k.K_F3: "f3", k.K_F4: "f4",
+            k.K_PLUS: "plus", k.K_EQUALS: "plus", k.K_KP_PLUS: "plus", k.K_MINUS: "minus", k.K_KP_MINUS: "minus",
         }
-        self.codes = {name: code for code, name in self.names.items()}
+        for digit in range(1, 10):
+            self.names[getattr(k, f"K_{digit}")] = str(digit)
+            self.names[getattr(k, f"K_KP{digit}")] = str(digit)
+        self.codes: dict = {}
+        for code, name in self.names.items():
+            self.codes.setdefault(name, []).append(code)
         self.quit = False
 
     def poll(self) -> Input:
         pressed = set()
+        drag_x = drag_y = 0
+        wheel = 0
         for event in self.pg.event.get():
             if event.type == self.pg.QUIT:
                 self.quit = True
             elif event.type == self.pg.KEYDOWN and event.key in self.names:
                 pressed.add(self.names[event.key])
+            elif event.type == self.pg.MOUSEMOTION and any(event.buttons):
+                drag_x += event.rel[0]
+                drag_y += event.rel[1]
+            elif event.type == self.pg.MOUSEWHEEL:
+                wheel += event.y
         down = self.pg.key.get_pressed()
-        held = {name for name in HELD_KEYS if down[self.codes[name]]} | pressed
-        return Input(pressed=frozenset(pressed), held=frozenset(held))
+        held = {name for name in HELD_KEYS if any(down[c] for c in self.codes.get(name, ()))} | pressed
+        if self.pg.key.get_mods() & self.pg.KMOD_SHIFT:
+            held.add("shift")
+        return Input(pressed=frozenset(pressed), held=frozenset(held), drag=(drag_x, drag_y), wheel=wheel)
 
 
 def run(config: Config, render: bool = True) -> RunResult:
@@ -139,7 +145,7 @@ def run(config: Config, render: bool = True) -> RunResult:
         screen = pygame.Surface(config.size)
     else:
         screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
-        pygame.display.set_caption(f"robokin-sim: {config.robot}")
+        pygame.display.set_caption(f"robokin-sim: {getattr(scene, 'title', config.robot)}")
     # The window is drawn every frame; headless, the screen only when asked (render) and not
     # recording (the recording has its own frames), and once at the end for a screenshot.
     draw_screen = not config.headless or (render and not config.record)
@@ -166,7 +172,7 @@ def run(config: Config, render: bool = True) -> RunResult:
             inp = next(script, NO_INPUT)
             if keyboard is not None:
                 live = keyboard.poll()
-                inp = Input(inp.pressed | live.pressed, inp.held | live.held)
+                inp = Input(inp.pressed | live.pressed, inp.held | live.held, live.drag, live.wheel)
                 if keyboard.quit:
                     break
             if "esc" in inp.pressed:
@@ -175,8 +181,10 @@ def run(config: Config, render: bool = True) -> RunResult:
                 hud.paused = not hud.paused
             if "h" in inp.pressed:
                 hud.help = not hud.help
-            for key in inp.pressed:
-                scene.press(key)
+            for key in sorted(inp.pressed):
+                scene.press(key, inp.held)
+            if inp.drag != (0, 0) or inp.wheel:
+                scene.pointer(inp.drag, inp.wheel)
             stepped = not hud.paused
             if stepped:
                 scene.step(inp.held)

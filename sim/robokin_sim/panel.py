@@ -8,30 +8,12 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import pygame
 
 from . import theme
+from .scenes import SCENES
 
 Colour = Tuple[int, int, int]
 
-HELP = {
-    "rrr3": [
-        ("m", "free mode: arrows move 1 mm, k / l rotate 0.01 rad"),
-        ("o", "trace the circle (r = 0.1 m)"),
-        ("p", "trace the four-leaf clover"),
-        ("s", "singularity avoidance on / off"),
-        ("space", "pause"),
-        ("r", "reset"),
-        ("h", "this help"),
-        ("esc", "quit"),
-    ],
-    "rpr": [
-        ("o / p", "trace the line from point 1 to point 2"),
-        ("m", "free mode: arrows move the tip 1 cm"),
-        ("s", "null-space joint-limit avoidance / minimum norm"),
-        ("space", "pause"),
-        ("r", "reset"),
-        ("h", "this help"),
-        ("esc", "quit"),
-    ],
-}
+#: Key list of each robot's help overlay (from the table of scenes).
+HELP = {name: list(entry.help) for name, entry in SCENES.items()}
 
 
 class Text:
@@ -61,7 +43,8 @@ def number(value: float, fmt: str = "{:+.4f}") -> str:
 
 
 def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, str, Optional[Colour]]],
-               topleft=(8, 8), bars: Sequence[Tuple[str, float, float, float]] = ()) -> pygame.Rect:
+               topleft=(8, 8), bars: Sequence[Tuple[str, float, float, float]] = (), label_w: int = 92,
+               bar_w: int = 160) -> pygame.Rect:
     """Draws a box of ``label: value`` rows (value in ``colour`` when given) and joint bars.
 
     Args:
@@ -69,15 +52,20 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
         text: The text renderer.
         rows: ``(label, value, colour)``; colour None draws the value in the text colour.
         topleft: Pixel position of the box.
-        bars: ``(label, value, lower, upper)`` drawn as a bar filled up to the value.
+        label_w: Width of the label column (pixels).
+        bar_w: Width of the joint bars (pixels).
+        bars: ``(label, value, lower, upper[, selected])`` drawn as a bar filled up to the value
+            (a tick within one turn when a limit is infinite), outlined when selected.
 
     Returns:
         The box's rectangle.
     """
-    pad, label_w, value_w, bar_w = 8, 92, 118, 160
+    pad, value_w = 8, 118
     line = text.height
     height = pad * 2 + line * len(rows) + (line + 4) * len(bars)
-    width = pad * 2 + max(label_w + value_w, bar_w + 70 if bars else 0)
+    widest = max([value_w] + [text.render(value, colour or theme.TEXT).get_width() + (14 if colour else 0) + 4
+                              for _, value, colour in rows])
+    width = pad * 2 + max(label_w + widest, bar_w + 70 if bars else 0)
     rect = pygame.Rect(topleft[0], topleft[1], width, height)
     pygame.draw.rect(surface, theme.PANEL, rect)
     pygame.draw.rect(surface, theme.PANEL_EDGE, rect, 1)
@@ -90,26 +78,34 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
         else:
             surface.blit(text.render(value, theme.TEXT), (x + label_w, y))
         y += line
-    for label, value, lower, upper in bars:
-        surface.blit(text.render(label, theme.TEXT_DIM), (x, y))
+    for label, value, lower, upper, *selected in bars:
+        surface.blit(text.render(label, theme.TEXT if selected and selected[0] else theme.TEXT_DIM), (x, y))
         bar = pygame.Rect(x + 34, y + 2, bar_w, line - 6)
         pygame.draw.rect(surface, theme.BAR_BACK, bar)
-        share = (value - lower) / (upper - lower) if math.isfinite(value) and upper > lower else 0.0
-        share = min(max(share, 0.0), 1.0)
-        # Red within 5 % of a limit: that is what joint-limit avoidance keeps away from.
-        colour = theme.SINGULAR if share < 0.05 or share > 0.95 else theme.BAR
-        pygame.draw.rect(surface, colour, (bar.x, bar.y, max(1, int(bar.w * share)), bar.h))
-        pygame.draw.rect(surface, theme.PANEL_EDGE, bar, 1)
+        limited = math.isfinite(lower) and math.isfinite(upper) and upper > lower
+        if limited and math.isfinite(value):
+            share = min(max((value - lower) / (upper - lower), 0.0), 1.0)
+            # Red within 5 % of a limit: that is what joint-limit avoidance keeps away from.
+            colour = theme.SINGULAR if share < 0.05 or share > 0.95 else theme.BAR
+            pygame.draw.rect(surface, colour, (bar.x, bar.y, max(1, int(bar.w * share)), bar.h))
+        elif math.isfinite(value):
+            # Unlimited: a tick at the angle within one turn (-pi to pi).
+            share = (math.remainder(value, 2 * math.pi) + math.pi) / (2 * math.pi)
+            pygame.draw.rect(surface, theme.BAR, (bar.x + int((bar.w - 3) * share), bar.y, 3, bar.h))
+        pygame.draw.rect(surface, theme.SELECTED if selected and selected[0] else theme.PANEL_EDGE, bar,
+                         2 if selected and selected[0] else 1)
         surface.blit(text.render(number(value, "{:.3f}"), theme.TEXT), (bar.right + 6, y))
         y += line + 4
     return rect
 
 
 def draw_help(surface: pygame.Surface, text: Text, robot: str) -> None:
-    """The key list, centred over a darkened box."""
+    """The key list, centred over a darkened box (as wide as its longest lines need)."""
     items = HELP.get(robot, [])
     line = text.height + 4
-    width, height = 470, line * (len(items) + 2) + 16
+    key_w = max([70] + [text.render(key, theme.NEAR).get_width() + 14 for key, _ in items])
+    what_w = max([0] + [text.render(what, theme.OVERLAY_TEXT).get_width() for _, what in items])
+    width, height = max(470, key_w + what_w + 32), line * (len(items) + 2) + 16
     w, h = surface.get_size()
     rect = pygame.Rect((w - width) // 2, (h - height) // 2, width, height)
     pygame.draw.rect(surface, theme.OVERLAY, rect)
@@ -118,7 +114,7 @@ def draw_help(surface: pygame.Surface, text: Text, robot: str) -> None:
     y += line + 6
     for key, what in items:
         surface.blit(text.render(key, theme.NEAR), (x, y))
-        surface.blit(text.render(what, theme.OVERLAY_TEXT), (x + 70, y))
+        surface.blit(text.render(what, theme.OVERLAY_TEXT), (x + key_w, y))
         y += line
 
 

@@ -33,8 +33,13 @@ class Scene:
         """Simulated time of the current state, seconds (``steps * DT``)."""
         return self.steps * DT
 
-    def press(self, key: str) -> None:
-        """A key went down (mode switches, toggles, reset). Unknown keys are ignored."""
+    def press(self, key: str, held: FrozenSet[str] = frozenset()) -> None:
+        """A key went down (mode switches, toggles, reset), with the keys ``held`` at the time
+        (Shift). Unknown keys are ignored."""
+
+    def pointer(self, drag: Tuple[int, int], wheel: int) -> None:
+        """The mouse dragged ``drag`` pixels with a button down, the wheel turned ``wheel`` clicks.
+        Ignored unless the scene has a camera."""
 
     def step(self, held: FrozenSet[str]) -> None:
         """Advances the model by one step with the keys held during it."""

@@ -87,7 +87,7 @@ class RprScene(Scene):
         if self.start_mode == "line":
             self._start_line()
 
-    def press(self, key: str) -> None:
+    def press(self, key: str, held: FrozenSet[str] = frozenset()) -> None:
         if key == "m":
             self.mode, self._approach = "free", None
             self.target = self.tip.copy()

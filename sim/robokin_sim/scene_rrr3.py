@@ -167,7 +167,7 @@ class Rrr3Scene(Scene):
         self._anchor = self.pose.copy()
         self._counts = np.zeros(3, dtype=np.int64)
 
-    def press(self, key: str) -> None:
+    def press(self, key: str, held: FrozenSet[str] = frozenset()) -> None:
         if key == "m":
             if self.mode == "free":
                 self.message = "already in free mode: arrows move, k / l rotate"

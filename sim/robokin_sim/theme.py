@@ -30,6 +30,14 @@ BAR = (90, 130, 200)
 BAR_BACK = (225, 228, 235)
 OVERLAY = (20, 20, 30)
 OVERLAY_TEXT = (245, 245, 245)
+# Serial arms: links shaded from near to far, joints, the joint axes, the floor, the ellipsoid.
+LINK_NEAR = (46, 98, 178)
+LINK_FAR = (150, 176, 214)
+JOINT_AXIS = (120, 120, 130)
+FRAME_Z = (50, 80, 220)
+FLOOR = (226, 226, 218)
+ELLIPSOID = (150, 60, 170)
+SELECTED = (230, 130, 40)
 
 #: Every flat colour above, first in the GIF palette.
 COLOURS = [v for k, v in sorted(globals().items()) if k.isupper() and isinstance(v, tuple) and len(v) == 3

@@ -142,21 +142,4 @@ IkBatchResult ik_batch(const Chain& chain, const IkOptions& options, const Targe
                        const double* q0, long q0_stride, bool path, std::uint64_t seed,
                        Progress* progress = nullptr);
 
-// References for the benchmark: KDL's ChainIkSolverPos_LMA ("lma", KDL's default weights) and
-// ChainIkSolverPos_NR_JL ("nr_jl", with ChainIkSolverVel_pinv and the chain's limits), built once
-// and called as KDL users call them.
-class KdlIkReference {
- public:
-  KdlIkReference(const Chain& chain, const std::string& solver, int max_iter, double eps);
-  ~KdlIkReference();
-  // Returns KDL's error code (>= 0 on success as KDL sees it); q holds KDL's answer.
-  int solve(const Rigid& target, const Vector& q0, Vector& q);
-  int dof() const { return dof_; }
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  int dof_ = 0;
-};
-
 }  // namespace robokin

@@ -1,5 +1,5 @@
-// KDL's position IK solvers as the benchmark's reference, called the way KDL users call them.
-#include "robokin/ik.hpp"
+// KDL's position IK solvers as the benchmarks' reference, called the way KDL users call them.
+#include "kdl_ik_reference.hpp"
 
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainiksolverpos_lma.hpp>
@@ -8,7 +8,7 @@
 
 #include <stdexcept>
 
-namespace robokin {
+namespace robokin::testing {
 
 struct KdlIkReference::Impl {
   KDL::Chain chain;
@@ -54,4 +54,4 @@ int KdlIkReference::solve(const Rigid& T, const Vector& q0, Vector& q) {
   return code;
 }
 
-}  // namespace robokin
+}  // namespace robokin::testing

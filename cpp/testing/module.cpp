@@ -1,0 +1,92 @@
+// robokin._testing: what the test suite and the benchmarks need and users do not, kept out of the
+// public module robokin._core. Hooks that drive machinery no public call reaches on demand (an
+// exception thrown on a worker thread of parallel_for, the translation of the exception types the
+// core and KDL may throw, Halley's Hessian term) and KDL's position IK as the benchmarks' reference.
+// It shares robokin._core's types (Chain) and exception translators: import robokin first.
+#include <kdl/utilities/error.h>
+
+#include <atomic>
+#include <chrono>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "arrays.hpp"
+#include "kdl_ik_reference.hpp"
+#include "progress.hpp"
+#include "robokin/ik.hpp"
+#include "robokin/parallel.hpp"
+#include "targets.hpp"
+
+namespace robokin::bind {
+namespace {
+
+void bind_hooks(pybind11::module_& m) {
+  m.def(
+      "parallel_for_throwing",
+      [](long count, bool on_caller) {
+        // Each item takes a millisecond, so that every thread gets some; the items run on the
+        // calling thread (or on the other threads) throw. Returns how many items ran.
+        const auto caller = std::this_thread::get_id();
+        std::atomic<long> ran{0};
+        PythonProgress progress("parallel_for_throwing");
+        pybind11::gil_scoped_release release;
+        parallel_for(count, 1, [&](long, long) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+          ++ran;
+          if ((std::this_thread::get_id() == caller) == on_caller) throw std::runtime_error("thrown on purpose");
+        }, &progress);
+        return ran.load();
+      },
+      pybind11::arg("count"), pybind11::arg("on_caller"));
+  m.def("throw", [](const std::string& kind) {
+    if (kind == "kdl") throw KDL::Error_Not_Implemented();
+    if (kind == "bad_alloc") throw std::bad_alloc();
+    if (kind == "logic") throw std::logic_error("a logic error");
+    if (kind == "interrupted") throw Interrupted();
+    throw 42;  // not an exception class at all
+  });
+}
+
+void bind_references(py::module_& m) {
+  m.def(
+      "hessian_times",
+      [](const Chain& chain, py::handle q_obj, py::handle a_obj) {
+        const Vector q = as_vector(q_obj, "q", chain.dof()), a = as_vector(a_obj, "a", chain.dof());
+        Matrix6X J6(6, chain.dof()), out;
+        Rigid T;
+        chain.fk_jacobian(q.data(), T, J6.data());
+        hessian_times(chain, J6, a, out);
+        return to_numpy(out);
+      },
+      py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  using testing::KdlIkReference;
+  py::class_<KdlIkReference>(m, "KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
+      .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {
+             if (max_iter < 1) fail("max_iter: must be at least 1");
+             if (!(eps > 0)) fail("eps: must be positive");
+             return std::make_unique<KdlIkReference>(chain, solver, max_iter, eps);
+           }),
+           py::arg("chain"), py::arg("solver") = "lma", py::arg("max_iter") = 500, py::arg("eps") = 1e-5)
+      .def(
+          "solve",
+          [](KdlIkReference& k, py::handle target, py::handle q0_obj) {
+            const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
+            const Vector q0 = as_vector(q0_obj, "q0", k.dof());
+            Vector q;
+            const int code = k.solve(T, q0, q);
+            return py::make_tuple(to_numpy(q), code);
+          },
+          py::arg("target"), py::arg("q0"), "(q, KDL error code) for one target.");
+}
+
+}  // namespace
+}  // namespace robokin::bind
+
+PYBIND11_MODULE(_testing, m) {
+  m.doc() = "Hooks for robokin's tests and references for its benchmarks; not part of the API.";
+  pybind11::module_::import("robokin._core");  // its Chain type and exception translators
+  robokin::bind::bind_hooks(m);
+  robokin::bind::bind_references(m);
+}
