@@ -21,7 +21,7 @@ setup: $(VENV)/.installed
 # The system packages are checked again when their list changes (a venv made before keeps working).
 $(VENV)/.installed: $(VENV)/.base $(SOURCES) scripts/install-system-deps.sh
 	$(DEPS)
-	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test]"
+	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test,dask]"
 	touch $@
 
 # The simulator: a window when there is a display; otherwise the clover, headless, recorded to out/.
@@ -49,7 +49,7 @@ ASAN_VENV := .venv-asan
 $(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES) scripts/install-system-deps.sh
 	$(DEPS)
 	$(ASAN_VENV)/bin/python -m pip install -q --no-build-isolation \
-	  -Cbuild-dir=build/asan -Ccmake.define.ROBOKIN_SANITIZE=ON -Ccmake.build-type=RelWithDebInfo ".[sim,plot,test]"
+	  -Cbuild-dir=build/asan -Ccmake.define.ROBOKIN_SANITIZE=ON -Ccmake.build-type=RelWithDebInfo ".[sim,plot,test,dask]"
 	touch $@
 
 test-asan: $(ASAN_VENV)/.installed

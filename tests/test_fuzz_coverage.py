@@ -20,6 +20,11 @@ from robokin import _core, demo, plots, plots_rrr3, rrr3_design
 MODULES = {"closed": rk.closed, "paths": rk.paths, "robots": rk.robots, "rrr3_design": rrr3_design,
            "plots": plots, "plots_rrr3": plots_rrr3, "demo": demo}
 MODULES.update({"traj": rk.traj, "pose": rk.pose})  # issue 13, part B
+import robokin.dask  # noqa: E402  (issue 16; rk.reachability is the function, the module is in sys.modules)
+import robokin.plots_reachability  # noqa: E402
+import sys  # noqa: E402
+MODULES.update({"reachability": sys.modules["robokin.reachability"], "plots_reachability": robokin.plots_reachability,
+                "dask": robokin.dask})
 MODEL_CLASSES = [rk.Chain, rk.RRR3, rk.IKSolver, _core.IKSolutions]
 # What the simulator takes from its user: the command line, key scripts, and scenes stepped by keys.
 SIM = {"sim.parse_args", "sim.parse_script", "sim.Rrr3Scene", "sim.RprScene", "sim.Scene.step", "sim.SerialScene",

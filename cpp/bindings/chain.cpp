@@ -218,10 +218,8 @@ void bind_chain(py::module_& m) {
       .def("_fk_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
       .def("_jacobian_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
-           py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).")
-      .def("__repr__", [](const Chain& c) {
-        return "Chain(dof=" + std::to_string(c.dof()) + ", joints='" + joint_types(c) + "')";
-      });
+           py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
+  // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }
 
 }  // namespace robokin::bind

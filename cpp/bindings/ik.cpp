@@ -117,6 +117,7 @@ IkBatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle
 
 // A solver bound to a chain and options: the per-call cost is the target and q0 only.
 struct BoundSolver {
+  py::object owner;  // the Python Chain, kept alive (also in a solver unpickled with its chain)
   const Chain* chain;
   IkOptions options;
   IkSolver solver;
@@ -124,8 +125,9 @@ struct BoundSolver {
   std::uint64_t seed = 0, calls = 0;
   std::mutex busy;  // the GIL may be released during a solve: one solve at a time
 
-  BoundSolver(const Chain& c, const IkOptions& o, py::handle seed_obj)
-      : chain(&c), options(o), solver(c, o), seeded(!seed_obj.is_none()), seed(seed_arg(seed_obj)) {}
+  BoundSolver(py::object c, const IkOptions& o, bool seeded_, std::uint64_t seed_, std::uint64_t calls_ = 0)
+      : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o), solver(*chain, o), seeded(seeded_),
+        seed(seed_), calls(calls_) {}
 
   IkResult solve(py::handle target, py::handle q0_obj) {
     const Target t = one_target(options.task, target);
@@ -144,6 +146,45 @@ struct BoundSolver {
     return checked(r);
   }
 };
+
+// Pickling: versioned state tuples (check_state, arrays.hpp).
+std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
+  check_state(t, 6, "IKSolver");  // (version, chain, options, seeded, seed, calls)
+  const IkOptions o = t[2].cast<IkOptions>();
+  o.validate();
+  return std::make_unique<BoundSolver>(py::reinterpret_borrow<py::object>(t[1]), o, t[3].cast<bool>(),
+                                       t[4].cast<std::uint64_t>(), t[5].cast<std::uint64_t>());
+}
+
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> state_array(py::handle obj, const char* name) {
+  auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) {
+    PyErr_Clear();
+    fail(std::string(name) + ": expected an array in the state");
+  }
+  return a;
+}
+
+IkBatchResult batch_from_state(const py::tuple& t) {
+  check_state(t, 7, "IKBatchResult");  // (version, q, success, iterations, attempts, error_p, error_r)
+  const auto q = state_array<double>(t[1], "q");
+  const auto success = state_array<bool>(t[2], "success");
+  const auto iterations = state_array<int>(t[3], "iterations"), attempts = state_array<int>(t[4], "attempts");
+  const auto ep = state_array<double>(t[5], "error_p"), er = state_array<double>(t[6], "error_r");
+  const py::ssize_t n = success.size();
+  if (q.ndim() != 2 || q.shape(0) != n || iterations.size() != n || attempts.size() != n || ep.size() != n ||
+      er.size() != n)
+    fail("IKBatchResult state: arrays of different lengths");
+  IkBatchResult r;
+  r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n, q.shape(1));
+  r.success = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(success.data(), n);
+  r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
+  r.attempts = Eigen::Map<const Eigen::ArrayXi>(attempts.data(), n);
+  r.error_p = Eigen::Map<const Vector>(ep.data(), n);
+  r.error_r = Eigen::Map<const Vector>(er.data(), n);
+  return r;
+}
 
 }  // namespace
 
@@ -173,6 +214,22 @@ void bind_ik(py::module_& m) {
       .def_readonly("error_p", &IkResult::error_p, "Position error at q (m).")
       .def_readonly("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
       .def("__bool__", [](const IkResult& r) { return r.success; })
+      .def(py::pickle(  // (version, q, success, iterations, attempts, error_p, error_r)
+          [](const IkResult& r) {
+            return py::make_tuple(kStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
+                                  r.error_r);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 7, "IKResult");
+            IkResult r;
+            r.q = as_vector(t[1], "q", -1, false);
+            r.success = t[2].cast<bool>();
+            r.iterations = t[3].cast<int>();
+            r.attempts = t[4].cast<int>();
+            r.error_p = t[5].cast<double>();
+            r.error_r = t[6].cast<double>();
+            return r;
+          }))
       .def("__repr__", [](py::handle self) {
         return repr_fields(self, {"success", "iterations", "attempts", "error_p", "error_r", "q"});
       });
@@ -185,6 +242,12 @@ void bind_ik(py::module_& m) {
   def_array(batch, "error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).");
   batch
       .def("__len__", [](const IkBatchResult& r) { return r.success.size(); })
+      .def(py::pickle(
+          [](py::handle self) {
+            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("success"), self.attr("iterations"),
+                                  self.attr("attempts"), self.attr("error_p"), self.attr("error_r"));
+          },
+          &batch_from_state))
       .def("__repr__", [](py::handle self) {
         return repr_fields(self, {"q", "success", "iterations", "attempts", "error_p", "error_r"});
       });
@@ -211,13 +274,19 @@ void bind_ik(py::module_& m) {
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
                           "thread for parallel solves (ik_batch is the parallel route).")
       .def(py::init([](const Chain& chain, py::handle seed, const py::kwargs& kwargs) {
-             return std::make_unique<BoundSolver>(chain, options_arg(kwargs), seed);
+             return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
+                                                  options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
       .def_property_readonly("options", [](const BoundSolver& b) { return b.options; }, "The solver's IKOptions (a copy).")
+      .def(py::pickle(  // (version, chain, options, seeded, seed, calls): a copy continues the seed sequence
+          [](const BoundSolver& b) {
+            return py::make_tuple(kStateVersion, b.owner, b.options, b.seeded, b.seed, b.calls);
+          },
+          &solver_from_state))
       .def("__repr__", [](py::handle self) {
         const std::string options = py::repr(self.attr("options")).cast<std::string>();
         return "IKSolver" + options.substr(options.find('('));

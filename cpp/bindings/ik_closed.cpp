@@ -7,6 +7,9 @@
 
 #include <pybind11/stl.h>
 
+#include <mutex>
+#include <set>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -235,6 +238,29 @@ void bind_ik_closed(py::module_& m) {
       .def_readonly("singular", &ClosedFormSolutions::singular,
                     "True at a singularity (postures coincide, or a joint is free: 0 was chosen).")
       .def_readonly("dof", &ClosedFormSolutions::dof)
+      .def(py::pickle(  // (version, dof, q (k, dof), postures, singular)
+          [](const ClosedFormSolutions& s) {
+            py::list postures;
+            for (const char* p : s.postures) postures.append(py::str(p));
+            return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 5, "IKSolutions");
+            // The labels are static strings in a solution: one interned copy of each label read back.
+            static std::set<std::string> labels;
+            static std::mutex labels_mutex;
+            ClosedFormSolutions s;
+            s.dof = t[1].cast<int>();
+            s.singular = t[4].cast<bool>();
+            const Array q = as_array(t[2], "q");
+            const py::sequence postures = t[3].cast<py::sequence>();
+            if (s.dof < 1 || q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof)
+              fail("IKSolutions state: q must have one row of dof values per posture");
+            std::lock_guard<std::mutex> lock(labels_mutex);
+            for (size_t k = 0; k < postures.size(); ++k)
+              s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str());
+            return s;
+          }))
       .def("__len__", &ClosedFormSolutions::count)
       .def(
           "nearest",

@@ -4,6 +4,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "robokin's C++ core (Eigen + Orocos KDL). Use it through the robokin package.";
   robokin::bind::bind_errors(m);
   robokin::bind::bind_chain(m);
+  robokin::bind::bind_chain_pickle(m);
   robokin::bind::bind_reach(m);
   robokin::bind::bind_rpr(m);
   robokin::bind::bind_rrr3(m);

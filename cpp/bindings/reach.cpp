@@ -74,6 +74,14 @@ void bind_reach(py::module_& m) {
       .def_readonly("converged", &ReachResult::converged, "True when the task error is below tol.")
       .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
       .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
+      .def(py::pickle(  // (version, q, converged, iterations, error)
+          [](const ReachResult& r) {
+            return py::make_tuple(kStateVersion, to_numpy(r.q), r.converged, r.iterations, r.error);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 5, "ReachResult");
+            return ReachResult{as_vector(t[1], "q", -1, false), t[2].cast<bool>(), t[3].cast<int>(), t[4].cast<double>()};
+          }))
       .def("__repr__", [](py::handle self) { return repr_fields(self, {"converged", "iterations", "error", "q"}); });
   py::class_<TrackResult> track_result(m, "TrackResult", "What tracking a path did, one row per path point.");
   def_array(track_result, "q", &TrackResult::q, "(K, dof) joints after each point.");
@@ -81,6 +89,28 @@ void bind_reach(py::module_& m) {
   def_array(track_result, "converged", &TrackResult::converged, "(K,) True where the point was reached within tol.");
   def_array(track_result, "iterations", &TrackResult::iterations, "(K,) Reach iterations per point.");
   track_result
+      .def(py::pickle(  // (version, q, error, converged, iterations)
+          [](py::handle self) {
+            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("error"), self.attr("converged"),
+                                  self.attr("iterations"));
+          },
+          [](const py::tuple& t) {
+            check_state(t, 5, "TrackResult");
+            const Array q = as_array(t[1], "q"), error = as_array(t[2], "error");
+            const auto converged = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(t[3]);
+            const auto iterations = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(t[4]);
+            if (!converged || !iterations || q.ndim() != 2 || error.size() != q.shape(0) ||
+                converged.size() != q.shape(0) || iterations.size() != q.shape(0))
+              fail("TrackResult state: arrays of different lengths");
+            const Eigen::Index n = q.shape(0);
+            TrackResult r;
+            r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n,
+                                                                                                         q.shape(1));
+            r.error = Eigen::Map<const Vector>(error.data(), n);
+            r.converged = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(converged.data(), n);
+            r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
+            return r;
+          }))
       .def("__repr__", [](py::handle self) { return repr_fields(self, {"q", "error", "converged", "iterations"}); });
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
         py::arg("nullspace") = py::none(),

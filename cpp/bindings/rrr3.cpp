@@ -258,6 +258,20 @@ void bind_rrr3(py::module_& m) {
       .def_readonly("converged", &RRR3Newton::converged)
       .def_readonly("iterations", &RRR3Newton::iterations)
       .def_readonly("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
+      .def(py::pickle(  // (version, alpha, beta, converged, iterations, error)
+          [](const RRR3Newton& r) {
+            return py::make_tuple(kStateVersion, vec3(r.alpha), vec3(r.beta), r.converged, r.iterations, r.error);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 6, "RRR3Newton");
+            RRR3Newton r;
+            r.alpha = as_vector(t[1], "alpha", 3, false);
+            r.beta = as_vector(t[2], "beta", 3, false);
+            r.converged = t[3].cast<bool>();
+            r.iterations = t[4].cast<int>();
+            r.error = t[5].cast<double>();
+            return r;
+          }))
       .def("__iter__", [](const RRR3Newton& r) { return py::iter(py::make_tuple(vec3(r.alpha), vec3(r.beta))); })
       .def("__repr__", [](const RRR3Newton& r) {
         return "RRR3Newton(converged=" + std::string(r.converged ? "True" : "False") +
@@ -270,6 +284,17 @@ void bind_rrr3(py::module_& m) {
       .def_readonly("converged", &RRR3Fk::converged)
       .def_readonly("iterations", &RRR3Fk::iterations)
       .def_readonly("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
+      .def(py::pickle(  // (version, pose, converged, iterations, error)
+          [](const RRR3Fk& r) { return py::make_tuple(kStateVersion, vec3(r.pose), r.converged, r.iterations, r.error); },
+          [](const py::tuple& t) {
+            check_state(t, 5, "RRR3Fk");
+            RRR3Fk r;
+            r.pose = as_vector(t[1], "pose", 3, false);
+            r.converged = t[2].cast<bool>();
+            r.iterations = t[3].cast<int>();
+            r.error = t[4].cast<double>();
+            return r;
+          }))
       .def("__repr__", [](const RRR3Fk& r) {
         return "RRR3Fk(converged=" + std::string(r.converged ? "True" : "False") +
                ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
@@ -290,6 +315,16 @@ void bind_rrr3(py::module_& m) {
       .def_property_readonly("lines", [](const RRR3Singularity& s) -> py::object {
         return s.lines.empty() ? py::object(py::none()) : py::object(py::str(s.lines));
       }, "For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.")
+      .def(py::pickle(  // (version, kind, det_a, det_b, det_a_norm, det_b_norm, distance, leg, lines)
+          [](const RRR3Singularity& s) {
+            return py::make_tuple(kStateVersion, s.kind, s.det_a, s.det_b, s.det_a_norm, s.det_b_norm, s.distance, s.leg, s.lines);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 9, "RRR3Singularity");
+            return RRR3Singularity{t[1].cast<std::string>(), t[2].cast<double>(), t[3].cast<double>(),
+                                   t[4].cast<double>(),      t[5].cast<double>(), t[6].cast<double>(),
+                                   t[7].cast<int>(),         t[8].cast<std::string>()};
+          }))
       .def("__repr__", [](const RRR3Singularity& s) {
         return "RRR3Singularity(kind='" + s.kind + "', det_a_norm=" + std::to_string(s.det_a_norm) +
                ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
@@ -307,6 +342,27 @@ void bind_rrr3(py::module_& m) {
       .def_property_readonly("distance", [](const RRR3Plan& p) { return to_numpy(p.distance); },
                              "Distance to parallel singularities (inverse condition number of A) along the path.")
       .def_readonly("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
+      .def(py::pickle(  // (version, poses, alpha, det_a_norm, det_b_norm, distance, sign, feasible)
+          [](const RRR3Plan& p) {
+            return py::make_tuple(kStateVersion, to_numpy(Eigen::MatrixXd(p.poses)), to_numpy(Eigen::MatrixXd(p.alpha)),
+                                  to_numpy(p.det_a_norm), to_numpy(p.det_b_norm), to_numpy(p.distance), p.sign,
+                                  p.feasible);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 8, "RRR3Plan");
+            RRR3Plan p;
+            const Array poses = as_array(t[1], "poses"), alpha = as_array(t[2], "alpha");
+            if (poses.ndim() != 2 || poses.shape(1) != 3 || alpha.ndim() != 2 || alpha.shape(1) != 3)
+              fail("RRR3Plan state: poses and alpha must be (K, 3)");
+            p.poses = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(poses.data(), poses.shape(0), 3);
+            p.alpha = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(alpha.data(), alpha.shape(0), 3);
+            p.det_a_norm = as_vector(t[3], "det_a_norm", -1, false);
+            p.det_b_norm = as_vector(t[4], "det_b_norm", -1, false);
+            p.distance = as_vector(t[5], "distance", -1, false);
+            p.sign = t[6].cast<int>();
+            p.feasible = t[7].cast<bool>();
+            return p;
+          }))
       .def_readonly("feasible", &RRR3Plan::feasible,
                     "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
       .def("__repr__", [](const RRR3Plan& p) {
@@ -329,6 +385,27 @@ void bind_rrr3(py::module_& m) {
         return py::make_tuple(w.x0, w.x0 + w.n * w.h, w.y0, w.y0 + w.n * w.h);
       }, "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.")
       .def_readonly("cell_size", &RRR3Workspace::h)
+      .def(py::pickle(  // (version, n, x0, y0, h, cells (bytes), reachable_area, regular_area, region_area)
+          [](const RRR3Workspace& w) {
+            return py::make_tuple(kStateVersion, w.n, w.x0, w.y0, w.h,
+                                  py::bytes(reinterpret_cast<const char*>(w.cells.data()), w.cells.size()),
+                                  w.reachable_area, w.regular_area, w.region_area);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 9, "RRR3Workspace");
+            RRR3Workspace w;
+            w.n = t[1].cast<long>();
+            w.x0 = t[2].cast<double>();
+            w.y0 = t[3].cast<double>();
+            w.h = t[4].cast<double>();
+            const std::string cells = t[5].cast<std::string>();
+            if (w.n < 0 || cells.size() != static_cast<size_t>(w.n * w.n)) fail("RRR3Workspace state: n * n cells expected");
+            w.cells.assign(cells.begin(), cells.end());
+            w.reachable_area = t[6].cast<double>();
+            w.regular_area = t[7].cast<double>();
+            w.region_area = t[8].cast<double>();
+            return w;
+          }))
       .def_readonly("reachable_area", &RRR3Workspace::reachable_area, "Area of the reachable cells (m^2).")
       .def_readonly("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
       .def_readonly("area", &RRR3Workspace::region_area,
@@ -438,6 +515,22 @@ void bind_rrr3(py::module_& m) {
            "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
       .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())
+      .def(py::pickle(  // (version, base_radius, platform_radius, l1, l2)
+          [](const RRR3& r) { return py::make_tuple(kStateVersion, r.base_radius(), r.platform_radius(), r.l1(), r.l2()); },
+          [](const py::tuple& t) {
+            check_state(t, 5, "RRR3");
+            return RRR3(t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>(), t[4].cast<double>());
+          }))
+      .def(
+          "__eq__",
+          [](const RRR3& a, const RRR3& b) {
+            return a.base_radius() == b.base_radius() && a.platform_radius() == b.platform_radius() &&
+                   a.l1() == b.l1() && a.l2() == b.l2();
+          },
+          py::is_operator())
+      .def("__hash__", [](const RRR3& r) {
+        return py::hash(py::make_tuple(r.base_radius(), r.platform_radius(), r.l1(), r.l2()));
+      })
       .def("__repr__", [](const RRR3& r) {
         return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
                exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";

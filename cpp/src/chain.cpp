@@ -24,12 +24,6 @@
 namespace robokin {
 namespace {
 
-KDL::Frame to_kdl(const Matrix4& m) {
-  return KDL::Frame(KDL::Rotation(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0),
-                                  m(2, 1), m(2, 2)),
-                    KDL::Vector(m(0, 3), m(1, 3), m(2, 3)));
-}
-
 KDL::JntArray to_jnt(const Vector& q) {
   KDL::JntArray j(static_cast<unsigned>(q.size()));
   j.data = q;
@@ -97,42 +91,49 @@ Chain::Chain(KDL::Chain chain, const Vector& lower, const Vector& upper)
     : kdl_(std::move(chain)), dof_(static_cast<int>(kdl_.getNrOfJoints())), lower_(lower), upper_(upper) {
   if (dof_ == 0) throw std::invalid_argument("chain: a chain needs at least one joint");
   check_limits(dof_, lower_, upper_);
+  for (const KDL::Segment& s : kdl_.segments) records_.push_back(SegmentRecord::of(s));
   build_fast_path();
 }
 
 Chain Chain::from_dh(const std::vector<DHRow>& rows, bool modified, const Matrix4& tool,
                      const Vector& lower, const Vector& upper) {
-  KDL::Chain c;
+  std::vector<SegmentRecord> records;
   for (const DHRow& r : rows) {
-    const KDL::Joint joint(r.prismatic ? KDL::Joint::TransZ : KDL::Joint::RotZ);
+    SegmentRecord joint;
+    joint.type = r.prismatic ? KDL::Joint::TransZ : KDL::Joint::RotZ;
     if (!modified) {
       // Rz(q) Rz(theta) Tz(d) Tx(a) Rx(alpha): the joint adds q to theta (or d; Tz commutes with Rz).
-      c.addSegment(KDL::Segment(joint, KDL::Frame::DH(r.a, r.alpha, r.d, r.theta)));
+      joint.tip = Rigid::from_kdl(KDL::Frame::DH(r.a, r.alpha, r.d, r.theta)).matrix();
     } else {
       // Rx(alpha) Tx(a) is fixed and comes before the joint: a segment of its own.
-      if (r.a != 0.0 || r.alpha != 0.0)
-        c.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::Fixed),
-                                  KDL::Frame(KDL::Rotation::RotX(r.alpha), KDL::Vector(r.a, 0, 0))));
-      c.addSegment(KDL::Segment(joint, KDL::Frame(KDL::Rotation::RotZ(r.theta), KDL::Vector(0, 0, r.d))));
+      if (r.a != 0.0 || r.alpha != 0.0) {
+        SegmentRecord fixed;
+        fixed.tip = Rigid::from_kdl(KDL::Frame(KDL::Rotation::RotX(r.alpha), KDL::Vector(r.a, 0, 0))).matrix();
+        records.push_back(fixed);
+      }
+      joint.tip = Rigid::from_kdl(KDL::Frame(KDL::Rotation::RotZ(r.theta), KDL::Vector(0, 0, r.d))).matrix();
     }
+    records.push_back(joint);
   }
-  if (!tool.isIdentity(0.0)) c.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::Fixed), to_kdl(tool)));
-  return Chain(std::move(c), lower, upper);
+  if (!tool.isIdentity(0.0)) records.push_back(SegmentRecord{"NoName", "NoName", KDL::Joint::Fixed, {}, {}, tool});
+  Chain chain = from_records(records, lower, upper);
+  chain.dh_ = DHTable{rows, modified, tool};
+  return chain;
 }
 
 Chain Chain::from_segments(const std::vector<SegmentSpec>& segments, const Matrix4& tool,
                            const Vector& lower, const Vector& upper) {
-  KDL::Chain c;
+  std::vector<SegmentRecord> records;
   for (const SegmentSpec& s : segments) {
-    const KDL::Vector axis(s.axis.x(), s.axis.y(), s.axis.z());
-    const KDL::Vector origin = KDL::Vector::Zero();
-    KDL::Joint joint(KDL::Joint::Fixed);
-    if (s.type == JointType::Revolute) joint = KDL::Joint(origin, axis, KDL::Joint::RotAxis);
-    if (s.type == JointType::Prismatic) joint = KDL::Joint(origin, axis, KDL::Joint::TransAxis);
-    c.addSegment(KDL::Segment(joint, to_kdl(s.tip)));
+    SegmentRecord r;
+    if (s.type == JointType::Revolute) r.type = KDL::Joint::RotAxis;
+    if (s.type == JointType::Prismatic) r.type = KDL::Joint::TransAxis;
+    r.axis = s.axis;
+    r.tip = s.tip;
+    records.push_back(r);
   }
-  if (!tool.isIdentity(0.0)) c.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::Fixed), to_kdl(tool)));
-  return Chain(std::move(c), lower, upper);
+  if (!tool.isIdentity(0.0)) records.push_back(SegmentRecord{"NoName", "NoName", KDL::Joint::Fixed, {}, {}, tool});
+  return from_records(records, lower, upper);
 }
 
 // Rewrites the chain as base * Mz(s_1 q_1) * after_1 * ... * Mz(s_n q_n) * after_n, where Mz is a

@@ -134,9 +134,14 @@ KDL::Frame origin_of(const urdf::Joint& j) {
 
 // The KDL joint and segment of a URDF joint, as kdl_parser builds them: the joint's origin and axis
 // are expressed in the parent link's frame, the segment's tip is the joint frame. Floating and
-// planar joints become fixed in the tree (KDL has no such joints); the chain refuses them.
-KDL::Segment segment_of(const urdf::Joint& j) {
+// planar joints become fixed in the tree (KDL has no such joints); the chain refuses them. The
+// record keeps the constructors' arguments (a pickled chain is rebuilt from them bit for bit).
+SegmentRecord record_of(const urdf::Joint& j) {
   const KDL::Frame F = origin_of(j);
+  SegmentRecord r;
+  r.name = j.child_link_name;
+  r.joint_name = j.name;
+  r.tip = Rigid::from_kdl(F).matrix();
   switch (j.type) {
     case urdf::Joint::REVOLUTE:
     case urdf::Joint::CONTINUOUS:
@@ -147,12 +152,32 @@ KDL::Segment segment_of(const urdf::Joint& j) {
       // urdfdom accepts <axis xyz="0 0 0">; KDL turns an axis shorter than its epsilon (1e-6) into
       // NaN poses.
       if (!(norm > 1e-6)) bad("path_or_string: " + joint_label(j) + " has a zero axis (norm <= 1e-6)");
-      const auto kind = j.type == urdf::Joint::PRISMATIC ? KDL::Joint::TransAxis : KDL::Joint::RotAxis;
-      return KDL::Segment(j.child_link_name, KDL::Joint(j.name, F.p, F.M * axis, kind), F);
+      r.type = j.type == urdf::Joint::PRISMATIC ? KDL::Joint::TransAxis : KDL::Joint::RotAxis;
+      const KDL::Vector a = F.M * axis;
+      r.origin = Eigen::Vector3d(F.p.x(), F.p.y(), F.p.z());
+      r.axis = Eigen::Vector3d(a.x(), a.y(), a.z());
+      return r;
     }
     default:
-      return KDL::Segment(j.child_link_name, KDL::Joint(j.name, KDL::Joint::Fixed), F);
+      r.type = KDL::Joint::Fixed;
+      return r;
   }
+}
+
+KDL::Segment segment_of(const urdf::Joint& j) { return record_of(j).segment(); }
+
+// Whether two KDL segments are the same numbers (what the chain's evaluation reads from them).
+bool same_segment(const KDL::Segment& a, const KDL::Segment& b) {
+  if (a.getJoint().getType() != b.getJoint().getType()) return false;
+  const KDL::Vector xa = a.getJoint().JointAxis(), xb = b.getJoint().JointAxis();
+  const KDL::Vector oa = a.getJoint().JointOrigin(), ob = b.getJoint().JointOrigin();
+  for (int i = 0; i < 3; ++i)
+    if (xa(i) != xb(i) || oa(i) != ob(i)) return false;
+  auto same = [](const KDL::Frame& f, const KDL::Frame& g) {
+    const Rigid x = Rigid::from_kdl(f), y = Rigid::from_kdl(g);
+    return x.R == y.R && x.p == y.p;  // exactly (KDL's operator== may be built with a tolerance)
+  };
+  return same(a.pose(0.0), b.pose(0.0)) && same(a.pose(1.0), b.pose(1.0)) && same(a.getFrameToTip(), b.getFrameToTip());
 }
 
 // Every joint of the file: one parent per link (urdfdom keeps the last joint naming a child and
@@ -213,9 +238,18 @@ Chain chain_from_urdf(const std::string& xml, const std::string& base, const std
   const int n = static_cast<int>(chain.getNrOfJoints());
   Vector lower(std::max(n, 0)), upper(std::max(n, 0));
   int k = 0;
+  std::vector<SegmentRecord> records;
   for (const KDL::Segment& seg : chain.segments) {
     // Joints between base and tip, also fixed ones (a floating or planar joint became fixed).
     const urdf::JointConstSharedPtr joint = model->getJoint(seg.getJoint().getName());
+    // A segment of the tree is rebuilt from its joint's record; one KDL made on the way up from
+    // base (base below the common ancestor) is read back from KDL's accessors.
+    SegmentRecord record = SegmentRecord::of(seg);
+    if (joint) {
+      const SegmentRecord own = record_of(*joint);
+      if (same_segment(own.segment(), seg)) record = own;
+    }
+    records.push_back(record);
     if (joint) {
       if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR)
         bad("path_or_string: " + joint_label(*joint) + " is " + type_name(joint->type) +
@@ -246,7 +280,7 @@ Chain chain_from_urdf(const std::string& xml, const std::string& base, const std
   }
   if (n == 0) bad("base, tip: no moving joint between '" + base + "' and '" + tip + "'");
   if (warnings) warnings->insert(warnings->end(), notes.begin(), notes.end());
-  return Chain(std::move(chain), lower, upper);
+  return Chain::from_records(records, lower, upper);
 }
 
 }  // namespace robokin

@@ -58,3 +58,8 @@ from .errors import URDFWarning  # noqa: E402
 from .ik import IK_DEFAULTS  # noqa: E402
 
 __all__ += ["IK_DEFAULTS", "URDFWarning"]
+
+# Issue 16: reachability maps (robokin.dask, the [dask] extra, is imported on demand).
+from .reachability import ReachabilityMap, reachability  # noqa: E402
+
+__all__ += ["ReachabilityMap", "reachability"]

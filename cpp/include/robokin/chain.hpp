@@ -42,6 +42,27 @@ struct SegmentSpec {
   Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
 };
 
+// How one KDL segment was made: the arguments of its constructors. A chain keeps one per segment so
+// that it can be rebuilt bit for bit (pickling, copies): KDL normalises a joint axis when it is
+// constructed and keeps the tip relative to the joint, so its accessors alone need not give back
+// the same numbers.
+struct SegmentRecord {
+  std::string name = "NoName", joint_name = "NoName";
+  int type = 8;  // a KDL::Joint::JointType (8: Fixed)
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // RotAxis / TransAxis joints only
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // as given (KDL normalises it)
+  Matrix4 tip = Matrix4::Identity();                 // the frame given to KDL::Segment
+  KDL::Segment segment() const;  // throws std::invalid_argument for a bad type or axis
+  static SegmentRecord of(const KDL::Segment& segment);  // from KDL's accessors (to within rounding)
+};
+
+// The DH table of a chain built from one (kept to show it and to rebuild the chain from it).
+struct DHTable {
+  std::vector<DHRow> rows;
+  bool modified = false;
+  Matrix4 tool = Matrix4::Identity();
+};
+
 template <int N>
 struct Lanes;  // N configurations evaluated together (chain.cpp)
 
@@ -52,8 +73,19 @@ class Chain {
                        const Vector& lower, const Vector& upper);
   static Chain from_segments(const std::vector<SegmentSpec>& segments, const Matrix4& tool,
                              const Vector& lower, const Vector& upper);
-  // Wraps an existing KDL chain (e.g. parsed from URDF); limits of size dof or empty for none.
+  // The chain whose segments are made from `records` (bit for bit the chain they were taken from).
+  static Chain from_records(const std::vector<SegmentRecord>& records, const Vector& lower, const Vector& upper);
+  // Wraps an existing KDL chain; limits of size dof or empty for none. Its records are read back
+  // from KDL (to within rounding): from_records is the exact route.
   Chain(KDL::Chain chain, const Vector& lower, const Vector& upper);
+
+  // What the chain was built from: one record per KDL segment; the DH table (null unless from_dh).
+  const std::vector<SegmentRecord>& records() const { return records_; }
+  const DHTable* dh() const { return dh_.rows.empty() ? nullptr : &dh_; }
+  // Same kinematics: the same joint types, limits and constant frames of the evaluation path,
+  // bit for bit (names and how fixed frames were split into segments do not matter).
+  bool same_kinematics(const Chain& other) const;
+  std::size_t kinematics_hash() const;  // equal for chains of the same kinematics
 
   int dof() const { return dof_; }
   const Vector& lower() const { return lower_; }
@@ -94,6 +126,8 @@ class Chain {
   void build_fast_path();
 
   KDL::Chain kdl_;
+  std::vector<SegmentRecord> records_;
+  DHTable dh_;
   int dof_ = 0;
   Vector lower_, upper_;
   Rigid base_;  // fixed frame before the first joint's motion

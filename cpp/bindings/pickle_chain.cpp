@@ -1,0 +1,156 @@
+// Chain pickling and copies (a versioned state tuple rebuilt bit for bit), == on the kinematics,
+// hash, and repr (added to the class registered by chain.cpp).
+#include "arrays.hpp"
+#include "bindings.hpp"
+
+#include "robokin/chain.hpp"
+
+#include <pybind11/stl.h>
+
+#include <kdl/joint.hpp>
+
+#include <string>
+#include <vector>
+
+namespace robokin::bind {
+namespace {
+
+constexpr int kChainStateVersion = 1;
+
+py::tuple floats(const double* v, int count) {
+  py::tuple t(count);
+  for (int i = 0; i < count; ++i) t[i] = py::float_(v[i]);
+  return t;
+}
+
+py::tuple matrix_rows(const Matrix4& m) {
+  py::tuple t(16);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) t[4 * r + c] = py::float_(m(r, c));
+  return t;
+}
+
+// A state entry of `count` floats (exact: Python floats are doubles).
+std::vector<double> floats_of(py::handle obj, size_t count, const char* what) {
+  std::vector<double> v;
+  try {
+    v = py::cast<std::vector<double>>(obj);
+  } catch (const py::cast_error&) {
+    fail(std::string("Chain state: ") + what + " is not a sequence of numbers");
+  }
+  if (count && v.size() != count)
+    fail(std::string("Chain state: ") + what + " has " + std::to_string(v.size()) + " numbers, expected " +
+         std::to_string(count));
+  return v;
+}
+
+Matrix4 matrix_of(py::handle obj, const char* what) {
+  const std::vector<double> v = floats_of(obj, 16, what);
+  Matrix4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
+  return m;
+}
+
+Vector vector_of(py::handle obj, const char* what) {
+  const std::vector<double> v = floats_of(obj, 0, what);
+  return Eigen::Map<const Vector>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+// ("robokin.Chain", version, "dh", rows, modified, tool, lower, upper) for a chain built from a DH
+// table, ("robokin.Chain", version, "segments", records, lower, upper) otherwise; a record is
+// (segment name, joint name, KDL joint type, origin (3), axis (3), tip (16, row-major)).
+py::tuple chain_state(const Chain& c) {
+  const py::tuple lower = floats(c.lower().data(), c.dof()), upper = floats(c.upper().data(), c.dof());
+  if (const DHTable* dh = c.dh()) {
+    py::list rows;
+    for (const DHRow& r : dh->rows)
+      rows.append(py::make_tuple(r.a, r.alpha, r.d, r.theta, r.prismatic ? "P" : "R"));
+    return py::make_tuple("robokin.Chain", kChainStateVersion, "dh", py::tuple(rows), dh->modified,
+                          matrix_rows(dh->tool), lower, upper);
+  }
+  py::list records;
+  for (const SegmentRecord& r : c.records())
+    records.append(py::make_tuple(r.name, r.joint_name, r.type, floats(r.origin.data(), 3), floats(r.axis.data(), 3),
+                                  matrix_rows(r.tip)));
+  return py::make_tuple("robokin.Chain", kChainStateVersion, "segments", py::tuple(records), lower, upper);
+}
+
+Chain chain_from_state(const py::tuple& t) {
+  if (t.size() < 3 || !py::isinstance<py::str>(t[0]) || t[0].cast<std::string>() != "robokin.Chain")
+    fail("Chain state: not a robokin.Chain state");
+  if (!py::isinstance<py::int_>(t[1]) || t[1].cast<long>() != kChainStateVersion)
+    fail("Chain state: version " + py::repr(t[1]).cast<std::string>() + " is not supported (this robokin reads " +
+         std::to_string(kChainStateVersion) + ")");
+  const std::string kind = py::isinstance<py::str>(t[2]) ? t[2].cast<std::string>() : "";
+  if (kind == "dh" && t.size() == 8) {
+    std::vector<DHRow> rows;
+    for (py::handle row : py::reinterpret_borrow<py::sequence>(t[3])) {
+      const py::sequence r = py::reinterpret_borrow<py::sequence>(row);
+      if (r.size() != 5) fail("Chain state: a DH row is not (a, alpha, d, theta, joint)");
+      const std::vector<double> v = floats_of(py::make_tuple(r[0], r[1], r[2], r[3]), 4, "a DH row");
+      DHRow d{v[0], v[1], v[2], v[3], py::str(r[4]).cast<std::string>() == "P"};
+      rows.push_back(d);
+    }
+    return Chain::from_dh(rows, t[4].cast<bool>(), matrix_of(t[5], "tool"), vector_of(t[6], "lower"),
+                          vector_of(t[7], "upper"));
+  }
+  if (kind == "segments" && t.size() == 6) {
+    std::vector<SegmentRecord> records;
+    for (py::handle rec : py::reinterpret_borrow<py::sequence>(t[3])) {
+      const py::sequence r = py::reinterpret_borrow<py::sequence>(rec);
+      if (r.size() != 6) fail("Chain state: a segment record is not (name, joint, type, origin, axis, tip)");
+      SegmentRecord s;
+      s.name = py::str(r[0]).cast<std::string>();
+      s.joint_name = py::str(r[1]).cast<std::string>();
+      s.type = r[2].cast<int>();
+      const std::vector<double> o = floats_of(r[3], 3, "a joint origin"), a = floats_of(r[4], 3, "a joint axis");
+      s.origin = Eigen::Vector3d(o[0], o[1], o[2]);
+      s.axis = Eigen::Vector3d(a[0], a[1], a[2]);
+      s.tip = matrix_of(r[5], "a segment tip");
+      records.push_back(s);
+    }
+    return Chain::from_records(records, vector_of(t[4], "lower"), vector_of(t[5], "upper"));
+  }
+  fail("Chain state: unknown layout '" + kind + "'");
+}
+
+std::string number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
+
+std::string chain_repr(const Chain& c) {
+  std::string joints;
+  for (int i = 0; i < c.dof(); ++i) joints += c.prismatic(i) ? 'P' : 'R';
+  std::string s = "Chain(dof=" + std::to_string(c.dof()) + ", joints='" + joints + "'";
+  if (const DHTable* dh = c.dh()) {
+    s += std::string(", ") + (dh->modified ? "modified " : "") + "dh=[";
+    for (size_t i = 0; i < dh->rows.size(); ++i) {
+      const DHRow& r = dh->rows[i];
+      s += std::string(i ? ",\n    " : "\n    ") + "(" + number(r.a) + ", " + number(r.alpha) + ", " + number(r.d) +
+           ", " + number(r.theta) + ", '" + (r.prismatic ? "P" : "R") + "')";
+    }
+    s += "]";
+    if (!dh->tool.isIdentity(0.0)) s += ", tool";
+  }
+  return s + ")";
+}
+
+}  // namespace
+
+void bind_chain_pickle(py::module_& m) {
+  auto cls = py::reinterpret_borrow<py::class_<Chain>>(m.attr("Chain"));
+  cls.def(py::pickle([](const Chain& c) { return chain_state(c); },
+                     [](const py::tuple& t) {
+                       try {
+                         return chain_from_state(t);
+                       } catch (const py::cast_error&) {
+                         fail("Chain state: malformed");
+                       }
+                     }));
+  cls.def(
+      "__eq__", [](const Chain& a, const Chain& b) { return a.same_kinematics(b); }, py::is_operator(),
+      "Same kinematics: joint types, limits and constant frames equal bit for bit (however built).");
+  cls.def("__hash__", [](const Chain& c) { return c.kinematics_hash(); });
+  cls.def("__repr__", &chain_repr);
+}
+
+}  // namespace robokin::bind

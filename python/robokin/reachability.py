@@ -1,0 +1,257 @@
+"""Reachability (capability) maps of serial arms: for each voxel of a grid, K tool orientations
+are sampled and solved with the core's batch IK (``robokin.ik_batch``: the GIL released, every
+core); a voxel's reachability index is the fraction solved, and its best manipulability the
+largest ``chain.manipulability`` over the solutions found.
+
+Determinism: target ``g = voxel * K + j`` (voxel in C order of the grid, j the orientation) draws
+its orientation from a counter-based generator of ``(seed, g)`` and its IK restarts from
+``seed + g``. Any split of the grid into blocks (threads, chunks, Dask workers) therefore gives
+the same bits. The IK runs with an explicit number of restarts and no time budget, so nothing
+depends on the machine's speed.
+
+Tasks: ``"pose"`` (3-D grid, K random rotations, uniform on SO(3)), ``"position"`` (3-D grid,
+orientation free: K must be 1), ``"xyphi"`` (planar arms: 2-D grid, K angles phi uniform in
+[-pi, pi)), ``"xy"`` (2-D grid, K = 1).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Tuple
+
+import numpy as np
+
+from . import _core
+from ._checks import real_array
+from .ik import ik_batch
+from .pose import from_quaternion
+
+__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ReachabilityMap", "grid", "reachability"]
+
+#: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget).
+DEFAULTS = {"method": "lm", "tol_p": 1e-6, "tol_r": 1e-6, "max_iter": 100, "restarts": 10}
+#: Voxels per batch IK call of :func:`reachability` (bounds the memory, not the result).
+BLOCK = 2048
+#: The largest grid accepted (voxels) and the most orientations per voxel.
+MAX_VOXELS = 10**8
+MAX_ORIENTATIONS = 10**5
+
+_PLANAR = ("xy", "xyphi")
+_TASKS = ("pose", "position", "xy", "xyphi")
+_MASK = np.uint64(0xFFFFFFFFFFFFFFFF)
+
+
+@dataclass(frozen=True)
+class ReachabilityMap:
+    """A reachability map on a regular grid (2-D for the planar tasks, 3-D otherwise).
+
+    Attributes:
+        index: Per voxel, the fraction of the K orientations solved, in [0, 1]; shape
+            ``(nx, ny)`` or ``(nx, ny, nz)``, element ``[i, j, k]`` at ``(x[i], y[j], z[k])``.
+        manipulability: Per voxel, the best ``chain.manipulability`` (Yoshikawa, the task's rows)
+            among the solutions found; 0 where none was found.
+        axes: The voxel centres along each axis, ``(x, y)`` or ``(x, y, z)``.
+        resolution: The voxel edge (m).
+        orientations: K, orientations sampled per voxel.
+        seed: The seed of the orientations and of the IK restarts.
+        task: The IK task (``"pose"``, ``"position"``, ``"xy"`` or ``"xyphi"``).
+    """
+
+    index: np.ndarray
+    manipulability: np.ndarray
+    axes: Tuple[np.ndarray, ...]
+    resolution: float
+    orientations: int
+    seed: int
+    task: str
+
+    @property
+    def extent(self) -> Tuple[Tuple[float, float], ...]:
+        """``((x_lo, x_hi), ...)``: the outer faces of the grid (m), for ``imshow``."""
+        h = self.resolution / 2
+        return tuple((float(a[0] - h), float(a[-1] + h)) for a in self.axes)
+
+    @property
+    def reachable_volume(self) -> float:
+        """Volume (area for a planar map) of the voxels with a non-zero index (m^3 or m^2)."""
+        return float(np.count_nonzero(self.index)) * self.resolution ** len(self.axes)
+
+
+def grid(bounds, resolution) -> Tuple[np.ndarray, ...]:
+    """Voxel centres along each axis for ``bounds`` ((2, 2) or (3, 2): ``(lo, hi)`` per axis, m)
+    at ``resolution`` (m): ``ceil((hi - lo) / resolution)`` voxels per axis (one for ``lo == hi``),
+    centred on the interval."""
+    b = _bounds(bounds)
+    h = _resolution(resolution)
+    counts = [max(1.0, math.ceil((hi - lo) / h - 1e-9)) for lo, hi in b]
+    if math.prod(counts) > MAX_VOXELS:
+        raise ValueError(f"resolution: the grid would have {math.prod(counts):.3g} voxels (at most {MAX_VOXELS})")
+    return tuple((lo + hi) / 2 + (np.arange(int(n)) - (n - 1) / 2) * h for (lo, hi), n in zip(b, counts))
+
+
+def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50, seed: int = 0, task: str = "pose",
+                 q0=None, **ik_options) -> ReachabilityMap:
+    """The reachability map of ``chain`` over a grid.
+
+    Args:
+        chain: The serial chain; its joint limits are respected.
+        bounds: ``((x_lo, x_hi), (y_lo, y_hi), (z_lo, z_hi))`` (m); ``((x_lo, x_hi), (y_lo, y_hi))``
+            for the planar tasks.
+        resolution: Voxel edge (m).
+        orientations: K, the tool orientations sampled per voxel (1 for ``"position"``, ``"xy"``).
+        seed: Seed of the orientations and of the IK restarts (an int in ``[0, 2**64)``).
+        task: ``"pose"``, ``"position"``, ``"xyphi"`` or ``"xy"`` (see the module docstring).
+        q0: IK start for every target, (dof,); None: the middle of each joint's finite limits, 0
+            for unlimited joints.
+        ik_options: ``method``, ``tol_p``, ``tol_r``, ``max_iter``, ``restarts``, ``damping`` of
+            :func:`robokin.ik_batch`; the defaults are :data:`DEFAULTS` (tolerances 1e-6,
+            10 restarts). A time budget (``timeout``) is refused: it would make the map depend
+            on the machine's speed.
+
+    Returns:
+        ReachabilityMap.
+
+    Raises:
+        ValueError: For bad bounds, resolution, orientations, seed, task, q0 or IK options (the
+            message names the argument).
+    """
+    plan = _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options)
+    count = plan.voxels
+    index = np.empty(count)
+    manip = np.empty(count)
+    for v0 in range(0, count, BLOCK):
+        n = min(BLOCK, count - v0)
+        index[v0:v0 + n], manip[v0:v0 + n] = plan.block(v0, n)
+    return plan.result(index, manip)
+
+
+# --- what robokin.dask shares: the checked arguments and one block of voxels ---------------------
+
+@dataclass(frozen=True)
+class _Plan:
+    chain: _core.Chain
+    axes: Tuple[np.ndarray, ...]
+    resolution: float
+    orientations: int
+    seed: int
+    task: str
+    q0: np.ndarray
+    options: dict
+
+    @property
+    def shape(self) -> Tuple[int, ...]:
+        return tuple(len(a) for a in self.axes)
+
+    @property
+    def voxels(self) -> int:
+        return math.prod(self.shape)
+
+    def block(self, first: int, count: int) -> Tuple[np.ndarray, np.ndarray]:
+        """(index, best manipulability) of the voxels ``first .. first + count - 1`` (C order)."""
+        K = self.orientations
+        cells = np.unravel_index(np.arange(first, first + count), self.shape)
+        centres = np.column_stack([a[c] for a, c in zip(self.axes, cells)])
+        g0 = first * K
+        targets = _targets(self.task, np.repeat(centres, K, axis=0), _uniforms(self.seed, g0, count * K, 3))
+        r = ik_batch(self.chain, targets, self.q0, task=self.task, seed=(self.seed + g0) % 2**64, **self.options)
+        ok = r.success.reshape(count, K)
+        m = np.zeros(count * K)
+        if ok.any():
+            m[r.success] = self.chain.manipulability(r.q[r.success], task=self.task)
+        return ok.sum(axis=1) / K, m.reshape(count, K).max(axis=1)
+
+    def result(self, index: np.ndarray, manip: np.ndarray) -> ReachabilityMap:
+        return ReachabilityMap(index.reshape(self.shape), manip.reshape(self.shape), self.axes, self.resolution,
+                               self.orientations, self.seed, self.task)
+
+
+def _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options) -> _Plan:
+    if not isinstance(chain, _core.Chain):
+        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    if not isinstance(task, str) or task not in _TASKS:
+        raise ValueError(f"task: expected one of {_TASKS}, got {task!r}")
+    axes = grid(bounds, resolution)
+    if len(axes) != (2 if task in _PLANAR else 3):
+        raise ValueError(f"bounds: task {task!r} takes {2 if task in _PLANAR else 3} (lo, hi) pairs, got {len(axes)}")
+    K = _whole(orientations, "orientations", 1, MAX_ORIENTATIONS)
+    if task in ("position", "xy") and K != 1:
+        raise ValueError(f"orientations: task {task!r} leaves the orientation free: expected 1, got {K}")
+    s = _whole(seed, "seed", 0, 2**64 - 1)
+    unknown = set(ik_options) - set(DEFAULTS) - {"damping"}
+    if unknown:
+        raise ValueError(f"ik_options: unknown or refused option(s) {sorted(unknown)} (a time budget would make "
+                         "the map depend on the machine)" if "timeout" in unknown else
+                         f"ik_options: unknown option(s) {sorted(unknown)}")
+    options = {**DEFAULTS, **ik_options}
+    if q0 is None:  # the middle of finite limits, else the finite one, else 0
+        lo, hi = chain.limits
+        q0 = np.zeros(chain.dof)
+        q0 = np.where(np.isfinite(lo), lo, np.where(np.isfinite(hi), hi, q0))
+        with np.errstate(invalid="ignore"):  # inf - inf where unlimited: not used
+            q0 = np.where(np.isfinite(lo) & np.isfinite(hi), (lo + hi) / 2, q0)
+    h = _resolution(resolution)
+    return _Plan(chain, axes, h, K, s, task, q0, options)
+
+
+def _targets(task: str, centres: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The IK targets at ``centres`` (N, 2|3) with orientations drawn from uniforms ``u`` (N, 3)."""
+    if task == "xy":
+        return centres
+    if task == "xyphi":
+        return np.column_stack((centres, (2 * u[:, 0] - 1) * np.pi))
+    if task == "position":
+        return centres
+    # Shoemake's uniform unit quaternion (w, x, y, z) from three uniforms.
+    a, b = np.sqrt(1 - u[:, 0]), np.sqrt(u[:, 0])
+    t1, t2 = 2 * np.pi * u[:, 1], 2 * np.pi * u[:, 2]
+    quat = np.column_stack((b * np.cos(t2), a * np.sin(t1), a * np.cos(t1), b * np.sin(t2)))
+    return from_quaternion(quat, centres)
+
+
+def _splitmix64(x: np.ndarray) -> np.ndarray:
+    """splitmix64's output function of uint64 counters (wrapping arithmetic)."""
+    z = (x + np.uint64(0x9E3779B97F4A7C15)) & _MASK
+    z = ((z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)) & _MASK
+    z = ((z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)) & _MASK
+    return z ^ (z >> np.uint64(31))
+
+
+def _uniforms(seed: int, first: int, count: int, per: int) -> np.ndarray:
+    """(count, per) uniforms in [0, 1) for targets first .. first + count - 1: a function of
+    (seed, target, column) only (a counter-based generator)."""
+    key = _splitmix64(np.array([seed], dtype=np.uint64))[0]
+    g = np.arange(first, first + count, dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        counters = (g[:, None] * np.uint64(per) + np.arange(per, dtype=np.uint64)[None, :]) ^ key
+        return (_splitmix64(counters) >> np.uint64(11)).astype(np.float64) * 2.0**-53
+
+
+def _bounds(bounds) -> np.ndarray:
+    b = real_array(bounds, "bounds")
+    if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] not in (2, 3):
+        raise ValueError(f"bounds: expected shape (2, 2) or (3, 2) ((lo, hi) per axis), got {b.shape}")
+    if not np.all(np.isfinite(b)):
+        raise ValueError("bounds: contains NaN or inf")
+    if np.any(b[:, 0] > b[:, 1]):
+        raise ValueError("bounds: a lower bound is above its upper bound")
+    if np.any(np.abs(b) > 1e6):
+        raise ValueError("bounds: coordinates beyond 1e6 m")
+    return b
+
+
+def _resolution(resolution) -> float:
+    if isinstance(resolution, (bool, str)) or not isinstance(resolution, (int, float, np.integer, np.floating)):
+        raise ValueError(f"resolution: expected a positive number (m), got {resolution!r}")
+    h = float(resolution)
+    if not (math.isfinite(h) and h > 0):
+        raise ValueError(f"resolution: must be a positive finite length (m), got {h}")
+    return h
+
+
+def _whole(value, name: str, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name}: expected an int, got {value!r}")
+    if not lo <= int(value) <= hi:
+        raise ValueError(f"{name}: expected an int in [{lo}, {hi}], got {value}")
+    return int(value)

@@ -1,0 +1,231 @@
+"""Pickling and deep copies (issue 16): models and results survive pickle and copy.deepcopy, and a
+copy computes the same bits as the original (compared with ==, not a tolerance), also when it is
+unpickled in a fresh interpreter. Chain == compares the kinematics."""
+
+import copy
+import dataclasses
+import math
+import pickle
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import robokin as rk
+from robokin import rrr3_design
+
+# A URDF whose axes are not unit vectors and not along z: KDL normalises an axis when it builds a
+# joint, and a normalised axis normalised again changes in the last bit about one time in four, so
+# a chain rebuilt from KDL's own accessors would not give the same bits.
+ODD_URDF = """<?xml version="1.0"?>
+<robot name="odd">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <origin xyz="0.1 0.02 0.3" rpy="0.1 0.2 0.3"/><axis xyz="0.3 0.7 1.1"/>
+    <limit lower="-2" upper="2.5" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0.4 0 0.05" rpy="-0.4 0.05 0"/><axis xyz="1 1 0.3"/></joint>
+  <joint name="j3" type="prismatic"><parent link="l2"/><child link="l3"/>
+    <origin xyz="0.3 0.1 0" rpy="0 0.7 0"/><axis xyz="-0.2 0.9 0.4"/>
+    <limit lower="0" upper="0.5" effort="1" velocity="1"/></joint>
+  <joint name="f" type="fixed"><parent link="l3"/><child link="tool"/>
+    <origin xyz="0.05 0.01 0.12" rpy="0.3 -0.2 1.1"/></joint>
+</robot>"""
+
+
+def odd_urdf():
+    return rk.Chain.from_urdf(ODD_URDF, "base", "tool")
+
+
+def odd_segments():
+    tip = rk.pose.from_rpy((0.3, -0.7, 0.2), (0.1, 0.2, -0.05))
+    return rk.Chain.from_segments([("R", (0.3, 0.7, 1.1), tip), ("P", (1, 1, 0.3), tip), ("F", (0, 0, 1), tip),
+                                   ("R", (-0.2, 0.9, 0.4), tip)], tool=tip, limits=((-3, 0, -1), (3, 0.4, 2)))
+
+
+CHAINS = {
+    "ur5": rk.robots.ur5,
+    "panda (modified DH, tool, limits)": rk.robots.panda,
+    "rpr (segments)": rk.robots.rpr,
+    "gen3 (segments)": rk.robots.gen3,
+    "odd segments": odd_segments,
+    "odd urdf": odd_urdf,
+    "planar 3R": rk.robots.planar_3r,
+}
+
+
+def configurations(chain, count=64, seed=1):
+    lo, hi = chain.limits
+    lo, hi = np.maximum(lo, -3.0), np.minimum(hi, 3.0)
+    return np.random.default_rng(seed).uniform(lo, hi, (count, chain.dof))
+
+
+def same_outputs(a, b):
+    """Everything a chain computes, compared bit for bit."""
+    q = configurations(a)
+    assert a == b and hash(a) == hash(b) and repr(a) == repr(b)
+    assert a.dof == b.dof and a.joint_types == b.joint_types
+    assert all(np.array_equal(x, y) for x, y in zip(a.limits, b.limits))
+    assert np.array_equal(a.fk(q), b.fk(q))
+    assert np.array_equal(a.fk(q[0]), b.fk(q[0]))
+    assert np.array_equal(a.jacobian(q), b.jacobian(q))
+    assert np.array_equal(a.frames(q[0]), b.frames(q[0]))
+    assert np.array_equal(a._fk_kdl(q[0]), b._fk_kdl(q[0]))
+    assert np.array_equal(a._jacobian_kdl(q[0]), b._jacobian_kdl(q[0]))
+    assert np.array_equal(a.manipulability(q), b.manipulability(q))
+    task = "pose" if a.dof >= 6 else "xy" if a.fk(q[0])[2, 3] == 0 and a.dof < 6 else "position"
+    targets = a.fk(q[:8]) if task == "pose" else a.fk(q[:8])[:, : (2 if task == "xy" else 3), 3]
+    ra = rk.ik_batch(a, targets, q[9], task=task, restarts=3, seed=7)
+    rb = rk.ik_batch(b, targets, q[9], task=task, restarts=3, seed=7)
+    assert np.array_equal(ra.q, rb.q) and np.array_equal(ra.iterations, rb.iterations)
+
+
+@pytest.mark.parametrize("make", CHAINS.values(), ids=CHAINS.keys())
+def test_chain_pickles_and_copies_to_the_same_bits(make):
+    chain = make()
+    for copied in (pickle.loads(pickle.dumps(chain)), copy.deepcopy(chain), copy.copy(chain),
+                   pickle.loads(pickle.dumps(chain, protocol=2))):
+        assert copied is not chain
+        same_outputs(chain, copied)
+
+
+def test_chain_copies_in_a_fresh_interpreter_give_the_same_bits(tmp_path):
+    chains = {name: make() for name, make in CHAINS.items()}
+    qs = {name: configurations(c, 32, seed=3) for name, c in chains.items()}
+    (tmp_path / "in.pkl").write_bytes(pickle.dumps((chains, qs)))
+    child = (
+        "import pickle, sys, numpy as np\n"
+        "chains, qs = pickle.loads(open(sys.argv[1], 'rb').read())\n"
+        "out = {n: (c.fk(qs[n]), c.jacobian(qs[n]), c.frames(qs[n][0]), repr(c)) for n, c in chains.items()}\n"
+        "open(sys.argv[2], 'wb').write(pickle.dumps(out))\n"
+    )
+    subprocess.run([sys.executable, "-c", child, str(tmp_path / "in.pkl"), str(tmp_path / "out.pkl")], check=True,
+                   timeout=120)
+    out = pickle.loads((tmp_path / "out.pkl").read_bytes())
+    for name, chain in chains.items():
+        fk, jac, frames, text = out[name]
+        assert np.array_equal(fk, chain.fk(qs[name])), name
+        assert np.array_equal(jac, chain.jacobian(qs[name])), name
+        assert np.array_equal(frames, chain.frames(qs[name][0])), name
+        assert text == repr(chain)
+
+
+def test_equality_compares_the_kinematics():
+    rows = [(0.0, math.pi / 2, 0.3, 0.0, "R"), (0.4, 0.0, 0.0, 0.1, "R"), (0.3, 0.0, 0.0, 0.0, "P")]
+    a = rk.Chain.from_dh(rows)
+    assert a == rk.Chain.from_dh(rows) and hash(a) == hash(rk.Chain.from_dh(rows))
+    assert a != rk.Chain.from_dh(rows, limits=((-1, -1, 0), (1, 1, 1)))
+    assert a != rk.Chain.from_dh(rows[:2] + [(0.3, 0.0, 0.0, 0.0, "R")])
+    assert a != rk.Chain.from_dh(rows[:2] + [(0.3 + 1e-15, 0.0, 0.0, 0.0, "P")])
+    assert a != rk.Chain.from_dh(rows, modified=True)
+    assert a != rk.Chain.from_dh(rows, tool=rk.pose.from_rpy((0, 0, 0), (0, 0, 0.1)))
+    assert (a == "chain") is False and a != 3
+    # The same kinematics built two ways: a DH row and its segment (the tool as a fixed frame).
+    tip = np.array(rk.Chain.from_dh([(0.5, 0.0, 0.0, 0.0, "R")]).frames(np.zeros(1))[1])
+    assert rk.Chain.from_dh([(0.5, 0.0, 0.0, 0.0, "R")]) == rk.Chain.from_segments([("R", (0, 0, 1), tip)])
+
+
+def test_repr_shows_the_joints_and_the_dh_rows():
+    text = repr(rk.robots.ur5())
+    assert text.startswith("Chain(dof=6, joints='RRRRRR', dh=[")
+    assert "(-0.425, 0.0, 0.0, 0.0, 'R')" in text and "0.089159" in text
+    assert "modified dh=" in repr(rk.robots.panda()) and ", tool" in repr(rk.robots.panda())
+    assert repr(rk.robots.rpr()) == "Chain(dof=3, joints='RPR')"
+    # The rows shown are the rows given: eval'd back they build the same chain.
+    rows = eval(text[text.index("[") : text.rindex("]") + 1])
+    assert rk.Chain.from_dh(rows, limits=rk.robots.ur5().limits) == rk.robots.ur5()
+
+
+def test_bad_chain_states_are_value_errors():
+    state = rk.robots.ur5().__getstate__()
+    for bad in [state[:2] + (99,) + state[3:], (state[0], 2) + state[2:], ("x",), state[:5],
+                state[:2] + ("nothing",) + state[3:]]:
+        chain = rk.Chain.__new__(rk.Chain)
+        with pytest.raises(ValueError, match="Chain state"):
+            chain.__setstate__(bad)
+    seg = rk.robots.rpr().__getstate__()
+    record = list(seg[3][0])
+    record[2] = 42  # not a KDL joint type
+    with pytest.raises(ValueError, match="joint type"):
+        rk.Chain.__new__(rk.Chain).__setstate__(seg[:3] + ((tuple(record),) + seg[3][1:],) + seg[4:])
+
+
+def test_rrr3_pickles_and_copies():
+    robot = rk.RRR3(0.15, 0.08, 0.11, 0.1)
+    poses = np.array([[0.01, 0.02, 0.1], [-0.02, 0.0, -0.2], [0.0, 0.03, 0.0]])
+    for copied in (pickle.loads(pickle.dumps(robot)), copy.deepcopy(robot)):
+        assert copied == robot and hash(copied) == hash(robot) and repr(copied) == repr(robot)
+        assert np.array_equal(copied.ik_batch(poses), robot.ik_batch(poses), equal_nan=True)
+        assert np.array_equal(copied.fk_all(robot.ik(poses[0])), robot.fk_all(robot.ik(poses[0])))
+    assert robot != rk.RRR3()
+    with pytest.raises(ValueError, match="RRR3 state"):
+        rk.RRR3.__new__(rk.RRR3).__setstate__((2, 0.1, 0.1, 0.1, 0.1))
+
+
+def test_ik_solver_pickles_with_its_chain_options_and_seed_sequence():
+    chain = rk.robots.ur5()
+    solver = rk.IKSolver(chain, method="halley", tol_p=1e-8, max_iter=60, restarts=4, seed=11, damping=1e-8)
+    q = configurations(chain, 6)
+    solver.solve(chain.fk(q[0]), q[1])  # one call made: the copy continues from call 1
+    copies = [pickle.loads(pickle.dumps(solver)), copy.deepcopy(solver)]
+    for c in copies:
+        assert repr(c) == repr(solver) and c.method == "halley"
+    for k in range(2, 6):
+        expected = solver.solve(chain.fk(q[k]), q[1])
+        for c in copies:
+            got = c.solve(chain.fk(q[k]), q[1])
+            assert np.array_equal(got.q, expected.q) and got.iterations == expected.iterations
+    with pytest.raises(ValueError, match="IKSolver state"):
+        rk.IKSolver.__new__(rk.IKSolver).__setstate__((1, chain))
+
+
+def attributes(obj):
+    if dataclasses.is_dataclass(obj):
+        return {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)}
+    names = [n for n, v in vars(type(obj)).items() if not n.startswith("_") and type(v).__name__ == "property"]
+    return {n: getattr(obj, n) for n in names}
+
+
+def same_value(a, b):
+    if isinstance(a, (tuple, list)) and not isinstance(a, str):
+        return len(a) == len(b) and all(same_value(x, y) for x, y in zip(a, b))
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.array_equal(a, b, equal_nan=np.asarray(a).dtype.kind == "f") and np.asarray(a).dtype == np.asarray(b).dtype
+    if isinstance(a, float) and math.isnan(a):
+        return isinstance(b, float) and math.isnan(b)
+    return type(a) is type(b) and a == b
+
+
+def results():
+    ur5, p3 = rk.robots.ur5(), rk.robots.planar_3r()
+    q = configurations(ur5, 4)
+    robot = rk.RRR3()
+    yield rk.ik(ur5, ur5.fk(q[0]), q[1], restarts=2, seed=1)
+    yield rk.ik_batch(ur5, ur5.fk(q), q[1], restarts=2, seed=1)
+    yield rk.closed.ur(ur5.fk(q[0]), ur5)
+    yield rk.reach(p3, (1.2, 0.7), np.zeros(3))
+    yield rk.track(p3, rk.paths.line((1.2, 0.7), (1.4, 0.7), 0.05), np.zeros(3))
+    yield robot.ik_newton((0.01, 0.0, 0.0), (np.zeros(3), np.ones(3)))
+    yield robot.fk(robot.ik((0.01, 0.0, 0.0)), (0.0, 0.0, 0.0))
+    yield robot.singularity((0.0, 0.0, 0.0))
+    yield robot.plan(rk.paths.circle(12))
+    yield robot.workspace(n=20)
+    yield rk.servo(ur5, ur5.fk(q[:2]), q[0], 0.01)
+    yield rk.traj.quintic(np.zeros(2), np.ones(2), np.linspace(0, 1, 5))
+    yield rk.cuspidal(p3)
+    yield rrr3_design.best_l2([0.1], [0.1, 0.12], n=20)
+    yield rk.reachability(p3, ((0.5, 1.5), (0.0, 1.0)), 0.5, orientations=3, task="xyphi")
+
+
+@pytest.mark.parametrize("result", list(results()), ids=lambda r: type(r).__name__)
+def test_every_result_type_pickles_and_copies(result):
+    before = attributes(result)
+    assert before, type(result).__name__
+    for copied in (pickle.loads(pickle.dumps(result)), copy.deepcopy(result)):
+        assert type(copied) is type(result)
+        after = attributes(copied)
+        assert after.keys() == before.keys()
+        for name in before:
+            assert same_value(before[name], after[name]), (type(result).__name__, name)
+        assert repr(copied) == repr(result)
