@@ -8,6 +8,7 @@
 #include <kdl/chainjnttojacsolver.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -198,27 +199,6 @@ struct Lanes {
   double p[3][N];
 };
 
-namespace {
-
-// sin and cos of v[k], k < N: the vectorisable simd::sincos, then std::sin / std::cos where it is
-// out of range (beyond 1e5, NaN).
-ROBOKIN_KERNEL void sincos_n(const double* __restrict v, double* __restrict s, double* __restrict c, int N) {
-  for (int k = 0; k < N; ++k) simd::sincos(v[k], s[k], c[k]);
-  for (int k = 0; k < N; ++k) {
-    if (!simd::sincos_in_range(v[k])) {
-      s[k] = std::sin(v[k]);
-      c[k] = std::cos(v[k]);
-    }
-  }
-}
-
-template <int N>
-ROBOKIN_KERNEL void sincos_lanes(const double* __restrict v, double* __restrict s, double* __restrict c) {
-  sincos_n(v, s, c, N);
-}
-
-}  // namespace
-
 Chain::Fixed Chain::make_fixed(const Rigid& F) {
   Fixed f;
   f.F = F;
@@ -239,7 +219,7 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
   const bool all_at_once = N == 1 && dof_ <= kMaxJoints;
   if (all_at_once) {
     for (int joint = 0; joint < dof_; ++joint) v1[joint] = links_[joint].scale * q[joint];
-    sincos_n(v1, s1, c1, dof_);
+    vmath::sincos(v1, s1, c1, dof_);
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) std::fill_n(L.R[3 * i + j], N, base_.R(i, j));
@@ -251,7 +231,7 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
       v[0] = v1[joint], s[0] = s1[joint], c[0] = c1[joint];
     } else {
       for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
-      if (!link.prismatic) sincos_lanes<N>(v, s, c);
+      if (!link.prismatic) vmath::sincos(v, s, c, N);
     }
     if (link.prismatic) {
       // T <- T * Tz(v): p moves along the z column of R.
@@ -335,6 +315,35 @@ ROBOKIN_KERNEL void lanes_to_4x4_stream(const Lanes<N>& L, int count, double* m)
   lanes_to_4x4(L, count, m);
 #endif
 }
+
+// The tool points only: (x, y, z) per lane.
+template <int N>
+ROBOKIN_KERNEL void lanes_to_position(const Lanes<N>& L, int count, double* m) {
+  for (int k = 0; k < count; ++k, m += 3) m[0] = L.p[0][k], m[1] = L.p[1][k], m[2] = L.p[2][k];
+}
+
+// True when the first `count` lanes hold finite numbers only (what the output receives): x - x is
+// 0 for a finite x and NaN for an infinite or NaN one, and NaN survives the sum.
+template <int N>
+ROBOKIN_KERNEL bool lanes_finite(const Lanes<N>& L, int count, bool position_only) {
+  double acc[N] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < count; ++k) acc[k] += L.p[i][k] - L.p[i][k];
+  if (!position_only)
+    for (int i = 0; i < 9; ++i)
+      for (int k = 0; k < count; ++k) acc[k] += L.R[i][k] - L.R[i][k];
+  double sum = 0.0;
+  for (int k = 0; k < count; ++k) sum += acc[k];
+  return sum == 0.0;
+}
+
+// Writes the first `count` lanes as `what` at out (the output of configuration 0 of the lanes).
+template <int N>
+ROBOKIN_KERNEL void lanes_store(const Lanes<N>& L, int count, FkOutput what, bool stream, double* out) {
+  if (what == FkOutput::Position) lanes_to_position(L, count, out);
+  else if (stream) lanes_to_4x4_stream(L, count, out);
+  else lanes_to_4x4(L, count, out);
+}
 }  // namespace
 
 void Chain::fk(const double* q, Rigid& T) const {
@@ -383,58 +392,67 @@ bool populate_for_writing(double* begin, double* end) {
 }
 }  // namespace
 
-// Configurations [begin, end) of a batch, in blocks of kBlock lanes.
-ROBOKIN_KERNEL void Chain::batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const {
+// Configurations [begin, end) of a batch, in blocks of kBlock lanes; false when a result is not finite.
+ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what,
+                                              bool stream) const {
+  const long width = what == FkOutput::Position ? 3 : 16;
   Lanes<kBlock> L;
+  bool finite = true;
   long b = begin;
   for (; b + kBlock <= end; b += kBlock) {
     run_lanes<kBlock>(L, q + b * dof_, dof_, nullptr);
-    if (stream) lanes_to_4x4_stream(L, kBlock, out + 16 * b);
-    else lanes_to_4x4(L, kBlock, out + 16 * b);
+    finite &= lanes_finite(L, kBlock, what == FkOutput::Position);
+    lanes_store(L, kBlock, what, stream, out + width * b);
   }
   // The tail, one configuration at a time (the same operations as a block lane).
   Lanes<1> one;
   for (; b < end; ++b) {
     run_lanes<1>(one, q + b * dof_, 0, nullptr);
-    lanes_to_4x4(one, 1, out + 16 * b);
+    finite &= lanes_finite(one, 1, what == FkOutput::Position);
+    lanes_store(one, 1, what, false, out + width * b);
   }
+  return finite;
 }
 
-void Chain::batch_range(const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+bool Chain::batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 
 #ifdef ROBOKIN_AVX2
-__attribute__((target("avx2"), optimize("fp-contract=off"))) void Chain::batch_range_avx2(
-    const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+__attribute__((target("avx2"), optimize("fp-contract=off"))) bool Chain::batch_range_avx2(
+    const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 
-__attribute__((target("avx512f"), optimize("fp-contract=off"))) void Chain::batch_range_avx512(
-    const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+__attribute__((target("avx512f"), optimize("fp-contract=off"))) bool Chain::batch_range_avx512(
+    const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 #endif
 
-void Chain::fk_batch(const double* q, long count, double* out, Progress* progress) const {
-  // A large output (beyond the caches) is faulted in at once and then streamed to memory.
-  const bool large = count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
+bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
+  // A large frame output (beyond the caches) is faulted in at once and then streamed to memory.
+  const bool large = what == FkOutput::Frame && count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
 #ifdef ROBOKIN_AVX2
   static const int isa = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
 #endif
+  std::atomic<bool> finite{true};
   parallel_for(count, 20000, [&](long begin, long end) {
     const bool stream = large && populate_for_writing(out + 16 * begin, out + 16 * end);
+    bool ok;
 #ifdef ROBOKIN_AVX2
-    if (isa == 2) batch_range_avx512(q, begin, end, out, stream);
-    else if (isa == 1) batch_range_avx2(q, begin, end, out, stream);
-    else batch_range(q, begin, end, out, stream);
+    if (isa == 2) ok = batch_range_avx512(q, begin, end, out, what, stream);
+    else if (isa == 1) ok = batch_range_avx2(q, begin, end, out, what, stream);
+    else ok = batch_range(q, begin, end, out, what, stream);
 #else
-    batch_range(q, begin, end, out, stream);
+    ok = batch_range(q, begin, end, out, what, stream);
 #endif
 #ifdef __SSE2__
     if (stream) _mm_sfence();  // the streamed stores are visible before the batch returns
 #endif
+    if (!ok) finite = false;
   }, progress);
+  return finite;
 }
 
 Matrix4 Chain::fk_kdl(const Vector& q) const {

@@ -42,6 +42,9 @@ struct SegmentSpec {
   Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
 };
 
+// What a batch FK writes per configuration: the tool frame (4 x 4, row-major) or its point (x, y, z).
+enum class FkOutput { Frame, Position };
+
 template <int N>
 struct Lanes;  // N configurations evaluated together (chain.cpp)
 
@@ -64,7 +67,10 @@ class Chain {
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
   void fk(const double* q, Rigid& out) const;
   void fk_jacobian(const double* q, Rigid& out, double* jac_colmajor_6xn) const;
-  void fk_batch(const double* q, long count, double* out_4x4_rowmajor, Progress* progress = nullptr) const;
+  // count configurations (count x dof, row-major) -> count frames (16 values each) or points (3);
+  // false when some result is not finite (joint values or lengths near overflow).
+  bool fk_batch(const double* q, long count, double* out, FkOutput what = FkOutput::Frame,
+                Progress* progress = nullptr) const;
 
   // KDL's recursive solvers: the reference, and the frames of every joint segment.
   Matrix4 fk_kdl(const Vector& q) const;
@@ -87,10 +93,10 @@ class Chain {
   template <int N>
   void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
   // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
-  void batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range_avx2(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range_avx512(const double* q, long begin, long end, double* out, bool stream) const;
+  bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
