@@ -10,6 +10,8 @@
 #include <string>
 #include <thread>
 
+#include "../src/fast_math.hpp"
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "progress.hpp"
 #include "robokin/parallel.hpp"
@@ -34,6 +36,19 @@ void bind_testing(pybind11::module_& m) {
         return ran.load();
       },
       pybind11::arg("count"), pybind11::arg("on_caller"));
+  // The batch paths' vectorised sin, cos and atan2 (cpp/src/fast_math.hpp) on float64 arrays.
+  m.def("_vmath_sincos", [](const pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>& x) {
+    pybind11::array_t<double> s(x.size()), c(x.size());
+    vmath::sincos(x.data(), s.mutable_data(), c.mutable_data(), static_cast<long>(x.size()));
+    return pybind11::make_tuple(s, c);
+  });
+  m.def("_vmath_atan2", [](const pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>& y,
+                           const pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>& x) {
+    if (x.size() != y.size()) fail("x: expected as many values as y");
+    pybind11::array_t<double> out(x.size());
+    vmath::atan2(y.data(), x.data(), out.mutable_data(), static_cast<long>(x.size()));
+    return out;
+  });
   m.def("_throw", [](const std::string& kind) {
     if (kind == "kdl") throw KDL::Error_Not_Implemented();
     if (kind == "bad_alloc") throw std::bad_alloc();

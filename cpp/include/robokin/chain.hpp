@@ -84,11 +84,19 @@ class Chain {
     Rigid F;
     bool move = false, turn = false;
   };
-  struct Link {  // joint motion about / along the local z axis, then a fixed frame
+  // Joint motion (a rotation about the local z axis, or a translation along `axis`), then a fixed
+  // frame. The masks say which products can be non-zero at this point of the chain, from the zeros
+  // of the base, the axes and the fixed frames (e.g. a planar chain's rotations leave the third row
+  // alone): bit i of `rows` turns row i of R in the joint's rotation; bit 3 i + k of `slide` adds
+  // R(i, k) axis(k) to p(i), of `move` R(i, k) after.p(k); bit i of `turn` turns row i by after.R.
+  struct Link {
     bool prismatic;
     double scale;
+    Eigen::Vector3d axis;
     Fixed after;
+    unsigned rows = 7, slide = 0, move = 0, turn = 0;
   };
+  void build_masks();
   static Fixed make_fixed(const Rigid& F);
   template <int N>
   void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
