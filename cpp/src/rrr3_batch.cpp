@@ -18,29 +18,28 @@ namespace {
 constexpr long kBlock = 256;
 
 // One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (a loop the
-// vectoriser takes; cloned for AVX2, 4 doubles per vector instead of SSE2's 2, picked at load time,
-// no FMA in either clone, so both give RRR3::ik's bits), SLEEF's atan2, the unreachable rows NaN.
-__attribute__((target_clones("avx2", "default"))) void leg_args_block(const double* p, long nb, const double* c,
-                                                                        const double* s, const double* o,
-                                                                        const double* b, const double* m, double l1,
-                                                                        double l2, double (*Y)[kBlock],
-                                                                        double (*X)[kBlock], double* ok) {
-  for (long k = 0; k < nb; ++k) ok[k] = 1.0;
-  for (int i = 0; i < 3; ++i)
-    for (long k = 0; k < nb; ++k) {
-      const bool reach = leg_alpha_args(p[3 * k], p[3 * k + 1], c[k], s[k], o[2 * i], o[2 * i + 1], b[2 * i],
-                                        b[2 * i + 1], m[i], l1, l2, Y[i][k], X[i][k]);
-      ok[k] = reach ? ok[k] : 0.0;
-    }
+// vectoriser takes over contiguous arrays; cloned for AVX2, 4 doubles per vector instead of SSE2's
+// 2, picked at load time, no FMA in either clone, so both give RRR3::ik's bits), SLEEF's atan2,
+// the unreachable rows NaN.
+__attribute__((target_clones("avx2", "default"))) void leg_args_block(
+    long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
+    const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1, double l2,
+    double* __restrict Y, double* __restrict X, double* __restrict ok) {
+  for (long k = 0; k < nb; ++k) {
+    const bool reach = leg_alpha_args(x[k], y[k], c[k], s[k], ox, oy, bx, by, m, l1, l2, Y[k], X[k]);
+    ok[k] = reach ? ok[k] : 0.0;
+  }
 }
 
 void ik_block(const double* p, long nb, const double* o, const double* b, const double* m, double l1, double l2,
               double* dst) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  double phi[kBlock], c[kBlock], s[kBlock], Y[3][kBlock], X[3][kBlock], a[3][kBlock], ok[kBlock];
-  for (long k = 0; k < nb; ++k) phi[k] = p[3 * k + 2];
+  double x[kBlock], y[kBlock], phi[kBlock], c[kBlock], s[kBlock], Y[3][kBlock], X[3][kBlock], a[3][kBlock],
+      ok[kBlock];
+  for (long k = 0; k < nb; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], phi[k] = p[3 * k + 2], ok[k] = 1.0;
   vmath::sincos(phi, s, c, nb);
-  leg_args_block(p, nb, c, s, o, b, m, l1, l2, Y, X, ok);
+  for (int i = 0; i < 3; ++i)
+    leg_args_block(nb, x, y, c, s, o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2, Y[i], X[i], ok);
   for (int i = 0; i < 3; ++i) vmath::atan2(Y[i], X[i], a[i], nb);
   for (long k = 0; k < nb; ++k) {
     dst[3 * k] = ok[k] != 0.0 ? a[0][k] : nan;
