@@ -1,8 +1,9 @@
 // The array loops behind fast_math.hpp, written once over a vector type V (V::width doubles;
 // V::sincos and V::atan2 on one vector): whole vectors, then the tail through a padded vector, so
-// that every element goes through the same routine. Instantiated for SSE2 in fast_math.cpp and for
-// AVX2 + FMA in fast_math_avx2.cpp, which is compiled for that ISA: the templates sit in an unnamed
-// namespace and call no inline library code, so no copy built for AVX2 can stand in for the other.
+// that every element goes through the same routine (one padded_map for both). Instantiated for
+// SSE2 in fast_math.cpp and for AVX2 + FMA in fast_math_avx2.cpp, which is compiled for that ISA:
+// the templates sit in an unnamed namespace and call no inline library code, so no copy built for
+// AVX2 can stand in for the other.
 #pragma once
 
 #include <cstring>
@@ -13,35 +14,43 @@ namespace vmath {
 
 namespace {
 
+// op(in, out) on W values: in[i] and out[j] point at W doubles each. Whole vectors of the arrays,
+// then the tail copied into vectors padded with pad[i] (values the routine takes without fuss).
+template <int W, int In, int Out, class Op>
+void padded_map(const double* const (&in)[In], const double (&pad)[In], double* const (&out)[Out], long n, Op op) {
+  long k = 0;
+  for (; k + W <= n; k += W) {
+    const double* vi[In];
+    double* vo[Out];
+    for (int i = 0; i < In; ++i) vi[i] = in[i] + k;
+    for (int j = 0; j < Out; ++j) vo[j] = out[j] + k;
+    op(vi, vo);
+  }
+  if (k == n) return;
+  const size_t bytes = sizeof(double) * static_cast<size_t>(n - k);
+  double ti[In][W], to[Out][W];
+  const double* vi[In];
+  double* vo[Out];
+  for (int i = 0; i < In; ++i) {
+    for (double& v : ti[i]) v = pad[i];
+    std::memcpy(ti[i], in[i] + k, bytes);
+    vi[i] = ti[i];
+  }
+  for (int j = 0; j < Out; ++j) vo[j] = to[j];
+  op(vi, vo);
+  for (int j = 0; j < Out; ++j) std::memcpy(out[j] + k, to[j], bytes);
+}
+
 template <class V>
 void sincos_loop(const double* x, double* s, double* c, long n) {
-  constexpr int W = V::width;
-  long k = 0;
-  for (; k + W <= n; k += W) V::sincos(x + k, s + k, c + k);
-  if (k < n) {
-    const size_t bytes = sizeof(double) * static_cast<size_t>(n - k);
-    double in[W] = {}, so[W], co[W];
-    std::memcpy(in, x + k, bytes);
-    V::sincos(in, so, co);
-    std::memcpy(s + k, so, bytes);
-    std::memcpy(c + k, co, bytes);
-  }
+  padded_map<V::width, 1, 2>({x}, {0.0}, {s, c}, n,
+                             [](const double* const* i, double* const* o) { V::sincos(i[0], o[0], o[1]); });
 }
 
 template <class V>
 void atan2_loop(const double* y, const double* x, double* out, long n) {
-  constexpr int W = V::width;
-  long k = 0;
-  for (; k + W <= n; k += W) V::atan2(y + k, x + k, out + k);
-  if (k < n) {
-    const size_t bytes = sizeof(double) * static_cast<size_t>(n - k);
-    double yi[W] = {}, xi[W], o[W];
-    for (double& v : xi) v = 1.0;
-    std::memcpy(yi, y + k, bytes);
-    std::memcpy(xi, x + k, bytes);
-    V::atan2(yi, xi, o);
-    std::memcpy(out + k, o, bytes);
-  }
+  padded_map<V::width, 2, 1>({y, x}, {0.0, 1.0}, {out}, n,
+                             [](const double* const* i, double* const* o) { V::atan2(i[0], i[1], o[0]); });
 }
 
 }  // namespace
