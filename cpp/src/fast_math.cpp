@@ -4,7 +4,6 @@
 #include "fast_math.hpp"
 
 #include <cmath>
-#include <cstring>
 
 #if defined(__x86_64__) && defined(__SSE2__)
 #include <sleef.h>

@@ -2,11 +2,9 @@
 // V::sincos and V::atan2 on one vector): whole vectors, then the tail through a padded vector, so
 // that every element goes through the same routine (one padded_map for both). Instantiated for
 // SSE2 in fast_math.cpp and for AVX2 + FMA in fast_math_avx2.cpp, which is compiled for that ISA:
-// the templates sit in an unnamed namespace and call no inline library code, so no copy built for
+// the templates sit in an unnamed namespace and call no library code, so no copy built for
 // AVX2 can stand in for the other.
 #pragma once
-
-#include <cstring>
 
 namespace robokin {
 
@@ -27,18 +25,18 @@ void padded_map(const double* const (&in)[In], const double (&pad)[In], double* 
     op(vi, vo);
   }
   if (k == n) return;
-  const size_t bytes = sizeof(double) * static_cast<size_t>(n - k);
+  const int m = static_cast<int>(n - k);  // plain loops, no library call: short tails are common
   double ti[In][W], to[Out][W];
   const double* vi[In];
   double* vo[Out];
   for (int i = 0; i < In; ++i) {
-    for (double& v : ti[i]) v = pad[i];
-    std::memcpy(ti[i], in[i] + k, bytes);
+    for (int j = 0; j < W; ++j) ti[i][j] = j < m ? in[i][k + j] : pad[i];
     vi[i] = ti[i];
   }
   for (int j = 0; j < Out; ++j) vo[j] = to[j];
   op(vi, vo);
-  for (int j = 0; j < Out; ++j) std::memcpy(out[j] + k, to[j], bytes);
+  for (int o = 0; o < Out; ++o)
+    for (int j = 0; j < m; ++j) out[o][k + j] = to[o][j];
 }
 
 template <class V>
