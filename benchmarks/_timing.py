@@ -44,14 +44,37 @@ def fmt(seconds: float) -> str:
     return f"{seconds * 1e3:7.1f} ms"
 
 
-def ratio_line(goals: list, what: str, ours, ref_name: str, ref, goal: float | None = None, note: str = "") -> None:
-    """Prints robokin's (best, median) beside a reference's and their ratio; with ``goal`` (a ratio
-    to stay under) it says MET or NOT MET and appends the goal to ``goals``."""
+def goal(goals: list, name: str, figure: float, unit: str, limit: float, reference: str, *,
+         at_least: bool = False, met: bool | None = None, note: str = "") -> dict:
+    """Appends one goal of a benchmark to ``goals`` (what run_all.py's summary lists) and returns it.
+
+    ``name`` says in plain words what is measured; ``figure`` is the measured value in ``unit``
+    ("x" for a ratio robokin / reference, else an absolute unit such as "us" or "%"); the goal is
+    ``figure <= limit`` (``>=`` with ``at_least``); ``reference`` says what the ratio is taken
+    against, measured in the same run, or why there is none (an absolute goal). ``met`` overrides
+    the comparison when the goal has a further condition (say which in ``note``). A figure that
+    could not be measured (NaN) is a missed goal."""
+    figure = float(figure)
+    if met is None:
+        met = figure == figure and (figure >= limit if at_least else figure <= limit)
+    entry = {"name": name, "figure": figure, "unit": unit, "limit": float(limit), "at_least": at_least,
+             "reference": reference, "met": bool(met), "note": note}
+    goals.append(entry)
+    return entry
+
+
+NO_REFERENCE = "none: an absolute time (no other implementation of this call to run beside it)"
+
+
+def ratio_line(goals: list, what: str, ours, ref_name: str, ref, goal_ratio: float | None = None,
+               note: str = "", name: str | None = None) -> None:
+    """Prints robokin's (best, median) beside a reference's and their ratio; with ``goal_ratio`` (a
+    ratio to stay under) it says met or missed and records the goal (named ``name``, else ``what``
+    against ``ref_name``) in ``goals``."""
     ratio = ours[0] / ref[0]
     text = (f"  {what:<34} robokin {fmt(ours[0])} (median {fmt(ours[1]).strip()})  |  "
             f"{ref_name:<14} {fmt(ref[0])} (median {fmt(ref[1]).strip()})  ->  {ratio:6.3f}x")
-    if goal is not None:
-        met = ratio <= goal
-        text += f"  goal <= {goal}: {'MET' if met else 'NOT MET'}"
-        goals.append({"name": f"{what} vs {ref_name}", "ratio": ratio, "goal": goal, "met": met})
+    if goal_ratio is not None:
+        g = goal(goals, name or f"{what} vs {ref_name}", ratio, "x", goal_ratio, f"{ref_name}, same run")
+        text += f"  goal <= {goal_ratio}: {'met' if g['met'] else 'MISSED'}"
     print(text + (f"  {note}" if note else ""), flush=True)

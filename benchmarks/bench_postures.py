@@ -1,4 +1,4 @@
-"""Issue 15 benchmarks: the UR closed form against numerical IK, its batch, and track_postures
+"""Benchmarks of the UR closed form against numerical IK, its batch, and track_postures
 against greedy tracking.
 
 - ``rk.closed.ur`` per call (all 8 solutions) against ``rk.IKSolver.solve`` (LM with restarts, one
@@ -19,7 +19,7 @@ import numpy as np
 import robokin as rk
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _timing import once, per_call  # noqa: E402
+from _timing import goal, once, per_call  # noqa: E402
 
 
 def main():
@@ -49,8 +49,8 @@ def main():
     print(f"UR5, {len(poses)} random poses: closed.ur {1e6 * t_closed:.2f} us/call ({found / len(poses):.2f} "
           f"solutions/pose), IKSolver(lm, restarts=20) {1e6 * t_num:.2f} us/call ({ok}/{len(poses)} solved, 1 "
           f"solution): ratio {ratio:.4f}")
-    goals.append({"name": "closed.ur per call / rk.ik (LM, restarts)", "ratio": ratio, "goal": 0.2,
-                  "met": ratio <= 0.2})
+    goal(goals, f"rk.closed.ur (all 8 solutions), time per call, UR5, {len(poses)} poses, vs one numerical "
+         "solve (IKSolver LM, restarts)", ratio, "x", 0.2, "rk.IKSolver.solve on the same poses, same run")
     # All solutions numerically: LM from 48 random starts per pose (as the completeness test), in
     # one batch on every core; distinct solutions found against the closed form's.
     S = 48
@@ -72,8 +72,8 @@ def main():
           f"solutions/pose) vs ik_batch from {S} starts {1e6 * t_all / len(poses):.0f} us/pose "
           f"({distinct / len(poses):.2f} distinct solutions/pose): ratio {ratio_all:.4f}; per solution, closed.ur "
           f"{1e6 * t_closed * len(poses) / found:.2f} us vs one numerical solve {1e6 * t_num:.2f} us")
-    goals.append({"name": "closed.ur all solutions / ik_batch 48 starts", "ratio": ratio_all, "goal": 0.2,
-                  "met": ratio_all <= 0.2})
+    goal(goals, f"rk.closed.ur_batch, every solution of {len(poses)} UR5 poses, vs numerical ik_batch from "
+         f"{S} starts per pose", ratio_all, "x", 0.2, "rk.ik_batch on every core, same poses, same run")
     # --- batch of 1e6 poses on every core ---
     n = 1_000_000
     Qb = rng.uniform(-np.pi, np.pi, (n, 6))

@@ -5,7 +5,8 @@
 #
 # What a bare Debian lacks is found by trying, not by package name alone, so that a machine whose
 # Python or compiler does not come from Debian (pyenv, conda, a CXX of its own) installs nothing:
-#   - the C++ libraries: libeigen3-dev, liborocos-kdl-dev, liburdfdom-dev, libconsole-bridge-dev;
+#   - the C++ libraries: libeigen3-dev, liborocos-kdl-dev, liburdfdom-dev, libconsole-bridge-dev,
+#     libsleef-dev (vectorised sin, cos, atan2 for the batch paths);
 #   - the X server and key sender of the real-window tests: xvfb, xdotool;
 #   - a C++17 compiler ($CXX, c++ or g++): g++;
 #   - $PYTHON itself (python3), its venv module with ensurepip (python3-venv) and its headers,
@@ -20,7 +21,7 @@ missing=()
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 need() { installed "$1" || missing+=("$1"); }
 
-for p in libeigen3-dev liborocos-kdl-dev liburdfdom-dev libconsole-bridge-dev xvfb xdotool "$@"; do need "$p"; done
+for p in libeigen3-dev liborocos-kdl-dev liburdfdom-dev libconsole-bridge-dev libsleef-dev xvfb xdotool "$@"; do need "$p"; done
 
 has_compiler() { command -v "${CXX:-c++}" >/dev/null 2>&1 || command -v g++ >/dev/null 2>&1; }
 has_python() { command -v "$python" >/dev/null 2>&1; }

@@ -441,3 +441,26 @@ def test_robot_factories_name_their_arguments():
     with pytest.raises(TypeError, match="num: expected an int"):
         rk.robots.rpr_self_motion([1.0, 1.0], num=1.5)
     assert rk.robots.planar_3r(np.float32(0.5), 1, -1.0).dof == 3
+
+
+@given(case=dh_chains(), q=arrays([(7,), (3, 7), (40, 7), (2, 3)]),
+       out=st.one_of(st.sampled_from(["frame", "position"]), st.sampled_from(["Position", "", None, 0, b"frame"])))
+def test_fk_out_position_is_the_frames_last_column(case, q, out):
+    """Any chain, any array, any ``out``: "position" gives (3,) or (N, 3), the frames' last column
+    bit for bit, within 1e-9 of KDL; otherwise a ValueError / TypeError naming out or q."""
+    chain, n = case["chain"], case["chain"].dof
+    if isinstance(q, np.ndarray) and q.ndim >= 1 and q.shape[-1] >= n:
+        q = q[..., :n]  # mostly the right width, sometimes not
+    P = check_call(lambda: chain.fk(q, out=out), "out", "q")
+    if P is None:
+        return
+    F = chain.fk(q)
+    assert_finite(P)
+    if out == "frame":
+        np.testing.assert_array_equal(P, F)
+        return
+    assert P.shape == F.shape[:-2] + (3,)
+    np.testing.assert_array_equal(P, F[..., :3, 3])
+    if P.size:
+        first = np.asarray(q, dtype=float).reshape(-1, n)[0]
+        np.testing.assert_allclose(P.reshape(-1, 3)[0], chain._fk_kdl(first)[:3, 3], rtol=0, atol=1e-9 * (1 + np.abs(P).max()))

@@ -10,7 +10,7 @@ import subprocess
 import sys
 
 SCRIPT = pathlib.Path(__file__).resolve().parents[1] / "scripts" / "install-system-deps.sh"
-LIBS = "libeigen3-dev liborocos-kdl-dev liburdfdom-dev libconsole-bridge-dev xvfb xdotool"
+LIBS = "libeigen3-dev liborocos-kdl-dev liburdfdom-dev libconsole-bridge-dev libsleef-dev xvfb xdotool"
 BASH = shutil.which("bash")
 
 

@@ -115,28 +115,44 @@ void write_rigid(const Rigid& T, double* m) {
   m[15] = 1.0;
 }
 
-py::array fk(const Chain& c, py::handle q_obj) {
+// fk's `out`: "frame" (4 x 4 per configuration, the default) or "position" (the tool point, 3 values).
+FkOutput fk_output_of(py::handle obj) {
+  if (!py::isinstance<py::str>(obj))
+    throw py::type_error("out: expected the string 'frame' or 'position', got " +
+                         std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
+  const std::string s = py::cast<std::string>(obj);
+  if (s == "frame") return FkOutput::Frame;
+  if (s == "position") return FkOutput::Position;
+  fail("out: expected 'frame' or 'position', got '" + s + "'");
+}
+
+py::array fk(const Chain& c, py::handle q_obj, py::handle out_obj) {
+  const FkOutput what = fk_output_of(out_obj);
+  const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
   const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
   if (count < 0) {
     Rigid T;
     c.fk(q.data, T);
-    const py::ssize_t shape[2] = {4, 4};
-    py::array out = new_float64(2, shape);
-    write_rigid(T, float64_data(out));
-    require_finite_result(float64_data(out), 16);
+    const py::ssize_t frame_shape[2] = {4, 4}, position_shape[1] = {3};
+    py::array out = what == FkOutput::Position ? new_float64(1, position_shape) : new_float64(2, frame_shape);
+    double* m = float64_data(out);
+    if (what == FkOutput::Position) m[0] = T.p(0), m[1] = T.p(1), m[2] = T.p(2);
+    else write_rigid(T, m);
+    require_finite_result(m, width);
     return out;
   }
-  const py::ssize_t shape[3] = {count, 4, 4};
-  py::array out = new_float64(3, shape);
+  const py::ssize_t frame_shape[3] = {count, 4, 4}, position_shape[2] = {count, 3};
+  py::array out = what == FkOutput::Position ? new_float64(2, position_shape) : new_float64(3, frame_shape);
   double* dst = float64_data(out);
   PythonProgress progress("Chain.fk");
+  bool finite;
   {
     py::gil_scoped_release release;
-    c.fk_batch(q.data, count, dst, &progress);
+    finite = c.fk_batch(q.data, count, dst, what, &progress);
   }
-  require_finite_result(dst, 16 * count);
+  if (!finite) require_finite_result(dst, width * count);
   return out;
 }
 
@@ -209,7 +225,9 @@ void bind_chain(py::module_& m) {
       .def_property_readonly(
           "limits", [](const Chain& c) { return py::make_tuple(to_numpy(c.lower()), to_numpy(c.upper())); },
           "(lower, upper) joint limits; +-inf where a joint is unlimited.")
-      .def("fk", &fk, py::arg("q"), "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof).")
+      .def("fk", &fk, py::arg("q"), py::arg("out") = "frame",
+           "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
+           "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).")
       .def("jacobian", &jacobian, py::arg("q"), py::arg("task") = "pose",
            "Geometric Jacobian at the tool point in the base frame, rows of the task.")
       .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")

@@ -8,6 +8,7 @@
 #include <kdl/chainjnttojacsolver.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -153,7 +154,8 @@ void Chain::build_fast_path() {
     const Eigen::Vector3d axis(a.x(), a.y(), a.z());
     // KDL: joint.pose(q) = Frame(Rot(axis, scale q + offset), origin), so joint.pose(q) =
     // P0 * G Mz(scale q) G^-1 with G a rotation taking z to the axis (no translation).
-    const Rigid G = frame_with_z(axis);
+    // A prismatic joint slides along its axis as it is (no turn to z and back).
+    const Rigid G = prismatic ? Rigid() : frame_with_z(axis);
     const Rigid P0 = Rigid::from_kdl(joint.pose(0.0)), P1 = Rigid::from_kdl(joint.pose(1.0));
     // The joint's scale: how far one unit of q moves it (1 for every chain robokin builds).
     double scale;
@@ -168,10 +170,44 @@ void Chain::build_fast_path() {
     const Rigid before = since_motion * P0 * G;
     if (links_.empty()) base_ = before;
     else links_.back().after = make_fixed(before);
-    links_.push_back({prismatic, scale, Fixed()});
+    links_.push_back({prismatic, scale, prismatic ? axis.normalized() : Eigen::Vector3d::UnitZ(), Fixed()});
     since_motion = G.inverse() * P0.inverse() * Rigid::from_kdl(seg.pose(0.0));
   }
   links_.back().after = make_fixed(since_motion);
+  build_masks();
+}
+
+// Follows which entries of R can be non-zero along the chain (nz), starting from the base.
+void Chain::build_masks() {
+  bool nz[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) nz[i][k] = base_.R(i, k) != 0.0;
+  for (Link& link : links_) {
+    link.rows = link.slide = link.move = link.turn = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (link.prismatic) {
+        for (int k = 0; k < 3; ++k)
+          if (nz[i][k] && link.axis(k) != 0.0) link.slide |= 1u << (3 * i + k);
+      } else if (nz[i][0] || nz[i][1]) {
+        link.rows |= 1u << i;
+        nz[i][0] = nz[i][1] = true;
+      }
+    }
+    const Fixed& f = link.after;
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k)
+        if (f.move && nz[i][k] && f.F.p(k) != 0.0) link.move |= 1u << (3 * i + k);
+      if (f.turn && (nz[i][0] || nz[i][1] || nz[i][2])) {
+        link.turn |= 1u << i;
+        bool row[3];
+        for (int j = 0; j < 3; ++j) {
+          row[j] = false;
+          for (int k = 0; k < 3; ++k) row[j] = row[j] || (nz[i][k] && f.F.R(k, j) != 0.0);
+        }
+        for (int j = 0; j < 3; ++j) nz[i][j] = row[j];
+      }
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -199,27 +235,6 @@ struct Lanes {
   double p[3][N];
 };
 
-namespace {
-
-// sin and cos of v[k], k < N: the vectorisable simd::sincos, then std::sin / std::cos where it is
-// out of range (beyond 1e5, NaN).
-ROBOKIN_KERNEL void sincos_n(const double* __restrict v, double* __restrict s, double* __restrict c, int N) {
-  for (int k = 0; k < N; ++k) simd::sincos(v[k], s[k], c[k]);
-  for (int k = 0; k < N; ++k) {
-    if (!simd::sincos_in_range(v[k])) {
-      s[k] = std::sin(v[k]);
-      c[k] = std::cos(v[k]);
-    }
-  }
-}
-
-template <int N>
-ROBOKIN_KERNEL void sincos_lanes(const double* __restrict v, double* __restrict s, double* __restrict c) {
-  sincos_n(v, s, c, N);
-}
-
-}  // namespace
-
 Chain::Fixed Chain::make_fixed(const Rigid& F) {
   Fixed f;
   f.F = F;
@@ -240,7 +255,7 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
   const bool all_at_once = N == 1 && dof_ <= kMaxJoints;
   if (all_at_once) {
     for (int joint = 0; joint < dof_; ++joint) v1[joint] = links_[joint].scale * q[joint];
-    sincos_n(v1, s1, c1, dof_);
+    vmath::sincos(v1, s1, c1, dof_);
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) std::fill_n(L.R[3 * i + j], N, base_.R(i, j));
@@ -252,15 +267,21 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
       v[0] = v1[joint], s[0] = s1[joint], c[0] = c1[joint];
     } else {
       for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
-      if (!link.prismatic) sincos_lanes<N>(v, s, c);
+      if (!link.prismatic) vmath::sincos(v, s, c, N);
     }
     if (link.prismatic) {
-      // T <- T * Tz(v): p moves along the z column of R.
+      // T <- T * Tr(v axis): p moves along R axis (the terms that can be non-zero).
       for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < N; ++k) L.p[i][k] += v[k] * L.R[3 * i + 2][k];
+        for (int j = 0; j < 3; ++j)
+          if (link.slide >> (3 * i + j) & 1u) {
+            const double a = link.axis(j);
+            double* __restrict r = L.R[3 * i + j];
+            for (int k = 0; k < N; ++k) L.p[i][k] += v[k] * (r[k] * a);
+          }
     } else {
       // T <- T * Rz(v): the x and y columns of R turn by v.
       for (int i = 0; i < 3; ++i) {
+        if (!(link.rows >> i & 1u)) continue;
         double* __restrict x = L.R[3 * i];
         double* __restrict y = L.R[3 * i + 1];
         for (int k = 0; k < N; ++k) {
@@ -270,21 +291,28 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
         }
       }
     }
-    if (axes) {
-      for (int r = 0; r < 3; ++r) axes[6 * joint + r] = L.p[r][0], axes[6 * joint + 3 + r] = L.R[3 * r + 2][0];
+    if (axes) {  // the joint's point and direction (z, or the sliding axis) in the base frame
+      for (int r = 0; r < 3; ++r) {
+        axes[6 * joint + r] = L.p[r][0];
+        axes[6 * joint + 3 + r] = link.prismatic ? L.R[3 * r][0] * link.axis(0) + L.R[3 * r + 1][0] * link.axis(1) +
+                                                       L.R[3 * r + 2][0] * link.axis(2)
+                                                 : L.R[3 * r + 2][0];
+      }
     }
-    // T <- T * after: p += R after.p, then R = R after.R (each skipped when it changes nothing).
+    // T <- T * after: p += R after.p, then R = R after.R (the terms that can change anything).
     const Fixed& f = link.after;
     for (int i = 0; i < 3; ++i) {
-      double* __restrict x = L.R[3 * i];
-      double* __restrict y = L.R[3 * i + 1];
-      double* __restrict z = L.R[3 * i + 2];
-      if (f.move) {
-        const double f0 = f.F.p(0), f1 = f.F.p(1), f2 = f.F.p(2);
-        double* __restrict p = L.p[i];
-        for (int k = 0; k < N; ++k) p[k] += x[k] * f0 + y[k] * f1 + z[k] * f2;
-      }
-      if (f.turn) {
+      double* __restrict p = L.p[i];
+      for (int j = 0; j < 3; ++j)
+        if (link.move >> (3 * i + j) & 1u) {
+          const double fj = f.F.p(j);
+          const double* __restrict r = L.R[3 * i + j];
+          for (int k = 0; k < N; ++k) p[k] += r[k] * fj;
+        }
+      if (link.turn >> i & 1u) {
+        double* __restrict x = L.R[3 * i];
+        double* __restrict y = L.R[3 * i + 1];
+        double* __restrict z = L.R[3 * i + 2];
         const Eigen::Matrix3d& F = f.F.R;
         for (int k = 0; k < N; ++k) {
           const double xk = x[k], yk = y[k], zk = z[k];
@@ -336,6 +364,33 @@ ROBOKIN_KERNEL void lanes_to_4x4_stream(const Lanes<N>& L, int count, double* m)
   lanes_to_4x4(L, count, m);
 #endif
 }
+
+// The tool points only: (x, y, z) per lane.
+template <int N>
+ROBOKIN_KERNEL void lanes_to_position(const Lanes<N>& L, int count, double* m) {
+  for (int k = 0; k < count; ++k, m += 3) m[0] = L.p[0][k], m[1] = L.p[1][k], m[2] = L.p[2][k];
+}
+
+// True when the first `count` lanes hold finite numbers only: x - x is 0 for a finite x and NaN
+// for an infinite or NaN one, and NaN survives the sum. Only p can overflow: R is a product of
+// rotations (sines and cosines of finite q, which the caller checks, and orthonormal fixed frames).
+template <int N>
+ROBOKIN_KERNEL bool lanes_finite(const Lanes<N>& L, int count) {
+  double acc[N] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < count; ++k) acc[k] += L.p[i][k] - L.p[i][k];
+  double sum = 0.0;
+  for (int k = 0; k < count; ++k) sum += acc[k];
+  return sum == 0.0;
+}
+
+// Writes the first `count` lanes as `what` at out (the output of configuration 0 of the lanes).
+template <int N>
+ROBOKIN_KERNEL void lanes_store(const Lanes<N>& L, int count, FkOutput what, bool stream, double* out) {
+  if (what == FkOutput::Position) lanes_to_position(L, count, out);
+  else if (stream) lanes_to_4x4_stream(L, count, out);
+  else lanes_to_4x4(L, count, out);
+}
 }  // namespace
 
 void Chain::fk(const double* q, Rigid& T) const {
@@ -384,58 +439,67 @@ bool populate_for_writing(double* begin, double* end) {
 }
 }  // namespace
 
-// Configurations [begin, end) of a batch, in blocks of kBlock lanes.
-ROBOKIN_KERNEL void Chain::batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const {
+// Configurations [begin, end) of a batch, in blocks of kBlock lanes; false when a result is not finite.
+ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what,
+                                              bool stream) const {
+  const long width = what == FkOutput::Position ? 3 : 16;
   Lanes<kBlock> L;
+  bool finite = true;
   long b = begin;
   for (; b + kBlock <= end; b += kBlock) {
     run_lanes<kBlock>(L, q + b * dof_, dof_, nullptr);
-    if (stream) lanes_to_4x4_stream(L, kBlock, out + 16 * b);
-    else lanes_to_4x4(L, kBlock, out + 16 * b);
+    finite &= lanes_finite(L, kBlock);
+    lanes_store(L, kBlock, what, stream, out + width * b);
   }
   // The tail, one configuration at a time (the same operations as a block lane).
   Lanes<1> one;
   for (; b < end; ++b) {
     run_lanes<1>(one, q + b * dof_, 0, nullptr);
-    lanes_to_4x4(one, 1, out + 16 * b);
+    finite &= lanes_finite(one, 1);
+    lanes_store(one, 1, what, false, out + width * b);
   }
+  return finite;
 }
 
-void Chain::batch_range(const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+bool Chain::batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 
 #ifdef ROBOKIN_AVX2
-__attribute__((target("avx2"), optimize("fp-contract=off"))) void Chain::batch_range_avx2(
-    const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+__attribute__((target("avx2"), optimize("fp-contract=off"))) bool Chain::batch_range_avx2(
+    const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 
-__attribute__((target("avx512f"), optimize("fp-contract=off"))) void Chain::batch_range_avx512(
-    const double* q, long begin, long end, double* out, bool stream) const {
-  batch_range_kernel(q, begin, end, out, stream);
+__attribute__((target("avx512f"), optimize("fp-contract=off"))) bool Chain::batch_range_avx512(
+    const double* q, long begin, long end, double* out, FkOutput what, bool stream) const {
+  return batch_range_kernel(q, begin, end, out, what, stream);
 }
 #endif
 
-void Chain::fk_batch(const double* q, long count, double* out, Progress* progress) const {
-  // A large output (beyond the caches) is faulted in at once and then streamed to memory.
-  const bool large = count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
+bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
+  // A large frame output (beyond the caches) is faulted in at once and then streamed to memory.
+  const bool large = what == FkOutput::Frame && count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
 #ifdef ROBOKIN_AVX2
   static const int isa = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
 #endif
+  std::atomic<bool> finite{true};
   parallel_for(count, 20000, [&](long begin, long end) {
     const bool stream = large && populate_for_writing(out + 16 * begin, out + 16 * end);
+    bool ok;
 #ifdef ROBOKIN_AVX2
-    if (isa == 2) batch_range_avx512(q, begin, end, out, stream);
-    else if (isa == 1) batch_range_avx2(q, begin, end, out, stream);
-    else batch_range(q, begin, end, out, stream);
+    if (isa == 2) ok = batch_range_avx512(q, begin, end, out, what, stream);
+    else if (isa == 1) ok = batch_range_avx2(q, begin, end, out, what, stream);
+    else ok = batch_range(q, begin, end, out, what, stream);
 #else
-    batch_range(q, begin, end, out, stream);
+    ok = batch_range(q, begin, end, out, what, stream);
 #endif
 #ifdef __SSE2__
     if (stream) _mm_sfence();  // the streamed stores are visible before the batch returns
 #endif
+    if (!ok) finite = false;
   }, progress);
+  return finite;
 }
 
 Matrix4 Chain::fk_kdl(const Vector& q) const {

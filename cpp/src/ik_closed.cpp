@@ -3,6 +3,8 @@
 #include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
 
+#include "fast_math.hpp"
+
 #include <kdl/segment.hpp>
 
 #include <algorithm>
@@ -68,23 +70,31 @@ bool planar_tip_near(double a1, double a2, double t1, double t2, double x, doubl
          tol;
 }
 
-// One standard DH transform A = Rz(theta) Tz(d) Tx(a) Rx(alpha), for the checks.
-Rigid dh_standard(double a, double alpha, double d, double theta) {
-  const double ct = std::cos(theta), st = std::sin(theta), ca = std::cos(alpha), sa = std::sin(alpha);
+// One standard DH transform A = Rz(theta) Tz(d) Tx(a) Rx(alpha), for the checks, from the cosines
+// and sines of theta and alpha.
+Rigid dh_standard(double a, double ca, double sa, double d, double ct, double st) {
   Rigid A;
   A.R << ct, -st * ca, st * sa, st, ct * ca, -ct * sa, 0, sa, ca;
   A.p << a * ct, a * st, d;
   return A;
 }
 
+// cos and sin of the layouts' twists +-pi/2, once.
+const double kC90 = std::cos(kPi / 2), kS90 = std::sin(kPi / 2), kCm90 = std::cos(-kPi / 2), kSm90 = std::sin(-kPi / 2);
+
+// Frame 3 of the anthropomorphic arm (rows (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0)) at q.
+Rigid arm_fk(const ArmGeometry& g, const double* q) {
+  return dh_standard(0, kC90, kS90, g.d1, std::cos(q[0]), std::sin(q[0])) *
+         dh_standard(g.a2, 1, 0, 0, std::cos(q[1]), std::sin(q[1])) *
+         dh_standard(g.a3, 1, 0, 0, std::cos(q[2]), std::sin(q[2]));
+}
+
 // Tool frame of the arm of ArmGeometry (standard DH, the PUMA layout) with a spherical wrist and a
-// tool offset d6; with wrist = false, frame 3 of the anthropomorphic arm (rows (0, pi/2, d1),
-// (a2, 0, 0), (a3, 0, 0)).
-Rigid arm_fk(const ArmGeometry& g, double d6, const double* q, bool wrist) {
-  Rigid T = dh_standard(0, kPi / 2, g.d1, q[0]) * dh_standard(g.a2, 0, 0, q[1]);
-  if (!wrist) return T * dh_standard(g.a3, 0, 0, q[2]);
-  return T * dh_standard(g.a3, -kPi / 2, g.d3, q[2]) * dh_standard(0, kPi / 2, g.d4, q[3]) *
-         dh_standard(0, -kPi / 2, 0, q[4]) * dh_standard(0, 0, d6, q[5]);
+// tool offset d6, from the joints' cosines c and sines s.
+Rigid wrist_arm_fk(const ArmGeometry& g, double d6, const double* c, const double* s) {
+  return dh_standard(0, kC90, kS90, g.d1, c[0], s[0]) * dh_standard(g.a2, 1, 0, 0, c[1], s[1]) *
+         dh_standard(g.a3, kCm90, kSm90, g.d3, c[2], s[2]) * dh_standard(0, kC90, kS90, g.d4, c[3], s[3]) *
+         dh_standard(0, kCm90, kSm90, 0, c[4], s[4]) * dh_standard(0, 1, 0, d6, c[5], s[5]);
 }
 
 double arm_size(const ArmGeometry& g, double d6) {
@@ -314,7 +324,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   ClosedFormSolutions out;
   out.dof = 3;
   const auto reaches = [&](const double* q) {
-    return (arm_fk(arm, 0, q, false).p - p).norm() <= kTolP * arm_size(arm, 0);
+    return (arm_fk(arm, q).p - p).norm() <= kTolP * arm_size(arm, 0);
   };
   for (ArmSolution& s : arm_solve(arm, p, out.singular))
     add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0), reaches);
@@ -329,12 +339,13 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   out.postures.reserve(8);
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
   const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
-  const auto reaches = [&](const double* q) {
-    const Rigid F = arm_fk(arm, d6, q, true);
-    return (F.p - T.p).norm() <= kTolP * arm_size(arm, d6) && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR;
-  };
-  for (ArmSolution& s : arm_solve(arm, pw, out.singular)) {
-    const Eigen::Matrix3d R03 = rot_z(s.q[0]) * rx_p * rot_z(s.q[1]) * rot_z(s.q[2]) * rx_m;
+  // The candidates within the limits first, then every check's sines and cosines in one
+  // vectorised pass (fast_math.hpp), then the checks, in the candidates' order.
+  double q[8][6], angles[48], c[48], s[48];
+  const char* posture[8];
+  int n = 0;
+  for (ArmSolution& a : arm_solve(arm, pw, out.singular)) {
+    const Eigen::Matrix3d R03 = rot_z(a.q[0]) * rx_p * rot_z(a.q[1]) * rot_z(a.q[2]) * rx_m;
     // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
     // (-c4 s5, -s4 s5, c5). Given q4, N = Rz(-q4) R36 = Ry(-q5) Rz(q6) gives q5 (third column
     // (-s5, 0, c5)) and q6 (second row (s6, c6, 0)).
@@ -346,9 +357,20 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
       double q4 = wrist_singular ? 0.0 : std::atan2(-M(1, 2), -M(0, 2));
       if (flip) q4 += kPi;
       const Eigen::Matrix3d N = rot_z(-q4) * M;
-      double q[6] = {s.q[0], s.q[1], s.q[2], q4, std::atan2(-N(0, 2), N(2, 2)), std::atan2(N(1, 0), N(1, 1))};
-      add_if_admissible(out, q, limits, arm_label(s.shoulder, s.elbow, flip ? 2 : 1), reaches);
+      double* v = q[n];
+      v[0] = a.q[0], v[1] = a.q[1], v[2] = a.q[2], v[3] = q4;
+      v[4] = std::atan2(-N(0, 2), N(2, 2)), v[5] = std::atan2(N(1, 0), N(1, 1));
+      if (!fit_limits(v, 6, limits)) continue;
+      posture[n] = arm_label(a.shoulder, a.elbow, flip ? 2 : 1);
+      std::copy(v, v + 6, angles + 6 * n);
+      ++n;
     }
+  }
+  vmath::sincos(angles, s, c, 6 * n);
+  for (int k = 0; k < n; ++k) {
+    const Rigid F = wrist_arm_fk(arm, d6, c + 6 * k, s + 6 * k);
+    if ((F.p - T.p).norm() <= kTolP * arm_size(arm, d6) && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
+      out.add(q[k], posture[k]);
   }
   return out;
 }

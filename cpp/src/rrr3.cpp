@@ -4,6 +4,7 @@
 
 #include "robokin/parallel.hpp"
 
+#include "fast_math.hpp"
 #include "rrr3_leg.hpp"
 
 #include <cmath>
@@ -55,18 +56,19 @@ Eigen::Vector2d RRR3::platform_joint(const Pose& pose, int i) const {
 }
 
 int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
-  double c, s;
-  if (simd::sincos_in_range(pose(2))) {
-    simd::sincos(pose(2), s, c);
-  } else {
-    c = std::cos(pose(2)), s = std::sin(pose(2));
-  }
+  double c, s, Y[3], X[3], a[3];
+  bool ok[3];
+  vmath::sincos(&pose(2), &s, &c, 1);
+  for (int i = 0; i < 3; ++i)
+    ok[i] = leg_alpha_args(pose(0), pose(1), c, s, o_[i].x(), o_[i].y(), b_[i].x(), b_[i].y(), mode[i], l1_, l2_,
+                           Y[i], X[i]);
+  vmath::atan2(Y, X, a, 3);
   for (int i = 0; i < 3; ++i) {
-    alpha[i] = leg_alpha(pose(0), pose(1), c, s, o_[i].x(), o_[i].y(), b_[i].x(), b_[i].y(), mode[i], l1_, l2_);
-    if (std::isnan(alpha[i])) {
+    if (!ok[i]) {
       for (int j = i; j < 3; ++j) alpha[j] = kNaN;
       return i;
     }
+    alpha[i] = a[i];
   }
   return -1;
 }

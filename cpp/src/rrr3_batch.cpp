@@ -1,11 +1,13 @@
 // 3-RRR inverse model over a batch of poses, written for the vectoriser: blocks of poses, one
 // branch-free loop per stage (CMakeLists.txt compiles this file without errno and FP traps so the
-// loops vectorise). Same bits as RRR3::ik, which uses the same leg_alpha.
+// loops vectorise). Same bits as RRR3::ik, which uses the same leg_alpha_args and vmath routines.
 #include "robokin/parallel.hpp"
 #include "robokin/rrr3.hpp"
 
+#include "fast_math.hpp"
 #include "rrr3_leg.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,42 +17,45 @@ namespace {
 
 constexpr long kBlock = 256;
 
-// One block of poses. Cloned for AVX2 (4 doubles per vector instead of SSE2's 2) and picked at
-// load time; no FMA in either clone, so both give RRR3::ik's bits.
-__attribute__((target_clones("avx2", "default"))) void ik_block(const double* p, long nb, const double* o,
-                                                                 const double* b, const double* m, double l1,
-                                                                 double l2, double* dst) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  double c[kBlock], s[kBlock], a[3][kBlock];
-  for (long k = 0; k < nb; ++k) simd::sincos(p[3 * k + 2], s[k], c[k]);
-  for (int i = 0; i < 3; ++i)
-    for (long k = 0; k < nb; ++k)
-      a[i][k] = leg_alpha(p[3 * k], p[3 * k + 1], c[k], s[k], o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2);
+// One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (a loop the
+// vectoriser takes over contiguous arrays; cloned for AVX2, 4 doubles per vector instead of SSE2's
+// 2, picked at load time, no FMA in either clone, so both give RRR3::ik's bits), SLEEF's atan2,
+// the unreachable rows NaN.
+__attribute__((target_clones("avx2", "default"))) void leg_args_block(
+    long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
+    const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1, double l2,
+    double* __restrict Y, double* __restrict X, double* __restrict ok) {
   for (long k = 0; k < nb; ++k) {
-    const bool ok = !(std::isnan(a[0][k]) | std::isnan(a[1][k]) | std::isnan(a[2][k]));
-    dst[3 * k] = ok ? a[0][k] : nan;
-    dst[3 * k + 1] = ok ? a[1][k] : nan;
-    dst[3 * k + 2] = ok ? a[2][k] : nan;
+    const bool reach = leg_alpha_args(x[k], y[k], c[k], s[k], ox, oy, bx, by, m, l1, l2, Y[k], X[k]);
+    ok[k] = reach ? ok[k] : 0.0;
+  }
+}
+
+void ik_block(const double* p, long nb, const double* o, const double* b, const double* m, double l1, double l2,
+              double* dst) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double x[kBlock], y[kBlock], phi[kBlock], c[kBlock], s[kBlock], Y[3][kBlock], X[3][kBlock], a[3][kBlock],
+      ok[kBlock];
+  for (long k = 0; k < nb; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], phi[k] = p[3 * k + 2], ok[k] = 1.0;
+  vmath::sincos(phi, s, c, nb);
+  for (int i = 0; i < 3; ++i)
+    leg_args_block(nb, x, y, c, s, o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2, Y[i], X[i], ok);
+  for (int i = 0; i < 3; ++i) vmath::atan2(Y[i], X[i], a[i], nb);
+  for (long k = 0; k < nb; ++k) {
+    dst[3 * k] = ok[k] != 0.0 ? a[0][k] : nan;
+    dst[3 * k + 1] = ok[k] != 0.0 ? a[1][k] : nan;
+    dst[3 * k + 2] = ok[k] != 0.0 ? a[2][k] : nan;
   }
 }
 
 }  // namespace
 
 void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out, Progress* progress) const {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   double o[6], b[6], m[3];
   for (int i = 0; i < 3; ++i) o[2 * i] = o_[i].x(), o[2 * i + 1] = o_[i].y(), b[2 * i] = b_[i].x(), b[2 * i + 1] = b_[i].y(), m[i] = mode[i];
   parallel_for(count, 8192, [&](long begin, long end) {
-    for (long k0 = begin; k0 < end; k0 += kBlock) {
-      const long nb = std::min(kBlock, end - k0);
-      const double* p = poses + 3 * k0;
-      double* dst = out + 3 * k0;
-      ik_block(p, nb, o, b, m, l1_, l2_, dst);
-      // Huge orientations: the series' range reduction is not exact there, use the scalar path.
-      for (long k = 0; k < nb; ++k)
-        if (!simd::sincos_in_range(p[3 * k + 2]) && ik(Pose(p[3 * k], p[3 * k + 1], p[3 * k + 2]), mode, dst + 3 * k) >= 0)
-          dst[3 * k] = dst[3 * k + 1] = dst[3 * k + 2] = nan;
-    }
+    for (long k0 = begin; k0 < end; k0 += kBlock)
+      ik_block(poses + 3 * k0, std::min(kBlock, end - k0), o, b, m, l1_, l2_, out + 3 * k0);
   }, progress);
 }
 

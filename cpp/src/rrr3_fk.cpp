@@ -58,7 +58,8 @@ struct TrigPoly {
 
 struct Tables {
   double fit_phi[kFit], fit_cos[kFit][kDegree + 1], fit_sin[kFit][kDegree + 1];
-  double scan_phi[kScan + 1], scan_cos[kScan][kDegree + 1], scan_sin[kScan][kDegree + 1];
+  // scan_cos[k][j] = cos(k scan_phi[j]): k-major, so that the scan's loop over j vectorises.
+  double scan_phi[kScan + 1], scan_cos[kDegree + 1][kScan], scan_sin[kDegree + 1][kScan];
   Tables() {
     for (int j = 0; j < kFit; ++j) {
       fit_phi[j] = -M_PI + 2 * M_PI * j / kFit;
@@ -67,7 +68,7 @@ struct Tables {
     for (int j = 0; j <= kScan; ++j) scan_phi[j] = -M_PI + 2 * M_PI * j / kScan;
     for (int j = 0; j < kScan; ++j)
       for (int k = 0; k <= kDegree; ++k)
-        scan_cos[j][k] = std::cos(k * scan_phi[j]), scan_sin[j][k] = std::sin(k * scan_phi[j]);
+        scan_cos[k][j] = std::cos(k * scan_phi[j]), scan_sin[k][j] = std::sin(k * scan_phi[j]);
   }
 };
 
@@ -231,11 +232,14 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   if (!(scale > 0) || !std::isfinite(scale)) return out;
   for (int k = 0; k <= kDegree; ++k) p.a[k] /= scale, p.b[k] /= scale;
 
+  // F on the scan: the same sums as term by term at each phi, term k over every phi at once.
   double f[kScan];
-  for (int j = 0; j < kScan; ++j) {
-    double v = p.a[0];
-    for (int k = 1; k <= kDegree; ++k) v += p.a[k] * t.scan_cos[j][k] + p.b[k] * t.scan_sin[j][k];
-    f[j] = v;
+  for (int j = 0; j < kScan; ++j) f[j] = p.a[0];
+  for (int k = 1; k <= kDegree; ++k) {
+    const double ak = p.a[k], bk = p.b[k];
+    const double* __restrict c = t.scan_cos[k];
+    const double* __restrict sn = t.scan_sin[k];
+    for (int j = 0; j < kScan; ++j) f[j] += ak * c[j] + bk * sn[j];
   }
 
   // Every interval of the scan either has a sign change (one root, refined), or is certified free

@@ -10,7 +10,7 @@ namespace robokin {
 namespace {
 
 // det A / R_e and det B / l1^3 at one pose, or false when a leg cannot reach: the robot's own
-// inverse model (leg_alpha, via RRR3::ik) and Jacobians (RRR3::jacobians_at), one implementation
+// inverse model (leg_alpha_args, via RRR3::ik) and Jacobians (RRR3::jacobians_at), one implementation
 // for the map, RRR3::singularity and the planner.
 bool dets(const RRR3& robot, const Pose& pose, const Mode& mode, double& det_a, double& det_b) {
   Eigen::Vector3d alpha;

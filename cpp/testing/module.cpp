@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "../src/fast_math.hpp"
 #include "arrays.hpp"
 #include "kdl_ik_reference.hpp"
 #include "progress.hpp"
@@ -40,6 +41,19 @@ void bind_hooks(pybind11::module_& m) {
         return ran.load();
       },
       pybind11::arg("count"), pybind11::arg("on_caller"));
+  // The batch paths' vectorised sin, cos and atan2 (cpp/src/fast_math.hpp) on float64 arrays.
+  using Doubles = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
+  m.def("vmath_sincos", [](const Doubles& x) {
+    pybind11::array_t<double> s(x.size()), c(x.size());
+    vmath::sincos(x.data(), s.mutable_data(), c.mutable_data(), static_cast<long>(x.size()));
+    return pybind11::make_tuple(s, c);
+  }, pybind11::arg("x"));
+  m.def("vmath_atan2", [](const Doubles& y, const Doubles& x) {
+    if (x.size() != y.size()) fail("x: expected as many values as y");
+    pybind11::array_t<double> out(x.size());
+    vmath::atan2(y.data(), x.data(), out.mutable_data(), static_cast<long>(x.size()));
+    return out;
+  }, pybind11::arg("y"), pybind11::arg("x"));
   m.def("throw", [](const std::string& kind) {
     if (kind == "kdl") throw KDL::Error_Not_Implemented();
     if (kind == "bad_alloc") throw std::bad_alloc();

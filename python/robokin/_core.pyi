@@ -5,7 +5,7 @@ Arrays are float64; bad input raises ValueError naming the argument.
 
 import os
 from typing import ClassVar, Dict, Iterator, Optional, Sequence, Tuple, Union
-from typing import Mapping
+from typing import Literal, Mapping
 
 import numpy as np
 import numpy.typing as npt
@@ -65,8 +65,9 @@ class Chain:
     @property
     def limits(self) -> Tuple[NDArray, NDArray]:
         """``(lower, upper)``; ``+-inf`` where a joint is unlimited."""
-    def fk(self, q: ArrayLike) -> NDArray:
-        """Tool pose (4, 4) for q of shape (dof,); (N, 4, 4) for a batch (N, dof)."""
+    def fk(self, q: ArrayLike, out: Literal["frame", "position"] = "frame") -> NDArray:
+        """Tool pose (4, 4) for q of shape (dof,); (N, 4, 4) for a batch (N, dof).
+        ``out="position"``: the tool point only, (3,) or (N, 3)."""
     def jacobian(self, q: ArrayLike, task: str = "pose") -> NDArray:
         """Geometric Jacobian at the tool point in the base frame, rows ``[v; w]`` selected by
         ``task`` ("pose" 6, "position" 3, "xy" rows 0-1, "xyphi" rows 0, 1, 5): (rows, dof), or

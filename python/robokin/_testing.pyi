@@ -10,6 +10,10 @@ def parallel_for_throwing(count: int, on_caller: bool) -> int:
     """Runs count items of 1 ms on every core; those on the calling thread (or the others) throw."""
 def throw(kind: str) -> None:
     """Throws a C++ exception: "kdl", "bad_alloc", "logic", "interrupted", anything else an int."""
+def vmath_sincos(x: ArrayLike) -> Tuple[NDArray, NDArray]:
+    """(sin x, cos x) from the batch paths' vectorised routines (SLEEF)."""
+def vmath_atan2(y: ArrayLike, x: ArrayLike) -> NDArray:
+    """atan2(y, x) from the batch paths' vectorised routine (SLEEF)."""
 def hessian_times(chain: Chain, q: ArrayLike, a: ArrayLike) -> NDArray:
     """sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term."""
 

@@ -63,6 +63,9 @@ struct DHTable {
   Matrix4 tool = Matrix4::Identity();
 };
 
+// What a batch FK writes per configuration: the tool frame (4 x 4, row-major) or its point (x, y, z).
+enum class FkOutput { Frame, Position };
+
 template <int N>
 struct Lanes;  // N configurations evaluated together (chain.cpp)
 
@@ -96,7 +99,10 @@ class Chain {
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
   void fk(const double* q, Rigid& out) const;
   void fk_jacobian(const double* q, Rigid& out, double* jac_colmajor_6xn) const;
-  void fk_batch(const double* q, long count, double* out_4x4_rowmajor, Progress* progress = nullptr) const;
+  // count configurations (count x dof, row-major) -> count frames (16 values each) or points (3);
+  // false when some result is not finite (joint values or lengths near overflow).
+  bool fk_batch(const double* q, long count, double* out, FkOutput what = FkOutput::Frame,
+                Progress* progress = nullptr) const;
 
   // KDL's recursive solvers: the reference, and the frames of every joint segment.
   Matrix4 fk_kdl(const Vector& q) const;
@@ -110,19 +116,27 @@ class Chain {
     Rigid F;
     bool move = false, turn = false;
   };
-  struct Link {  // joint motion about / along the local z axis, then a fixed frame
+  // Joint motion (a rotation about the local z axis, or a translation along `axis`), then a fixed
+  // frame. The masks say which products can be non-zero at this point of the chain, from the zeros
+  // of the base, the axes and the fixed frames (e.g. a planar chain's rotations leave the third row
+  // alone): bit i of `rows` turns row i of R in the joint's rotation; bit 3 i + k of `slide` adds
+  // R(i, k) axis(k) to p(i), of `move` R(i, k) after.p(k); bit i of `turn` turns row i by after.R.
+  struct Link {
     bool prismatic;
     double scale;
+    Eigen::Vector3d axis;
     Fixed after;
+    unsigned rows = 7, slide = 0, move = 0, turn = 0;
   };
+  void build_masks();
   static Fixed make_fixed(const Rigid& F);
   template <int N>
   void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
   // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
-  void batch_range_kernel(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range_avx2(const double* q, long begin, long end, double* out, bool stream) const;
-  void batch_range_avx512(const double* q, long begin, long end, double* out, bool stream) const;
+  bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
