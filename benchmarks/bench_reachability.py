@@ -1,4 +1,4 @@
-"""Reachability map of the UR5 (issue 16): 5 cm voxels, 50 orientations each, on one thread, on
+"""Reachability map of the UR5: 5 cm voxels, 50 orientations each, on one thread, on
 every core (the batch IK's threads), and on a distributed.LocalCluster of one single-threaded
 worker process per core (ROBOKIN_NUM_THREADS=1 in the workers). Prints the times, the parallel
 efficiency (one-thread time / (cores x time)) and the throughput per core, and checks that the three

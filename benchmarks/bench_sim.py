@@ -1,15 +1,17 @@
 """Simulator speed: headless steps per second with and without drawing, and where the time goes.
 
-Targets (issue 4): >= 300 rendered steps/s headless at 800 x 800 and >= 20,000 steps/s with
-rendering off (the seed program was locked at 60 frames per second). Issue 14: the UR5's serial
-scene renders at least as many steps per second at 800 x 800 as the 3-RRR scene, measured in the
-same process as a ratio of the time per rendered step (median of interleaved runs).
+Targets: >= 300 rendered steps/s headless at 800 x 800 and >= 20,000 steps/s with rendering off
+(the seed program was locked at 60 frames per second), and the serial arms' scenes (UR5, PUMA 560)
+render at least as many steps per second at 800 x 800 as the 3-RRR scene, measured in the same
+process as a ratio of the time per rendered step (median of interleaved runs).
 """
 
 from __future__ import annotations
 
 import os
 import time
+
+from _timing import goal
 
 os.environ["SDL_VIDEODRIVER"] = "dummy"
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
@@ -105,7 +107,7 @@ def rendered_step_time(robot: str, mode: str, steps: int = 300) -> float:
 
 def serial_ratios(repeat: int = 5) -> list:
     """Time per rendered step of the UR5 scene (circle; free mode jogging) over the 3-RRR clover's,
-    interleaved runs, medians; the goal (issue 14) is a ratio <= 1."""
+    interleaved runs, medians; the goal is a ratio <= 1."""
     import statistics
 
     goals = []
@@ -121,11 +123,11 @@ def serial_ratios(repeat: int = 5) -> list:
     for (robot, mode), times in runs.items():
         t = statistics.median(times)
         ratio = t / ref
-        met = ratio <= 1.0
         what = f"{robot} {mode}" + (" (Cartesian jog)" if mode == "free" else "")
+        g = goal(goals, f"simulator: time per rendered step at 800 x 800, {what}", ratio, "x", 1.0,
+                 "the 3-RRR clover scene's, same process, interleaved runs")
         print(f"  {what:<16}{1 / t:>8,.0f} /s  time per step {ratio:.2f}x the 3-RRR's  goal <= 1: "
-              f"{'MET' if met else 'NOT MET'}")
-        goals.append({"name": f"{what} rendered step vs rrr3 clover", "ratio": ratio, "goal": 1.0, "met": met})
+              f"{'met' if g['met'] else 'MISSED'}")
     return goals
 
 

@@ -89,6 +89,4 @@ def test_strict_flag_reaches_main(monkeypatch):
 def test_no_benchmark_speaks_of_issue_numbers():
     """The summary and the benchmarks' own text say what they measure, not which tracker entry asked."""
     for path in sorted(BENCH.glob("*.py")):
-        if path.name == "bench_sim.py":  # the simulator's benchmark belongs to its own change
-            continue
         assert "issue " not in path.read_text().lower(), path.name
