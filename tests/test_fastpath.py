@@ -176,3 +176,43 @@ def test_track_with_nullspace_and_damping_stays_within_tolerance():
         assert np.all(tr.q >= lower - 1e-15) and np.all(tr.q <= upper + 1e-15)
         for k in range(0, len(points), 97):
             np.testing.assert_allclose(chain._fk_kdl(tr.q[k])[:2, 3], points[k], rtol=0, atol=1e-5)
+
+
+def unaligned(a):
+    """A copy of ``a`` (float64) whose buffer starts one byte off an 8-byte boundary, as an array
+    unpickled from a byte stream can (a Dask worker's)."""
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    raw = np.zeros(a.nbytes + 1, dtype=np.uint8)
+    out = raw[1:].view(np.float64).reshape(a.shape)
+    out[...] = a
+    assert not out.flags.aligned
+    return out
+
+
+def test_unaligned_buffers_give_the_same_results():
+    """The core reads doubles; an unaligned buffer is copied first (UBSan, in make test-asan, reports
+    a misaligned load otherwise)."""
+    chain = rk.robots.ur5()
+    Q = np.random.default_rng(3).uniform(-3, 3, (50, 6))
+    np.testing.assert_array_equal(chain.fk(unaligned(Q)), chain.fk(Q))
+    np.testing.assert_array_equal(chain.fk(unaligned(Q), out="position"), chain.fk(Q, out="position"))
+    T = chain.fk(Q[:5])
+    a = rk.ik_batch(chain, unaligned(T), unaligned(Q[0]), restarts=2, seed=1)
+    b = rk.ik_batch(chain, T, Q[0], restarts=2, seed=1)
+    np.testing.assert_array_equal(a.q, b.q)
+    np.testing.assert_array_equal(rk.RRR3().ik_batch(unaligned(np.zeros((3, 3)))), rk.RRR3().ik_batch(np.zeros((3, 3))))
+
+
+def test_results_unpickled_from_unaligned_state_arrays():
+    """A result's state arrays may arrive at any address (pickle protocol 5 buffers): the copy is exact."""
+    import pickle
+
+    chain = rk.robots.ur5()
+    T = chain.fk(np.random.default_rng(4).uniform(-3, 3, (4, 6)))
+    res = rk.ik_batch(chain, T, np.zeros(6), restarts=2, seed=1)
+    version, *arrays = res.__getstate__()
+    moved = type(res).__new__(type(res))
+    moved.__setstate__((version, *(unaligned(a) if a.dtype == np.float64 else a for a in arrays)))
+    np.testing.assert_array_equal(moved.q, res.q)
+    np.testing.assert_array_equal(moved.error_p, res.error_p)
+    assert pickle.loads(pickle.dumps(res, protocol=5)).q.tobytes() == res.q.tobytes()

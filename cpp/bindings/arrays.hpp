@@ -27,7 +27,27 @@ inline std::string shape_of(py::ssize_t ndim, const py::ssize_t* shape) {
 
 inline std::string shape_of(const py::array& a) { return shape_of(a.ndim(), a.shape()); }
 
-// A C-contiguous float64 view of obj (no copy when it already is one).
+// obj as a C-contiguous, aligned array of T (no copy when it already is one); an empty handle with
+// the Python error cleared when obj converts to none. ensure() keeps a buffer at any address, and
+// one unpickled from a byte stream (a Dask worker's, say) may sit at an odd one: the core reads
+// whole numbers, so it gets an aligned copy.
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> aligned_array(py::handle obj) {
+  using A = py::array_t<T, py::array::c_style | py::array::forcecast>;
+  A a = A::ensure(obj);
+  if (!a) {
+    PyErr_Clear();
+    return a;
+  }
+  if (!(py::detail::array_proxy(a.ptr())->flags & py::detail::npy_api::NPY_ARRAY_ALIGNED_)) {
+    A copy(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
+    if (a.size()) std::memcpy(copy.mutable_data(), a.data(), static_cast<std::size_t>(a.size()) * sizeof(T));
+    return copy;
+  }
+  return a;
+}
+
+// A C-contiguous, aligned float64 view of obj (no copy when it already is one).
 inline Array as_array(py::handle obj, const char* name) {
   if (obj.is_none()) fail(std::string(name) + ": expected an array of numbers, got None");
   if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj))
@@ -35,11 +55,8 @@ inline Array as_array(py::handle obj, const char* name) {
   // Complex numbers would lose their imaginary part silently under a float64 cast.
   if (py::isinstance<py::array>(obj) && py::reinterpret_borrow<py::array>(obj).dtype().kind() == 'c')
     fail(std::string(name) + ": expected real numbers, got a complex array");
-  Array a = Array::ensure(obj);
-  if (!a) {
-    PyErr_Clear();
-    fail(std::string(name) + ": expected an array of numbers");
-  }
+  Array a = aligned_array<double>(obj);
+  if (!a) fail(std::string(name) + ": expected an array of numbers");
   return a;
 }
 

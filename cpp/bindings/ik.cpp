@@ -158,11 +158,8 @@ std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
 
 template <class T>
 py::array_t<T, py::array::c_style | py::array::forcecast> state_array(py::handle obj, const char* name) {
-  auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(obj);
-  if (!a) {
-    PyErr_Clear();
-    fail(std::string(name) + ": expected an array in the state");
-  }
+  auto a = aligned_array<T>(obj);
+  if (!a) fail(std::string(name) + ": expected an array in the state");
   return a;
 }
 

@@ -97,8 +97,8 @@ void bind_reach(py::module_& m) {
           [](const py::tuple& t) {
             check_state(t, 5, "TrackResult");
             const Array q = as_array(t[1], "q"), error = as_array(t[2], "error");
-            const auto converged = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(t[3]);
-            const auto iterations = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(t[4]);
+            const auto converged = aligned_array<bool>(t[3]);
+            const auto iterations = aligned_array<int>(t[4]);
             if (!converged || !iterations || q.ndim() != 2 || error.size() != q.shape(0) ||
                 converged.size() != q.shape(0) || iterations.size() != q.shape(0))
               fail("TrackResult state: arrays of different lengths");
