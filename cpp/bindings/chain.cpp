@@ -56,13 +56,6 @@ Matrix4 optional_tool(py::handle tool) {
   return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
 }
 
-void optional_limits(py::handle limits, Vector& lower, Vector& upper) {
-  if (limits.is_none()) return;
-  py::sequence pair = as_tuple_of(limits, "limits", 2, "a pair (lower, upper) of arrays");
-  lower = as_vector(pair[0], "limits", -1, false);
-  upper = as_vector(pair[1], "limits", -1, false);
-}
-
 Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::handle limits) {
   py::sequence rows = as_rows(rows_obj, "rows");
   std::vector<DHRow> parsed;
@@ -77,9 +70,8 @@ Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::han
     row.prismatic = joint_letter(r[4], name, "RP") == "P";
     parsed.push_back(row);
   }
-  Vector lower, upper;
-  optional_limits(limits, lower, upper);
-  return Chain::from_dh(parsed, modified, optional_tool(tool), lower, upper);
+  const JointLimits lim = limits_arg(limits, -1);
+  return Chain::from_dh(parsed, modified, optional_tool(tool), lim.lower, lim.upper);
 }
 
 Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle limits) {
@@ -97,9 +89,8 @@ Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle l
     spec.tip = as_transform(s[2], (name + " tip").c_str());
     parsed.push_back(spec);
   }
-  Vector lower, upper;
-  optional_limits(limits, lower, upper);
-  return Chain::from_segments(parsed, optional_tool(tool), lower, upper);
+  const JointLimits lim = limits_arg(limits, -1);
+  return Chain::from_segments(parsed, optional_tool(tool), lim.lower, lim.upper);
 }
 
 Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {

@@ -2,6 +2,7 @@
 // and robokin.cuspidal).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 
 #include "robokin/ik_3r.hpp"
 
@@ -20,25 +21,15 @@ Arm3R arm_arg(const Chain& chain) {
   }
 }
 
+// The chain's limits for "default" (none when the chain has not 3 joints), else limits_arg.
 JointLimits limits_3r(const Chain& chain, py::handle limits) {
-  JointLimits lim;
   if (py::isinstance<py::str>(limits)) {
     if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-    lim.lower = chain.lower(), lim.upper = chain.upper();
-    if (lim.lower.size() != 3) lim.lower.resize(0), lim.upper.resize(0);
+    JointLimits lim;
+    if (chain.dof() == 3) lim.lower = chain.lower(), lim.upper = chain.upper();
     return lim;
   }
-  if (limits.is_none()) return lim;
-  if (!py::isinstance<py::sequence>(limits) || py::len(limits) != 2)
-    fail("limits: expected 'default', None or a pair (lower, upper)");
-  py::sequence pair = py::reinterpret_borrow<py::sequence>(limits);
-  lim.lower = as_vector(pair[0], "limits", 3, false);
-  lim.upper = as_vector(pair[1], "limits", 3, false);
-  for (int i = 0; i < 3; ++i) {
-    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
-    if (lim.lower(i) > lim.upper(i)) fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
-  }
-  return lim;
+  return limits_arg(limits, 3);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
@@ -17,23 +18,6 @@
 
 namespace robokin::bind {
 namespace {
-
-JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismatic = {}) {
-  JointLimits lim;
-  lim.prismatic = std::move(prismatic);
-  if (obj.is_none()) return lim;
-  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) || py::len(obj) != 2)
-    fail("limits: expected None or a pair (lower, upper) of arrays");
-  py::sequence pair = py::reinterpret_borrow<py::sequence>(obj);
-  lim.lower = as_vector(pair[0], "limits", dof, false);
-  lim.upper = as_vector(pair[1], "limits", dof, false);
-  for (int i = 0; i < dof; ++i) {
-    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
-    if (lim.lower(i) > lim.upper(i))
-      fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
-  }
-  return lim;
-}
 
 double length_arg(double v, const char* name, bool positive) {
   if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");

@@ -93,10 +93,17 @@ class IkSolver {
   void errors(const Target& target, const double* q, double& error_p, double& error_r) const;
 
  private:
-  class Budget;  // the time budget: the thread's CPU time (ik_numeric.cpp)
+  class Budget;    // the time budget: the thread's CPU time (ik_numeric.cpp)
+  struct Attempt;  // the state of one attempt between iterations (ik_numeric.cpp)
+  enum class Step { Moved, Solved, Stuck };
   // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
   bool attempt(const Target& target, Vector& q, int& iterations, int budget, Budget& clock, bool may_stall,
                Progress* progress);
+  // One iteration of each method from q (its Jacobian J_ and error e_ current).
+  Step lm_step(const Target& target, Vector& q, Attempt& a);
+  Step gn_step(const Target& target, Vector& q, Attempt& a);
+  Step newton_step(const Target& target, Vector& q, Attempt& a);  // nr, halley
+  void take_trial(Vector& q, double cost_t, Attempt& a);
   double evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep, double& er);
   void errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const;
   void select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const;
@@ -120,11 +127,11 @@ class IkSolver {
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
-  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_, Am_;
-  Vector e_, et_, r_, dq_, a_, g_, ym_, qt_, qb_;
+  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_;
+  Vector e_, et_, r_, dq_, a_, g_, qt_, qb_;
   std::vector<bool> frozen_;
   Rigid T_;
-  Eigen::LLT<Eigen::MatrixXd> llt_n_, llt_m_;
+  Eigen::LLT<Eigen::MatrixXd> llt_n_;
 };
 
 // What ik_batch found, one row per target.

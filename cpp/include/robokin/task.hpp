@@ -25,6 +25,11 @@ struct Target {
 // pose is the rotation vector of R_target R^T, the planar angle error is wrapped to (-pi, pi].
 void task_error(const Target& target, const Rigid& current, double* err);
 
+// The position and orientation parts of a task error (as task_error writes it) as the success
+// tests read them: |translation rows| (overflow-safe) and |rotation vector| or |phi error|
+// (0 for a task without orientation).
+void task_error_norms(Task task, const double* err, double& error_p, double& error_r);
+
 // Rotation vector (angle * axis, angle in [0, pi]) of a rotation matrix.
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R);
 
