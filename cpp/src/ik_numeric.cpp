@@ -60,15 +60,15 @@ class IkSolver::Budget {
   double seconds_, cpu0_ = 0.0, check_at_ = 0.0;
 };
 
-IkMethod parse_ik_method(const std::string& name) {
-  if (name == "lm") return IkMethod::LM;
-  if (name == "gn") return IkMethod::GN;
-  if (name == "nr") return IkMethod::NR;
-  if (name == "halley") return IkMethod::Halley;
-  throw std::invalid_argument("method: expected one of 'lm', 'gn', 'nr', 'halley', got '" + name + "'");
+void parse(const std::string& name, IkMethod& method) {
+  if (name == "lm") method = IkMethod::LM;
+  else if (name == "gn") method = IkMethod::GN;
+  else if (name == "nr") method = IkMethod::NR;
+  else if (name == "halley") method = IkMethod::Halley;
+  else throw std::invalid_argument("method: expected one of 'lm', 'gn', 'nr', 'halley', got '" + name + "'");
 }
 
-const char* ik_method_name(IkMethod method) {
+const char* name_of(IkMethod method) {
   switch (method) {
     case IkMethod::LM: return "lm";
     case IkMethod::GN: return "gn";

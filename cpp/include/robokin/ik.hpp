@@ -18,8 +18,9 @@ namespace robokin {
 
 enum class IkMethod { LM, GN, NR, Halley };
 
-IkMethod parse_ik_method(const std::string& name);  // "lm" | "gn" | "nr" | "halley"
-const char* ik_method_name(IkMethod method);
+// Names of the methods: "lm" | "gn" | "nr" | "halley" (parse throws std::invalid_argument("method: ...")).
+void parse(const std::string& name, IkMethod& method);
+const char* name_of(IkMethod method);
 
 // The one source of the default damping (IkOptions::damping unset selects it): lm 1e-1 (initial mu
 // relative to max diag(J^T J)), nr 1e-6 and halley 1e-9 (lambda of the damped pseudoinverse), gn 0
@@ -53,6 +54,21 @@ struct IkOptions {
   // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm).
   // Unset: default_damping(method).
   std::optional<double> damping;
+
+  // Every option, its Python keyword and its doc, in order: the bindings bind exactly these (an
+  // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("method", &IkOptions::method, "'lm', 'gn', 'nr' or 'halley'.");
+    field("task", &IkOptions::task, "'pose', 'position', 'xy' or 'xyphi'.");
+    field("tol_p", &IkOptions::tol_p, "Position tolerance (m).");
+    field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.");
+    field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
+    field("restarts", &IkOptions::restarts,
+          "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.");
+    field("timeout", &IkOptions::timeout, "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.");
+    field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
+  }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;

@@ -12,6 +12,9 @@ enum class Task { Pose, Position, XY, XYPhi };
 
 Task parse_task(const std::string& name);  // "pose" | "position" | "xy" | "xyphi"
 const char* task_name(Task task);
+// The same as the overloads every named enum of the core has (options fields bind them by name).
+inline void parse(const std::string& name, Task& task) { task = parse_task(name); }
+inline const char* name_of(Task task) { return task_name(task); }
 int task_rows(Task task);  // 6, 3, 2, 3
 
 // A target for a task: pose -> a rigid frame; position -> (x, y, z); xy -> (x, y); xyphi -> (x, y, phi).
