@@ -17,8 +17,6 @@ namespace {
 
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
-// With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
-constexpr int kStallWindow = 6;
 
 double wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -92,6 +90,7 @@ void IkOptions::validate() const {
   if (!(tol_p > 0) || !std::isfinite(tol_p)) throw std::invalid_argument("tol_p: must be a positive number");
   if (!(tol_r > 0) || !std::isfinite(tol_r)) throw std::invalid_argument("tol_r: must be a positive number");
   if (max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
+  if (stall_window < 0) throw std::invalid_argument("stall_window: must be >= 0 (0: never drop an attempt)");
   if (restarts && *restarts < 0) throw std::invalid_argument("restarts: must be >= 0");
   if (restarts && *restarts > kMaxRestarts)
     throw std::invalid_argument("restarts: must be at most " + std::to_string(kMaxRestarts) +
@@ -403,7 +402,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   for (int it = 0; it < budget; ++it) {
     if ((it & 3) == 3 && clock.spent()) return give_up();
     if ((it & 255) == 255) report(progress, it, budget);
-    if (may_stall && it > 0 && it % kStallWindow == 0) {
+    if (may_stall && opt_.stall_window > 0 && it > 0 && it % opt_.stall_window == 0) {
       if (!(a.cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
       window_cost = a.cost;
     }

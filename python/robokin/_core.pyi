@@ -740,8 +740,8 @@ class IKOptions:
     The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.
     """
     __hash__: typing.ClassVar[None] = None
-    fields: typing.ClassVar[tuple] = ('method', 'task', 'tol_p', 'tol_r', 'max_iter', 'restarts', 'timeout', 'damping')
-    kinds: typing.ClassVar[tuple] = ('str', 'str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float')
+    fields: typing.ClassVar[tuple] = ('method', 'task', 'tol_p', 'tol_r', 'max_iter', 'restarts', 'timeout', 'damping', 'stall_window')
+    kinds: typing.ClassVar[tuple] = ('str', 'str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
     def __eq__(self, arg0: typing.Any) -> bool:
         ...
     def __getstate__(self) -> dict:
@@ -789,6 +789,14 @@ class IKOptions:
         """
     @restarts.setter
     def restarts(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def stall_window(self) -> int:
+        """
+        With restarts left, drop an attempt whose cost has not halved over this many iterations; 0: never.
+        """
+    @stall_window.setter
+    def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def task(self) -> str:

@@ -54,6 +54,9 @@ struct IkOptions {
   // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm).
   // Unset: default_damping(method).
   std::optional<double> damping;
+  // With restarts left, an attempt whose cost |e|^2 has not halved over this many iterations is
+  // dropped for a restart (a crawling attempt costs more than a fresh start); 0: never dropped.
+  int stall_window = 6;
 
   // Every option, its Python keyword and its doc, in order: the bindings bind exactly these (an
   // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
@@ -68,6 +71,8 @@ struct IkOptions {
           "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.");
     field("timeout", &IkOptions::timeout, "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.");
     field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
+    field("stall_window", &IkOptions::stall_window,
+          "With restarts left, drop an attempt whose cost has not halved over this many iterations; 0: never.");
   }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
