@@ -280,9 +280,40 @@ class RRR3PlanOptions:
     span: float
     resolution: float
     smoothing: float
+    closed: bool
     def __init__(self, *, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
                  max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
-                 resolution: float = 0.005, smoothing: float = 10.0) -> None: ...
+                 resolution: float = 0.005, smoothing: float = 10.0, closed: bool = False) -> None: ...
+    def validate(self) -> None:
+        """Raises ValueError naming an option out of range."""
+
+class RRR3LoopOptions:
+    """The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'."""
+    fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
+    sign: int
+    """The sign det A keeps all along (+1 or -1): the side of the parallel singularities."""
+    nominals: Tuple[float, ...]
+    """Nominal orientations tried in order (rad); default 0, +0.05, -0.05, +0.1, ... -1.5."""
+    def __init__(self, *, sign: int = 1, nominals: Sequence[float] = ...) -> None: ...
+    def validate(self) -> None:
+        """Raises ValueError naming an option out of range."""
+
+class RRR3Loop:
+    """Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about."""
+
+    @property
+    def plan(self) -> RRR3Plan:
+        """The closed plan about ``nominal`` (no poses when none was found)."""
+    @property
+    def nominal(self) -> Optional[float]:
+        """The nominal orientation used (rad), None when none was found."""
+    @property
+    def found(self) -> bool: ...
+    @property
+    def reason(self) -> Optional[str]:
+        """Why none was found: ``"start"`` (at no nominal orientation is the first point reachable
+        with det A of ``sign``) or ``"plan"`` (every plan from such a start fails); None when found."""
 
 class RRR3ConnectOptions:
     """The options of RRR3.connect (keywords)."""
@@ -362,7 +393,7 @@ class RRR3:
     def plan(
         self, points: ArrayLike, *, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), avoid: bool = True,
         max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
-        resolution: float = 0.005, smoothing: float = 10.0,
+        resolution: float = 0.005, smoothing: float = 10.0, closed: bool = False,
     ) -> RRR3Plan:
         """Poses to follow the (K, 2) points at the nominal orientation ``phi`` in one mode.
 
@@ -372,6 +403,27 @@ class RRR3:
         ``|det_b_norm| >= serial_margin``, det A of the sign it has at the first point, and a
         distance to parallel singularities below ``margin`` penalised heavily. Excursions from
         the nominal orientation go out and back once (dips are filled), so nothing chatters.
+
+        ``closed``: the points are a loop (the last joins the first), and the plan joins up too:
+        the loop is cut where it is clearest of parallel singularities at ``phi`` (among the
+        points with det A of the first point's sign there), planned from there and rolled back;
+        ``feasible`` then also checks the step from the last pose to the first.
+        """
+    def plan_loop(
+        self, points: ArrayLike, *, sign: int = 1, nominals: Sequence[float] = ..., mode: Sequence[int] = (1, 1, 1),
+        avoid: bool = True, max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02,
+        span: float = 1.0, resolution: float = 0.005, smoothing: float = 10.0,
+    ) -> RRR3Loop:
+        """The closed plan (``plan(..., closed=True)``) of the loop of (K, 2) points about the first
+        of ``nominals`` (default ``RRR3LoopOptions().nominals``: 0, +-0.05, ... +-1.5 rad) that keeps
+        det A of ``sign`` all along.
+
+        With ``avoid``: the first nominal at which the first point is reachable with det A of
+        ``sign`` and whose closed plan is ``feasible`` with that sign. Without (constant
+        orientation): ``nominals[0]`` when the first point has det A of ``sign`` there (the loop
+        may cross singularities: ``plan.feasible`` says), else the first nominal whose whole loop
+        keeps ``sign``, else the first whose first point has it. ``phi`` and ``closed`` are not
+        options here (searched, always closed); the other keywords are RRR3PlanOptions'.
         """
     def connect(
         self, start: ArrayLike, goal: ArrayLike, *, mode: Sequence[int] = (1, 1, 1), clearance: float = 0.05,
