@@ -12,6 +12,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -178,13 +179,23 @@ RRR3Loop loop_plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwarg
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
   const std::vector<std::string> loop_names = field_names<RRR3LoopOptions>();
+  std::vector<std::string> plan_names;
+  for (const std::string& n : field_names<RRR3PlanOptions>())
+    if (n != "phi" && n != "closed") plan_names.push_back(n);  // phi is searched, the plan always closed
+  auto has = [](const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+  };
   py::dict loop_kwargs, plan_kwargs;
   for (auto item : kwargs) {
     const std::string name = py::str(item.first).cast<std::string>();
-    if (name == "phi" || name == "closed")
-      throw py::type_error("unexpected keyword argument '" + name + "' (plan_loop searches phi over nominals; the plan is closed)");
-    const bool own = std::find(loop_names.begin(), loop_names.end(), name) != loop_names.end();
-    (own ? loop_kwargs : plan_kwargs)[item.first] = item.second;
+    if (!has(loop_names, name) && !has(plan_names, name)) {
+      std::string all;
+      for (const std::string& n : loop_names) all += (all.empty() ? "" : ", ") + n;
+      for (const std::string& n : plan_names) all += ", " + n;
+      throw py::type_error("unexpected keyword argument '" + name + "' (options: " + all +
+                           "; phi is searched over nominals, the plan is always closed)");
+    }
+    (has(loop_names, name) ? loop_kwargs : plan_kwargs)[item.first] = item.second;
   }
   const RRR3LoopOptions loop = LoopOptionsClass::from_kwargs(loop_kwargs);
   const RRR3PlanOptions o = PlanOptionsClass::from_kwargs(plan_kwargs);
