@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3_DEFAULTS', 'ReachOptions', 'ReachResult', 'TrackResult', 'UR_POSTURES', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry']
+__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3_DEFAULTS', 'ReachOptions', 'ReachResult', 'TrackResult', 'UR_POSTURES', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -367,6 +367,34 @@ class RRR3Plan:
         """
         The sign of det A kept along the path.
         """
+class RRR3Loop:
+    """
+    Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.
+    """
+    def __getstate__(self) -> tuple[int, RRR3Plan, float, bool, str]:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def found(self) -> bool:
+        ...
+    @property
+    def nominal(self) -> typing.Any:
+        """
+        The nominal orientation used (rad), None when none was found.
+        """
+    @property
+    def plan(self) -> RRR3Plan:
+        """
+        The closed RRR3Plan about nominal (no poses when none was found).
+        """
+    @property
+    def reason(self) -> typing.Any:
+        """
+        Why none was found: 'start' (no nominal puts the first point on the side) or 'plan'; None when found.
+        """
 class RRR3Workspace:
     """
     Answer of RRR3.workspace: a constant-orientation map.
@@ -420,8 +448,8 @@ class RRR3PlanOptions:
     The options of RRR3.plan (keywords); defaults as in the seed's simulator.
     """
     __hash__: typing.ClassVar[None] = None
-    fields: typing.ClassVar[tuple] = ('phi', 'mode', 'avoid', 'max_step', 'margin', 'serial_margin', 'span', 'resolution', 'smoothing')
-    kinds: typing.ClassVar[tuple] = ('float', '(m_0, m_1, m_2) of +-1', 'bool', 'float', 'float', 'float', 'float', 'float', 'float')
+    fields: typing.ClassVar[tuple] = ('phi', 'mode', 'avoid', 'max_step', 'margin', 'serial_margin', 'span', 'resolution', 'smoothing', 'closed')
+    kinds: typing.ClassVar[tuple] = ('float', '(m_0, m_1, m_2) of +-1', 'bool', 'float', 'float', 'float', 'float', 'float', 'float', 'bool')
     def __eq__(self, arg0: typing.Any) -> bool:
         ...
     def __getstate__(self) -> dict:
@@ -445,6 +473,14 @@ class RRR3PlanOptions:
         """
     @avoid.setter
     def avoid(self, arg0: bool) -> None:
+        ...
+    @property
+    def closed(self) -> bool:
+        """
+        The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).
+        """
+    @closed.setter
+    def closed(self, arg0: bool) -> None:
         ...
     @property
     def margin(self) -> float:
@@ -589,6 +625,45 @@ class RRR3ConnectOptions:
     @span.setter
     def span(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class RRR3LoopOptions:
+    """
+    The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'.
+    """
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('sign', 'nominals')
+    kinds: typing.ClassVar[tuple] = ('int', 'sequence of float')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError naming an option out of range.
+        """
+    @property
+    def nominals(self) -> tuple:
+        """
+        Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.
+        """
+    @nominals.setter
+    def nominals(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def sign(self) -> int:
+        """
+        The sign det A keeps all along (+1 or -1): the side of the parallel singularities.
+        """
+    @sign.setter
+    def sign(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 class RRR3:
     """
     The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).
@@ -649,10 +724,18 @@ class RRR3:
         """
     def plan(self, points: typing.Any, **kwargs) -> RRR3Plan:
         """
-        plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0)
+        plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0, closed=False)
         
         Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;
         options keyword-only (RRR3PlanOptions).
+        """
+    def plan_loop(self, points: typing.Any, **kwargs) -> RRR3Loop:
+        """
+        plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)
+        
+        The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all
+        along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
+        why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
         """
     def points(self, pose: typing.Any, mode: typing.Any = (1, 1, 1)) -> dict:
         """
