@@ -16,6 +16,7 @@ import operator
 import numpy as np
 
 from ._core import Chain
+from ._checks import number
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
            "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
@@ -29,17 +30,6 @@ RPR_LIMITS = (np.array([0.0, 0.0, 0.0]), np.array([math.pi / 2, RPR_STROKE, math
 #: with t1 = pi/2 (these joints), and ends at point 2 (x, y).
 RPR_LINE_Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
 RPR_LINE_P2 = np.array([1.5, 1.0])
-
-
-def _length(value, name: str, minimum: float = -math.inf) -> float:
-    """A finite real argument as a float; the error names the argument (not the DH row it goes to)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
-    value = float(value)
-    if not (math.isfinite(value) and value >= minimum):
-        raise ValueError(f"{name}: must be a finite number" + (f" >= {minimum:g}" if minimum > -math.inf else "")
-                         + f", got {value!r}")
-    return value
 
 
 def _translate_x(length: float) -> np.ndarray:
@@ -68,13 +58,13 @@ def prr(a2: float = 1.0, a3: float = 1.0) -> Chain:
     DH table ``(a, alpha, d, theta)``: ``(0, pi/2, d1, 0)``, ``(a2, 0, 0, theta2)``,
     ``(a3, 0, 0, theta3)``; ``q = (d1, theta2, theta3)``; frame 3 is the tool (the seed omits T_e^3).
     """
-    a2, a3 = _length(a2, "a2"), _length(a3, "a3")
+    a2, a3 = number(a2, "a2"), number(a3, "a3")
     return Chain.from_dh([(0.0, math.pi / 2, 0.0, 0.0, "P"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R")])
 
 
 def planar_3r(a1: float = 1.0, a2: float = 1.0, a3: float = 1.0) -> Chain:
     """A planar 3R arm (seed 003, example 2): three revolute joints about z, links a1, a2, a3."""
-    a1, a2, a3 = _length(a1, "a1"), _length(a2, "a2"), _length(a3, "a3")
+    a1, a2, a3 = number(a1, "a1"), number(a2, "a2"), number(a3, "a3")
     return Chain.from_dh([(a, 0.0, 0.0, 0.0, "R") for a in (a1, a2, a3)])
 
 
@@ -83,7 +73,7 @@ def rp(stroke: float = 1.0) -> Chain:
 
     The tip is at ``d2 (cos theta1, sin theta1)``; ``d2`` is limited to ``[0, stroke]``.
     """
-    stroke = _length(stroke, "stroke", minimum=0.0)
+    stroke = number(stroke, "stroke", minimum=0.0)
     return Chain.from_dh(
         [(0.0, math.pi / 2, 0.0, math.pi / 2, "R"), (0.0, 0.0, 0.0, 0.0, "P")],
         limits=([-math.inf, 0.0], [math.inf, stroke]),
