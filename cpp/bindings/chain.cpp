@@ -117,7 +117,7 @@ FkOutput fk_output_of(py::handle obj) {
   fail("out: expected 'frame' or 'position', got '" + s + "'");
 }
 
-py::array fk(const Chain& c, py::handle q_obj, py::handle out_obj) {
+py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
   const FkOutput what = fk_output_of(out_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
@@ -147,7 +147,7 @@ py::array fk(const Chain& c, py::handle q_obj, py::handle out_obj) {
   return out;
 }
 
-py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
+py::array jacobian(const Chain& c, ArrayLike q_obj, py::handle task_obj) {
   const Task task = task_of(task_obj);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
@@ -172,7 +172,7 @@ py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
   return out;
 }
 
-py::array_t<double> frames(const Chain& c, py::handle q_obj) {
+py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
   py::array_t<double> out({static_cast<py::ssize_t>(f.size()), py::ssize_t{4}, py::ssize_t{4}});
   for (size_t i = 0; i < f.size(); ++i)
@@ -181,7 +181,7 @@ py::array_t<double> frames(const Chain& c, py::handle q_obj) {
   return out;
 }
 
-py::array_t<double> point_in_frame(const Chain& c, py::handle q_obj, py::handle point_obj, long frame,
+py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike point_obj, long frame,
                                    long in_frame) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
   const Vector p = as_vector(point_obj, "point", 3);
@@ -224,9 +224,9 @@ void bind_chain(py::module_& m) {
       .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
       .def("point_in_frame", &point_in_frame, py::arg("q"), py::arg("point"), py::arg("frame"),
            py::arg("in_frame") = 0, "Expresses a point given in frame `frame` in frame `in_frame`.")
-      .def("_fk_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
+      .def("_fk_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
-      .def("_jacobian_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
+      .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
   // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }

@@ -10,7 +10,6 @@
 #include "robokin/task.hpp"
 
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -48,12 +47,7 @@ inline Task task_of(py::handle obj) {
     Py_ssize_t len = 0;
     const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
     if (!s) throw py::error_already_set();
-    const std::string_view name(s, static_cast<size_t>(len));
-    if (name == "pose") return Task::Pose;
-    if (name == "xy") return Task::XY;
-    if (name == "position") return Task::Position;
-    if (name == "xyphi") return Task::XYPhi;
-    return parse_task(std::string(name));  // throws the ValueError naming the task
+    return parse_task(std::string(s, static_cast<size_t>(len)));  // short: no allocation; throws naming the task
   }
   // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
   throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");

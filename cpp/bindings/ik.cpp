@@ -67,7 +67,7 @@ IkOptions options_arg(const py::kwargs& kwargs) {
   return o;
 }
 
-IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, py::handle seed, const py::kwargs& kwargs) {
+IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, py::handle seed, const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const Target t = one_target(o.task, target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
@@ -86,7 +86,7 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, py::handle
   return checked(r);
 }
 
-IkBatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, py::handle seed, bool path,
+IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, py::handle seed, bool path,
                           const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const int n = chain.dof();
@@ -130,7 +130,7 @@ struct BoundSolver {
       : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o), solver(*chain, o), seeded(seeded_),
         seed(seed_), calls(calls_) {}
 
-  IkResult solve(py::handle target, py::handle q0_obj) {
+  IkResult solve(ArrayLike target, ArrayLike q0_obj) {
     const Target t = one_target(options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());

@@ -37,7 +37,7 @@ JointLimits limits_3r(const Chain& chain, py::handle limits) {
 void bind_ik_3r(py::module_& m) {
   m.def(
       "ik_3r",
-      [](py::handle target, const Chain& chain, py::handle limits) {
+      [](ArrayLike target, const Chain& chain, py::handle limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
         const Arm3R arm = arm_arg(chain);
         return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_3r(chain, limits));

@@ -25,17 +25,17 @@ double length_arg(double v, const char* name, bool positive) {
   return v;
 }
 
-ClosedFormSolutions planar_rp(py::handle target, py::handle limits) {
+ClosedFormSolutions planar_rp(ArrayLike target, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
 }
 
-ClosedFormSolutions planar_2r(py::handle target, double a1, double a2, py::handle limits) {
+ClosedFormSolutions planar_2r(ArrayLike target, double a1, double a2, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_2r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), p(0), p(1), limits_arg(limits, 2));
 }
 
-ClosedFormSolutions planar_3r(py::handle target, double a1, double a2, double a3, const std::string& method,
+ClosedFormSolutions planar_3r(ArrayLike target, double a1, double a2, double a3, const std::string& method,
                               py::handle limits) {
   const Vector p = as_vector(target, "target", 3);
   if (method != "algebraic" && method != "geometric")
@@ -55,19 +55,19 @@ ArmGeometry arm_arg(double d1, double a2, double a3, double d3, double d4) {
   return g;
 }
 
-ClosedFormSolutions anthropomorphic(py::handle target, double a2, double a3, double d1, py::handle limits) {
+ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, double d1, py::handle limits) {
   const Vector p = as_vector(target, "target", 3);
   return ik_anthropomorphic(arm_arg(d1, a2, a3, 0, 0), p, limits_arg(limits, 3));
 }
 
-ClosedFormSolutions spherical_wrist(py::handle target, double a2, double a3, double d3, double d4, double d1,
+ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
                                     double d6, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), T, limits_arg(limits, 6));
 }
 
-py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, double d3, double d4, double d1,
-                               double d6, py::handle q0_obj, py::handle limits) {
+py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
+                               double d6, ArrayLike q0_obj, py::handle limits) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
@@ -98,7 +98,7 @@ struct SphericalWrist {
   ArmGeometry arm;
   double d6;
   JointLimits limits;
-  ClosedFormSolutions solve(py::handle target) const {
+  ClosedFormSolutions solve(ArrayLike target) const {
     return ik_spherical_wrist(arm, d6, Rigid::from_matrix(as_transform(target, "target")), limits);
   }
 };
@@ -125,14 +125,14 @@ JointLimits ur_limits_arg(const Chain& chain, py::handle limits) {
   return limits_arg(limits, 6);
 }
 
-ClosedFormSolutions ur(py::handle target, const Chain& chain, py::handle limits) {
+ClosedFormSolutions ur(ArrayLike target, const Chain& chain, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_ur(ur_arm_arg(chain), chain, T, ur_limits_arg(chain, limits));
 }
 
-py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
 
-py::tuple ur_batch(py::handle targets_obj, const Chain& chain, py::handle limits) {
+py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, py::handle limits) {
   const URArm arm = ur_arm_arg(chain);
   const JointLimits lim = ur_limits_arg(chain, limits);
   return ur_batch_with(targets_obj, chain, arm, lim);
@@ -143,13 +143,13 @@ struct URSolver {
   const Chain* chain;  // kept alive by the Python object (keep_alive)
   URArm arm;
   JointLimits limits;
-  ClosedFormSolutions solve(py::handle target) const {
+  ClosedFormSolutions solve(ArrayLike target) const {
     return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
   }
-  py::tuple solve_batch(py::handle targets) const { return ur_batch_with(targets, *chain, arm, limits); }
+  py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
 };
 
-py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
@@ -248,7 +248,7 @@ void bind_ik_closed(py::module_& m) {
       .def("__len__", &ClosedFormSolutions::count)
       .def(
           "nearest",
-          [](const ClosedFormSolutions& s, py::handle q_obj) -> py::object {
+          [](const ClosedFormSolutions& s, ArrayLike q_obj) -> py::object {
             const Vector q = as_vector(q_obj, "q", s.dof);
             const int k = nearest_solution(s, q.data());
             if (k < 0) return py::none();

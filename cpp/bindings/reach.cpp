@@ -32,7 +32,7 @@ ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::hand
   return o;
 }
 
-ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const std::string& task_str,
+ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const std::string& task_str,
                   py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const Target t = one_target(task, target);
@@ -44,7 +44,7 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
   return r;
 }
 
-TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
+TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, const std::string& task_str,
                   py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const std::vector<Target> targets = many_targets(task, points, "points");
@@ -85,7 +85,7 @@ void bind_reach(py::module_& m) {
         "Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.");
   m.def(
       "joint_limit_cost",
-      [](const Chain& chain, py::handle q_obj) -> py::object {
+      [](const Chain& chain, ArrayLike q_obj) -> py::object {
         Array q = as_array(q_obj, "q");
         const long n = chain.dof();
         if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))

@@ -70,7 +70,7 @@ double positive_tol(double tol) {
   return tol;
 }
 
-py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mode_obj) {
+py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, py::handle mode_obj) {
   const Mode mode = as_mode(mode_obj);
   Array poses = as_array(poses_obj, "poses");
   if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
@@ -87,7 +87,7 @@ py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mod
   return out;
 }
 
-py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
+py::array_t<double> ik_all(const RRR3& r, ArrayLike pose_obj) {
   const Pose pose = as_pose(pose_obj);
   py::array_t<double> out = new_array({8, 3});
   for (int k = 0; k < 8; ++k) {
@@ -97,7 +97,7 @@ py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
   return out;
 }
 
-RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, int max_iter, double tol) {
+RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, int max_iter, double tol) {
   const Pose pose = as_pose(pose_obj);
   Array g = as_array(guess_obj, "guess");
   if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
@@ -109,7 +109,7 @@ RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, i
                      max_iter, tol);
 }
 
-RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_iter, double tol) {
+RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, int max_iter, double tol) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
   check_max_iter(max_iter);
@@ -117,7 +117,7 @@ RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_ite
   return r.fk(alpha, guess, max_iter, tol);
 }
 
-py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
+py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   std::vector<Pose> poses;
   {
@@ -129,7 +129,7 @@ py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
   return out;
 }
 
-py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+py::dict points(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   const Pose pose = as_pose(pose_obj);
   const Elbows A = r.elbows(r.ik_or_throw(pose, as_mode(mode_obj)));
   Elbows O, B;
@@ -144,7 +144,7 @@ py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
   return d;
 }
 
-py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   Eigen::Matrix3d A, B;
   r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
   return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
@@ -159,7 +159,7 @@ using PlanOptionsClass = OptionsClass<RRR3PlanOptions>;
 using ConnectOptionsClass = OptionsClass<RRR3ConnectOptions>;
 using LoopOptionsClass = OptionsClass<RRR3LoopOptions>;
 
-RRR3Plan plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
+RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
   Array pts = as_array(points_obj, "points");
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
@@ -174,7 +174,7 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
 
 // plan_loop(points, **kwargs): the loop's own options (sign, nominals) and the plan's (all but phi,
 // searched, and closed, always true).
-RRR3Loop loop_plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
+RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
   Array pts = as_array(points_obj, "points");
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
@@ -207,7 +207,7 @@ RRR3Loop loop_plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwarg
   return plan_loop(r, pts.data(), count, o, loop, &progress);
 }
 
-RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj, const py::kwargs& kwargs) {
+RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, const py::kwargs& kwargs) {
   const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
   const RRR3ConnectOptions o = ConnectOptionsClass::from_kwargs(kwargs);
   o.validate();
@@ -578,7 +578,7 @@ void def_geometry(py::class_<RRR3>& cls) {
 
 // RRR3's inverse and forward models, drawing points, Jacobians and singularities.
 void def_kinematics(py::class_<RRR3>& cls) {
-  cls.def("ik", [](const RRR3& r, py::handle pose, py::handle mode) {
+  cls.def("ik", [](const RRR3& r, ArrayLike pose, py::handle mode) {
         return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
@@ -599,7 +599,7 @@ void def_kinematics(py::class_<RRR3>& cls) {
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
       .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
-      .def("singularity", [](const RRR3& r, py::handle pose, py::handle mode, double tol) {
+      .def("singularity", [](const RRR3& r, ArrayLike pose, py::handle mode, double tol) {
         return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = kSingularTol,
            "Classification with tol on the normalised determinants.");

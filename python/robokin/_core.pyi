@@ -41,41 +41,41 @@ class Chain:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def _fk_kdl(self, q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def _fk_kdl(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         Reference: KDL's ChainFkSolverPos_recursive.
         """
-    def _jacobian_kdl(self, q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def _jacobian_kdl(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         Reference: KDL's ChainJntToJacSolver (6 x dof).
         """
-    def ellipsoid(self, q: typing.Any, part: str = 'translation') -> tuple:
+    def ellipsoid(self, q: numpy.typing.ArrayLike, part: str = 'translation') -> tuple:
         """
         Velocity ellipsoid of the translational ('translation': rows v) or rotational ('rotation': rows w)
         Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed
         frame), lengths (3,) the singular values in decreasing order (0 for missing directions).
         """
-    def fk(self, q: typing.Any, out: typing.Any = 'frame') -> numpy.ndarray:
+    def fk(self, q: numpy.typing.ArrayLike, out: typing.Any = 'frame') -> numpy.ndarray:
         """
         Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool
         point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).
         """
-    def frames(self, q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def frames(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         Frames (dof + 1, 4, 4): base, then the frame after each joint.
         """
-    def jacobian(self, q: typing.Any, task: typing.Any = 'pose') -> numpy.ndarray:
+    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Any = 'pose') -> numpy.ndarray:
         """
         Geometric Jacobian at the tool point in the base frame, rows of the task.
         """
-    def manipulability(self, q: typing.Any, measure: typing.Any = 'yoshikawa', task: typing.Any = 'pose') -> typing.Any:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Any = 'yoshikawa', task: typing.Any = 'pose') -> typing.Any:
         """
         Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
         product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
         condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),
         an array (N,) for a batch (N, dof) (GIL released, every core).
         """
-    def point_in_frame(self, q: typing.Any, point: typing.Any, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
+    def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
         Expresses a point given in frame `frame` in frame `in_frame`.
         """
@@ -681,7 +681,7 @@ class RRR3:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def connect(self, start: typing.Any, goal: typing.Any, **kwargs) -> RRR3Plan:
+    def connect(self, start: numpy.typing.ArrayLike, goal: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
         """
         connect(start, goal, *, mode=(1, 1, 1), clearance=0.05, serial_margin=0.02, max_step=0.001, max_turn=0.01, resolution=0.005, span=1.5)
         
@@ -690,11 +690,11 @@ class RRR3:
         why there is none (the two poses are in different singularity-free regions of the mode);
         options keyword-only (RRR3ConnectOptions).
         """
-    def fk(self, alpha: typing.Any, guess: typing.Any, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Fk:
+    def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Fk:
         """
         One assembly mode by Newton from a guess pose.
         """
-    def fk_all(self, alpha: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def fk_all(self, alpha: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         (k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel
         singularity too; modes closer than the loops can tell in floating point, some 1e-7 of the
@@ -702,34 +702,34 @@ class RRR3:
         alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi
         fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.
         """
-    def ik(self, pose: typing.Any, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+    def ik(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
         Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.
         """
-    def ik_all(self, pose: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def ik_all(self, pose: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         (8, 3): row k for mode k of RRR3.modes, NaN where unreachable.
         """
-    def ik_batch(self, poses: typing.Any, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
         (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
         """
-    def ik_newton(self, pose: typing.Any, guess: typing.Any, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Newton:
+    def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Newton:
         """
         Newton-Raphson on the 6 loop equations from guess (alpha, beta).
         """
-    def jacobians(self, pose: typing.Any, mode: typing.Any = (1, 1, 1)) -> tuple:
+    def jacobians(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> tuple:
         """
         The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.
         """
-    def plan(self, points: typing.Any, **kwargs) -> RRR3Plan:
+    def plan(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
         """
         plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0, closed=False)
         
         Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;
         options keyword-only (RRR3PlanOptions).
         """
-    def plan_loop(self, points: typing.Any, **kwargs) -> RRR3Loop:
+    def plan_loop(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Loop:
         """
         plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)
         
@@ -737,11 +737,11 @@ class RRR3:
         along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
         why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
         """
-    def points(self, pose: typing.Any, mode: typing.Any = (1, 1, 1)) -> dict:
+    def points(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> dict:
         """
         Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
         """
-    def singularity(self, pose: typing.Any, mode: typing.Any = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
+    def singularity(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
         """
         Classification with tol on the normalised determinants.
         """
@@ -778,7 +778,7 @@ class IKSolutions:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def nearest(self, q: typing.Any) -> typing.Any:
+    def nearest(self, q: numpy.typing.ArrayLike) -> typing.Any:
         """
         Index of the solution nearest to q (Euclidean in joint space); None when empty.
         """
@@ -806,7 +806,7 @@ class _SphericalWrist6R:
     """
     def __init__(self, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> None:
         ...
-    def solve(self, target: typing.Any) -> IKSolutions:
+    def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
 class _URSolver:
     """
@@ -814,9 +814,9 @@ class _URSolver:
     """
     def __init__(self, chain: Chain, limits: typing.Any = 'default') -> None:
         ...
-    def solve(self, target: typing.Any) -> IKSolutions:
+    def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
-    def solve_batch(self, targets: typing.Any) -> tuple:
+    def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
         ...
 class IKOptions:
     """
@@ -1013,7 +1013,7 @@ class IKSolver:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
-    def solve(self, target: typing.Any, q0: typing.Any) -> IKResult:
+    def solve(self, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike) -> IKResult:
         """
         Solves one target from q0 -> IKResult.
         """
@@ -1032,54 +1032,54 @@ def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIn
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ik(chain: Chain, target: typing.Any, q0: typing.Any, *, seed: typing.Any = None, **kwargs) -> IKResult:
+def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: typing.Any = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """
-def ik_3r(target: typing.Any, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
+def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
     ...
-def ik_anthropomorphic(target: typing.Any, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
+def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
     ...
-def ik_batch(chain: Chain, targets: typing.Any, q0: typing.Any, *, seed: typing.Any = None, path: bool = False, **kwargs) -> IKBatchResult:
+def ik_batch(chain: Chain, targets: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: typing.Any = None, path: bool = False, **kwargs) -> IKBatchResult:
     """
     Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.
     """
-def ik_planar_2r(target: typing.Any, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: typing.Any = None) -> IKSolutions:
+def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: typing.Any = None) -> IKSolutions:
     ...
-def ik_planar_3r(target: typing.Any, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str = 'algebraic', limits: typing.Any = None) -> IKSolutions:
+def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str = 'algebraic', limits: typing.Any = None) -> IKSolutions:
     ...
-def ik_planar_rp(target: typing.Any, limits: typing.Any = None) -> IKSolutions:
+def ik_planar_rp(target: numpy.typing.ArrayLike, limits: typing.Any = None) -> IKSolutions:
     ...
-def ik_spherical_wrist(target: typing.Any, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
+def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
     ...
-def ik_spherical_wrist_path(targets: typing.Any, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: typing.Any, limits: typing.Any = None) -> tuple:
+def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: typing.Any = None) -> tuple:
     ...
-def ik_ur(target: typing.Any, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
+def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
     ...
-def ik_ur_batch(targets: typing.Any, chain: Chain, limits: typing.Any = 'default') -> tuple:
+def ik_ur_batch(targets: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> tuple:
     ...
-def joint_limit_cost(chain: Chain, q: typing.Any) -> typing.Any:
+def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     """
     Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2, W = diag(1 / (q_max - q_min)) (0 for an
     unlimited joint): a float for q (dof,), an array (N,) for a batch (N, dof).
     """
-def pose_error(target: typing.Any, current: typing.Any) -> numpy.ndarray:
+def pose_error(target: numpy.typing.ArrayLike, current: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     The IK's pose error (p_t - p, rotation vector of R_t R^T). Use robokin.pose.error.
     """
-def pose_exp(xi: typing.Any) -> numpy.ndarray:
+def pose_exp(xi: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     SE(3) exponential of twists (v, w). Use robokin.pose.exp.
     """
-def pose_from_quaternion(quaternion: typing.Any) -> numpy.ndarray:
+def pose_from_quaternion(quaternion: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Frames of quaternions (w, x, y, z). Use robokin.pose.from_quaternion.
     """
-def pose_from_rotation_vector(rotation_vector: typing.Any) -> numpy.ndarray:
+def pose_from_rotation_vector(rotation_vector: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Frames of rotation vectors (angle * axis). Use robokin.pose.from_axis_angle.
     """
-def pose_from_rpy(rpy: typing.Any) -> numpy.ndarray:
+def pose_from_rpy(rpy: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Frames of rotations Rz(yaw) Ry(pitch) Rx(roll). Use robokin.pose.from_rpy.
     """
@@ -1099,15 +1099,15 @@ def pose_rpy(T: typing.Any) -> numpy.ndarray:
     """
     (roll, pitch, yaw) of rotations. Use robokin.pose.rpy.
     """
-def reach(chain: Chain, target: typing.Any, q: typing.Any, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> ReachResult:
+def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> ReachResult:
     """
     One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
     """
-def resolved_rate(chain: Chain, q: typing.Any, twist: typing.Any, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose') -> numpy.typing.NDArray[numpy.float64]:
+def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose') -> numpy.typing.NDArray[numpy.float64]:
     """
     Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.
     """
-def rpr_self_motion(point: typing.Any, t1: typing.Any, l1: typing.SupportsFloat | typing.SupportsIndex, l3: typing.SupportsFloat | typing.SupportsIndex, lower: typing.Any, upper: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+def rpr_self_motion(point: numpy.typing.ArrayLike, t1: numpy.typing.ArrayLike, l1: typing.SupportsFloat | typing.SupportsIndex, l3: typing.SupportsFloat | typing.SupportsIndex, lower: numpy.typing.ArrayLike, upper: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
     """
     Self-motion set of the RPR tip point: (2, K, 3) joints per t1 sample and branch, NaN where none.
     """
@@ -1115,27 +1115,27 @@ def rrr3_region_areas(robots: typing.Any, phi: typing.SupportsFloat | typing.Sup
     """
     RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.
     """
-def servo(chain: Chain, poses: typing.Any, q0: typing.Any, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose', saturate: bool = True) -> tuple:
+def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose', saturate: bool = True) -> tuple:
     """
     Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.
     """
-def track(chain: Chain, points: typing.Any, q0: typing.Any, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> TrackResult:
+def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> TrackResult:
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
     """
-def traj_cartesian(T0: typing.Any, T1: typing.Any, law: str, t: typing.Any, vmax: typing.Any, amax: typing.Any, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+def traj_cartesian(T0: typing.Any, T1: typing.Any, law: str, t: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """
     Cartesian straight line: (t, poses, velocity, acceleration). Use robokin.traj.cartesian.
     """
-def traj_quintic(q0: typing.Any, q1: typing.Any, t: typing.Any, qd0: typing.Any = None, qd1: typing.Any = None) -> tuple:
+def traj_quintic(q0: numpy.typing.ArrayLike, q1: numpy.typing.ArrayLike, t: numpy.typing.ArrayLike, qd0: numpy.typing.ArrayLike = None, qd1: numpy.typing.ArrayLike = None) -> tuple:
     """
     Quintic joint trajectory sampled at t: (t, q, qd, qdd). Use robokin.traj.quintic.
     """
-def traj_trapezoidal(q0: typing.Any, q1: typing.Any, vmax: typing.Any, amax: typing.Any, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+def traj_trapezoidal(q0: numpy.typing.ArrayLike, q1: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """
     Synchronised trapezoidal joint trajectory: (t, q, qd, qdd). Use robokin.traj.trapezoidal.
     """
-def traj_via_points(points: typing.Any, vmax: typing.Any, amax: typing.Any, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+def traj_via_points(points: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """
     Linear segments with parabolic blends: (t, q, qd, qdd, via_times). Use robokin.traj.via_points.
     """
