@@ -20,7 +20,8 @@ from ._checks import number
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
            "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
-           "irb120", "gen3", "puma560", "names", "get", "rpr_self_motion"]
+           "irb120", "gen3", "puma560", "PUMA560_A", "PUMA560_D", "PUMA560_ALPHA", "PUMA560_LIMITS", "names", "get",
+           "rpr_self_motion"]
 
 #: Seed 000's planar RPR: link 1, the prismatic stroke, link 3 (metres).
 RPR_L1, RPR_STROKE, RPR_L3 = 1.5, 1.5, 1.0
@@ -265,19 +266,22 @@ def gen3() -> Chain:
     upper = np.array([inf, math.radians(128.9), inf, math.radians(147.8), inf, math.radians(120.3), inf])
     lower = -upper
     return Chain.from_segments(segments, limits=(lower, upper))
+#: The PUMA 560's standard DH lengths (m) and twists, and its joint limits (rad): the one statement
+#: of its geometry (robokin.closed.PUMA560 and its closed form read them).
+PUMA560_A = (0.0, 0.4318, 0.0203, 0.0, 0.0, 0.0)
+PUMA560_D = (0.0, 0.0, 0.15005, 0.4318, 0.0, 0.0)
+PUMA560_ALPHA = (math.pi / 2, 0.0, -math.pi / 2, math.pi / 2, -math.pi / 2, 0.0)
+PUMA560_LIMITS = (np.radians([-160, -45, -225, -110, -100, -266]), np.radians([160, 225, 45, 170, 100, 266]))
+
+
 def puma560() -> Chain:
     """Unimation PUMA 560, standard DH as in P. Corke's Robotics Toolbox (``Puma560``, after
     Corke and Armstrong-Helouvry, 1994): a = (0, 0.4318, 0.0203, 0, 0, 0),
     d = (0, 0, 0.15005, 0.4318, 0, 0), alpha = (pi/2, 0, -pi/2, pi/2, -pi/2, 0); limits in degrees
     (-160, 160), (-45, 225), (-225, 45), (-110, 170), (-100, 100), (-266, 266).
     """
-    p = math.pi
-    a = (0.0, 0.4318, 0.0203, 0.0, 0.0, 0.0)
-    d = (0.0, 0.0, 0.15005, 0.4318, 0.0, 0.0)
-    alpha = (p / 2, 0.0, -p / 2, p / 2, -p / 2, 0.0)
-    lower = np.radians([-160, -45, -225, -110, -100, -266])
-    upper = np.radians([160, 225, 45, 170, 100, 266])
-    return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=(lower, upper))
+    a, d, alpha = PUMA560_A, PUMA560_D, PUMA560_ALPHA
+    return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=PUMA560_LIMITS)
 
 
 # The catalogue by name: every builder above, each callable without arguments (the seeds' robots
