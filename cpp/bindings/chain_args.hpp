@@ -68,4 +68,12 @@ inline JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismat
   return lim;
 }
 
+// The limits of a closed form bound to a chain: "default" for the chain's own (none when it has
+// not dof joints), else as limits_arg.
+inline JointLimits limits_or_default(const Chain& chain, py::handle obj, int dof) {
+  if (!py::isinstance<py::str>(obj)) return limits_arg(obj, dof);
+  if (obj.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
+  return chain.dof() == dof ? chain.limits() : JointLimits{};
+}
+
 }  // namespace robokin::bind

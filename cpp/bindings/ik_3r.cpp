@@ -21,17 +21,6 @@ Arm3R arm_arg(const Chain& chain) {
   }
 }
 
-// The chain's limits for "default" (none when the chain has not 3 joints), else limits_arg.
-JointLimits limits_3r(const Chain& chain, py::handle limits) {
-  if (py::isinstance<py::str>(limits)) {
-    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-    JointLimits lim;
-    if (chain.dof() == 3) lim.lower = chain.lower(), lim.upper = chain.upper();
-    return lim;
-  }
-  return limits_arg(limits, 3);
-}
-
 }  // namespace
 
 void bind_ik_3r(py::module_& m) {
@@ -40,7 +29,7 @@ void bind_ik_3r(py::module_& m) {
       [](ArrayLike target, const Chain& chain, py::handle limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
         const Arm3R arm = arm_arg(chain);
-        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_3r(chain, limits));
+        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3));
       },
       py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def(

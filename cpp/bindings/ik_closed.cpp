@@ -114,27 +114,16 @@ URArm ur_arm_arg(const Chain& chain) {
 }
 
 // limits: "default" (the chain's), None, or a pair.
-JointLimits ur_limits_arg(const Chain& chain, py::handle limits) {
-  if (py::isinstance<py::str>(limits)) {
-    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-    JointLimits lim;
-    lim.lower = chain.lower(), lim.upper = chain.upper();
-    if (lim.lower.size() != 6) lim.lower.resize(0), lim.upper.resize(0);
-    return lim;
-  }
-  return limits_arg(limits, 6);
-}
-
 ClosedFormSolutions ur(ArrayLike target, const Chain& chain, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_ur(ur_arm_arg(chain), chain, T, ur_limits_arg(chain, limits));
+  return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
 
 py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, py::handle limits) {
   const URArm arm = ur_arm_arg(chain);
-  const JointLimits lim = ur_limits_arg(chain, limits);
+  const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
 
@@ -275,7 +264,7 @@ void bind_ik_closed(py::module_& m) {
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
       .def(py::init([](const Chain& chain, py::handle limits) {
-             return URSolver{&chain, ur_arm_arg(chain), ur_limits_arg(chain, limits)};
+             return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
       .def("solve", &URSolver::solve, py::arg("target"))

@@ -2,6 +2,7 @@
 // specialised evaluation path for the hot calls (forward kinematics and the Jacobian).
 #pragma once
 
+#include "robokin/limits.hpp"
 #include "robokin/progress.hpp"
 
 #include <Eigen/Dense>
@@ -94,6 +95,12 @@ class Chain {
   const Vector& lower() const { return lower_; }
   const Vector& upper() const { return upper_; }
   bool prismatic(int joint) const { return links_[joint].prismatic; }
+  // The limits as the closed forms take them (lower, upper and which joints are prismatic).
+  JointLimits limits() const {
+    JointLimits lim{lower_, upper_, {}};
+    for (int i = 0; i < dof_; ++i) lim.prismatic.push_back(prismatic(i));
+    return lim;
+  }
   const KDL::Chain& kdl() const { return kdl_; }
 
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
