@@ -183,14 +183,13 @@ py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
 
 py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike point_obj, long frame,
                                    long in_frame) {
-  const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
+  const Vector q = single_q(c, q_obj);
   const Vector p = as_vector(point_obj, "point", 3);
-  const long last = static_cast<long>(f.size()) - 1;
+  const long last = c.dof();  // frames: the base and one after each joint
   if (frame < 0 || frame > last) fail("frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(frame));
   if (in_frame < 0 || in_frame > last)
     fail("in_frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(in_frame));
-  const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
-  const Eigen::VectorXd out = rel.topLeftCorner<3, 3>() * p + rel.topRightCorner<3, 1>();
+  const Eigen::VectorXd out = c.point_in_frame(q, p, static_cast<int>(frame), static_cast<int>(in_frame));
   require_finite_result(out.data(), 3, "q, point");
   return to_numpy(out);
 }

@@ -514,4 +514,10 @@ std::vector<Matrix4> Chain::frames(const Vector& q) const {
   return out;
 }
 
+Eigen::Vector3d Chain::point_in_frame(const Vector& q, const Eigen::Vector3d& point, int frame, int in_frame) const {
+  const std::vector<Matrix4> f = frames(q);
+  const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
+  return rel.topLeftCorner<3, 3>() * point + rel.topRightCorner<3, 1>();
+}
+
 }  // namespace robokin

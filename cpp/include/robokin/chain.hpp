@@ -115,6 +115,8 @@ class Chain {
   Matrix4 fk_kdl(const Vector& q) const;
   Matrix6X jacobian_kdl(const Vector& q) const;
   std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
+  // A point given in frame `frame` (an index into frames(q)) expressed in frame `in_frame`.
+  Eigen::Vector3d point_in_frame(const Vector& q, const Eigen::Vector3d& point, int frame, int in_frame) const;
 
  private:
   // A constant frame applied on the right (T <- T * F); move / turn say whether its translation /
