@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace robokin {
 namespace {
@@ -24,7 +26,18 @@ bool dets(const RRR3& robot, const Pose& pose, const Mode& mode, double& det_a, 
 
 }  // namespace
 
-RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol, Progress* progress) {
+void RRR3WorkspaceOptions::validate() const {
+  if (!std::isfinite(phi)) throw std::invalid_argument("phi: must be finite");
+  check_mode(mode);
+  if (n < 2 || n > 5000) throw std::invalid_argument("n: expected a grid size in [2, 5000], got " + std::to_string(n));
+  if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
+}
+
+RRR3Workspace workspace(const RRR3& robot, const RRR3WorkspaceOptions& options, Progress* progress) {
+  options.validate();
+  const double phi = options.phi, tol = options.tol;
+  const Mode& mode = options.mode;
+  const long n = options.n;
   RRR3Workspace w;
   w.n = n;
   const double reach = robot.l1() + robot.l2();
@@ -101,14 +114,15 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
   return w;
 }
 
-std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
-                                 long n, double tol, Progress* progress) {
+std::vector<double> region_areas(const std::vector<RRR3>& robots, const RRR3WorkspaceOptions& options,
+                                 Progress* progress) {
+  options.validate();
   std::vector<double> out;
   out.reserve(robots.size());
   const long parts = static_cast<long>(robots.size());
   for (long k = 0; k < parts; ++k) {
     PartProgress part(progress, k, parts);
-    out.push_back(workspace(robots[k], phi, mode, n, tol, progress ? &part : nullptr).region_area);
+    out.push_back(workspace(robots[k], options, progress ? &part : nullptr).region_area);
   }
   return out;
 }

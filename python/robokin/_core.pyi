@@ -284,6 +284,18 @@ class RRR3PlanOptions:
                  max_step: float = 0.01, margin: float = 0.05, serial_margin: float = 0.02, span: float = 1.0,
                  resolution: float = 0.005, smoothing: float = 10.0) -> None: ...
 
+class RRR3WorkspaceOptions:
+    """The options of RRR3.workspace (its arguments, one map's)."""
+    fields: ClassVar[Tuple[str, ...]]
+    kinds: ClassVar[Tuple[str, ...]]
+    phi: float
+    mode: Tuple[int, int, int]
+    n: int
+    tol: float
+    def __init__(self, *, phi: float = 0.0, mode: Sequence[int] = (1, 1, 1), n: int = 200,
+                 tol: float = 1e-3) -> None: ...
+    def validate(self) -> None: ...
+
 class RRR3ConnectOptions:
     """The options of RRR3.connect (keywords)."""
     fields: ClassVar[Tuple[str, ...]]
