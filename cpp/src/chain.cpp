@@ -477,6 +477,23 @@ __attribute__((target("avx512f"), optimize("fp-contract=off"))) bool Chain::batc
 }
 #endif
 
+void Chain::fk_few(const double* q, int count, Rigid* out) const {
+  constexpr int kMaxJoints = 32;
+  if (count > kFkFew || dof_ > kMaxJoints) {  // not for this kernel: one at a time
+    for (int k = 0; k < count; ++k) fk(q + k * dof_, out[k]);
+    return;
+  }
+  if (count <= 0) return;
+  // Every lane is evaluated: the unused ones repeat the first configuration.
+  double padded[kFkFew * kMaxJoints];
+  std::copy(q, q + count * dof_, padded);
+  for (int k = count; k < kFkFew; ++k) std::copy(q, q + dof_, padded + k * dof_);
+  Lanes<kFkFew> L;
+  run_lanes<kFkFew>(L, padded, dof_, nullptr);
+  for (int k = 0; k < count; ++k) lane_to_rigid(L, k, out[k]);
+}
+
+
 bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
   // A large frame output (beyond the caches) is faulted in at once and then streamed to memory.
   const bool large = what == FkOutput::Frame && count >= 32768 && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;

@@ -585,11 +585,6 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   const Eigen::Vector3d p = Td.p;
   const double size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) +
                       std::abs(arm.d5) + arm.base.p.norm() + arm.tool.p.norm();
-  const auto reaches = [&](const double* q) {
-    Rigid F;
-    chain.fk(q, F);
-    return (F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR;
-  };
   // Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist centre in a plane
   // d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions x1 . p = +-h.
   const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
@@ -600,65 +595,114 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   // disc carries the rounding of r^2 (~1e-16): h, its square root, is then ~1e-8 where the two
   // shoulders coincide, and the two q1 differ by ~h / d4.
   const bool shoulder_singular = disc <= 1e-13 * std::max(1.0, r * r);
-  const double phi = r > 0 ? std::atan2(p.y(), p.x()) : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
   if (shoulder_singular) out.singular = true;
+  const int sides = shoulder_singular ? 1 : 2;
   const double a2 = std::abs(arm.a2), a3 = std::abs(arm.a3);
-  for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
-    const double x1 = side == 0 ? -h : h;  // shoulder left: wrist centre on the -x1 side
-    const double q1 = phi + std::atan2(arm.d4, x1);
-    const Eigen::Matrix3d R01 = rot_z(q1) * rot_x(kPi / 2);
-    const Eigen::Matrix3d M = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
-    const Eigen::Vector3d P = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
-    const double w = std::hypot(M(0, 2), M(1, 2));
-    const bool wrist_singular = w < 1e-10;
-    if (wrist_singular) out.singular = true;
-    for (int flip = 0; flip < (wrist_singular ? 1 : 2); ++flip) {
-      double q234;
-      if (!wrist_singular) {
-        q234 = std::atan2(-M(1, 2), -M(0, 2)) + (flip ? kPi : 0.0);
+  // In stages, each stage's arc tangents, sines and cosines in one vectorised pass (fast_math.hpp):
+  // q1 of each shoulder; R01 from it; q234 of each wrist; then q5, q6 and the planar 2R of each
+  // (shoulder, wrist); the candidates within the limits are checked by chain.fk together.
+  double ya[3] = {p.y(), arm.d4, arm.d4}, xa[3] = {p.x(), -h, h}, ta[3];  // shoulder left: x1 = -h
+  vmath::atan2(ya, xa, ta, 1 + sides);
+  const double phi = r > 0 ? ta[0] : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
+  double q1[2], s1[2], c1[2];
+  for (int side = 0; side < sides; ++side) q1[side] = phi + ta[1 + side];
+  vmath::sincos(q1, s1, c1, sides);
+  Eigen::Matrix3d M[2];
+  Eigen::Vector3d P[2];
+  bool wrist_singular[2];
+  double yw[2], xw[2], tw[2];
+  for (int side = 0; side < sides; ++side) {
+    Eigen::Matrix3d R01;  // Rz(q1) Rx(pi/2)
+    R01 << c1[side], 0, s1[side], s1[side], 0, -c1[side], 0, 1, 0;
+    M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
+    P[side].noalias() = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
+    wrist_singular[side] = std::hypot(M[side](0, 2), M[side](1, 2)) < 1e-10;
+    if (wrist_singular[side]) out.singular = true;
+    yw[side] = -M[side](1, 2), xw[side] = -M[side](0, 2);
+  }
+  vmath::atan2(yw, xw, tw, sides);
+  // The (shoulder, wrist) pairs: q234 of each.
+  int pairs = 0, pair_side[4], pair_flip[4];
+  double q234[4], s234[4], c234[4];
+  for (int side = 0; side < sides; ++side)
+    for (int flip = 0; flip < (wrist_singular[side] ? 1 : 2); ++flip) {
+      double t;
+      if (!wrist_singular[side]) {
+        t = tw[side] + (flip ? kPi : 0.0);
       } else {
         // Axes 2, 3, 4, 6 parallel: q234 is free. The wrist's origin 4 is then on the circle
         // P + d5 (-sin t, cos t); the representative puts it where |W|^2 = a2^2 + a3^2 (the
         // elbow at a right angle) or as near as the circle comes.
-        const double rho = std::hypot(P.x(), P.y());
-        const double beta = std::atan2(P.x(), P.y());
+        const Eigen::Vector3d& Ps = P[side];
+        const double rho = std::hypot(Ps.x(), Ps.y());
+        const double beta = std::atan2(Ps.x(), Ps.y());
         const double den = 2.0 * arm.d5 * rho;
-        double t = 0.0;
+        t = 0.0;
         if (std::abs(den) > 1e-12 * unit * unit) {
           const double cv = (a2 * a2 + a3 * a3 - rho * rho - arm.d5 * arm.d5) / den;
           t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
         }
-        q234 = t;
       }
-      const Eigen::Matrix3d N = rot_z(-q234) * M;
-      const double q5 = std::atan2(-N(0, 2), N(2, 2)), q6 = std::atan2(N(1, 0), N(1, 1));
-      const double s234 = std::sin(q234), c234 = std::cos(q234);
-      // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
-      const double X = P.x() - arm.d5 * s234, Y = P.y() + arm.d5 * c234;
-      double th[2][2];
-      const char* lab[2];
-      bool elbow_singular = false;
-      const int n = planar_2r_solve(a2, a3, X, Y, th, lab, elbow_singular);
-      if (elbow_singular) out.singular = true;
-      for (int k = 0; k < n; ++k) {
-        // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
-        const double q2 = th[k][0] - (arm.a2 < 0 ? kPi : 0.0);
-        const double q3 = th[k][1] + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
-        const double ex = a2 * std::cos(th[k][0]), ey = a2 * std::sin(th[k][0]);
-        const double cross = X * ey - Y * ex;
-        int elbow;
-        if (n == 1) elbow = std::cos(th[k][1]) > 0 ? 2 : 3;
-        else elbow = ((cross > 0) == (X >= 0)) ? 0 : 1;
-        const double dh[6] = {q1, q2, q3, q234 - q2 - q3, q5, q6};
-        double q[6];
-        for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-        const int before = out.count();
-        add_if_admissible(out, q, limits,
-                          ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular ? 2 : flip), reaches);
-        if (slot && out.count() > before)
-          slot[before] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular ? 0 : flip);
-      }
+      pair_side[pairs] = side, pair_flip[pairs] = flip, q234[pairs++] = t;
     }
+  vmath::sincos(q234, s234, c234, pairs);
+  // Per pair: atan2 arguments of q5, q6 (2) and of the planar 2R's solutions (up to 2 x 2).
+  double y[24], x[24], t[24], X[4], Y[4];
+  int nk[4];
+  const char* lab[4][2];
+  bool elbow_singular[4];
+  for (int j = 0; j < pairs; ++j) {
+    const Eigen::Matrix3d& m = M[pair_side[j]];
+    const double c = c234[j], s = s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
+    y[6 * j] = -(c * m(0, 2) + s * m(1, 2)), x[6 * j] = m(2, 2);
+    y[6 * j + 1] = c * m(1, 0) - s * m(0, 0), x[6 * j + 1] = c * m(1, 1) - s * m(0, 1);
+    // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
+    const Eigen::Vector3d& Ps = P[pair_side[j]];
+    X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
+    double yx[2][2][2];
+    nk[j] = planar_2r_args(a2, a3, X[j], Y[j], yx, lab[j], elbow_singular[j]);
+    if (elbow_singular[j]) out.singular = true;
+    for (int k = 0; k < nk[j]; ++k)
+      for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
+    for (int i = 2 + 2 * nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
+  }
+  vmath::atan2(y, x, t, 6 * pairs);
+  double cand[8][6], checked[8 * 6];
+  const char* posture[8];
+  int cand_slot[8], n = 0;
+  for (int j = 0; j < pairs; ++j) {
+    const int side = pair_side[j], flip = pair_flip[j];
+    const double q5 = t[6 * j], q6 = t[6 * j + 1];
+    for (int k = 0; k < nk[j]; ++k) {
+      const double th1 = t[6 * j + 2 + 2 * k], th2 = t[6 * j + 3 + 2 * k];
+      // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
+      const double q2 = th1 - (arm.a2 < 0 ? kPi : 0.0);
+      const double q3 = th2 + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
+      int elbow;
+      if (nk[j] == 1) {
+        elbow = x[6 * j + 3] > 0 ? 2 : 3;  // cos theta2 > 0 (c2 of planar_2r_args): straight, else folded
+      } else {
+        // The elbow's side of the line to origin 4: X a2 sin(th1) - Y a2 cos(th1), whose sign is
+        // that of X y1 - Y x1 for th1 = atan2(y1, x1).
+        const double cross = X[j] * y[6 * j + 2 + 2 * k] - Y[j] * x[6 * j + 2 + 2 * k];
+        elbow = ((cross > 0) == (X[j] >= 0)) ? 0 : 1;
+      }
+      const double dh[6] = {q1[side], q2, q3, q234[j] - q2 - q3, q5, q6};
+      double* q = cand[n];
+      for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+      if (!fit_limits(q, 6, limits)) continue;
+      posture[n] = ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular[side] ? 2 : flip);
+      cand_slot[n] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
+      std::copy(q, q + 6, checked + 6 * n);
+      ++n;
+    }
+  }
+  Rigid F[8];
+  chain.fk_few(checked, n, F);
+  for (int k = 0; k < n; ++k) {
+    if (!((F[k].p - T.p).norm() <= kTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    if (slot) slot[out.count()] = cand_slot[k];
+    out.add(cand[k], posture[k]);
   }
   return out;
 }
