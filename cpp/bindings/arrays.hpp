@@ -136,6 +136,11 @@ inline void require_finite(const double* data, py::ssize_t size, const char* nam
 
 // A finite vector of length n (any length when n < 0).
 inline Eigen::VectorXd as_vector(py::handle obj, const char* name, long n = -1, bool finite = true) {
+  Float64View v;  // a float64 ndarray of the right shape is read in place
+  if (float64_view(obj, v) && v.ndim == 1 && (n < 0 || v.shape[0] == n)) {
+    if (finite) require_finite(v.data, v.size, name);
+    return Eigen::Map<const Eigen::VectorXd>(v.data, v.shape[0]);
+  }
   Array a = as_array(obj, name);
   if (a.ndim() != 1 || (n >= 0 && a.shape(0) != n))
     fail(std::string(name) + ": expected shape (" + (n >= 0 ? std::to_string(n) : "n") + ",), got " +
