@@ -391,14 +391,17 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
   // (-c4 s5, -s4 s5, c5). Given q4, N = Rz(-q4) R36 = Ry(-q5) Rz(q6) gives q5 (third column
   // (-s5, 0, c5)) and q6 (second row (s6, c6, 0)).
+  const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
   Eigen::Matrix3d M[4];
   double my[4], mx[4], q4[8];
   bool wrist_singular[4];
   for (int a = 0; a < na; ++a) {
-    // R03 = Rz(q1) Rx(pi/2) Rz(q2 + q3) Rx(-pi/2).
-    const double c1 = cs[2 * a], s1 = sn[2 * a], c23 = cs[2 * a + 1], s23 = sn[2 * a + 1];
-    Eigen::Matrix3d R03;
-    R03 << c1 * c23, -s1, -c1 * s23, s1 * c23, c1, -s1 * s23, s23, 0, c23;
+    // R03 = Rz(q1) Rx(pi/2) Rz(q2 + q3) Rx(-pi/2), the twists' cosines as the DH rows have them
+    // (6e-17, not 0): near the wrist singularity M(0, 2) and M(1, 2) are tiny and q4 follows them.
+    Eigen::Matrix3d Rz1, Rz23;
+    Rz1 << cs[2 * a], -sn[2 * a], 0, sn[2 * a], cs[2 * a], 0, 0, 0, 1;
+    Rz23 << cs[2 * a + 1], -sn[2 * a + 1], 0, sn[2 * a + 1], cs[2 * a + 1], 0, 0, 0, 1;
+    const Eigen::Matrix3d R03 = Rz1 * rx_p * Rz23 * rx_m;
     M[a].noalias() = R03.transpose() * T.R;
     wrist_singular[a] = std::hypot(M[a](0, 2), M[a](1, 2)) < 1e-10;
     out.singular = out.singular || wrist_singular[a];
@@ -612,8 +615,11 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   bool wrist_singular[2];
   double yw[2], xw[2], tw[2];
   for (int side = 0; side < sides; ++side) {
-    Eigen::Matrix3d R01;  // Rz(q1) Rx(pi/2)
-    R01 << c1[side], 0, s1[side], s1[side], 0, -c1[side], 0, 1, 0;
+    // Rz(q1) Rx(pi/2), with cos(pi/2) as the chain's DH row has it (6e-17, not 0): near the wrist
+    // singularity M(0, 2) and M(1, 2) are tiny and q234 follows their rounding.
+    Eigen::Matrix3d Rz1;
+    Rz1 << c1[side], -s1[side], 0, s1[side], c1[side], 0, 0, 0, 1;
+    const Eigen::Matrix3d R01 = Rz1 * rot_x(kPi / 2);
     M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
     P[side].noalias() = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
     wrist_singular[side] = std::hypot(M[side](0, 2), M[side](1, 2)) < 1e-10;
