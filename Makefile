@@ -7,7 +7,7 @@ DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench clean
+.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench stubs clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -15,7 +15,7 @@ setup: $(VENV)/.installed
 	$(DEPS)
 	$(PYTHON) -m venv $*
 	$*/bin/python -m pip install -q --upgrade pip
-	$*/bin/python -m pip install -q "scikit-build-core>=0.10" "pybind11>=2.12" cmake ninja
+	$*/bin/python -m pip install -q "scikit-build-core>=0.10" "pybind11>=3.1,<3.2" cmake ninja
 	touch $@
 
 # The system packages are checked again when their list changes (a venv made before keeps working).
@@ -61,6 +61,10 @@ bench: setup
 	$(DEPS) python3-pykdl
 	$(VPY) -m pip install -q pin
 	$(VPY) benchmarks/run_all.py
+
+# The type stubs of the C++ modules, generated from the bindings (tests/test_stubs.py checks them).
+stubs: setup
+	$(VPY) scripts/make_stubs.py
 
 clean:
 	rm -rf build $(VENV) $(ASAN_VENV)

@@ -101,7 +101,7 @@ def test_circle_and_clover(n, size, center, which):
     (lambda: rk.paths.circle(10, radius=1e308, center=(1e308, 0)), "radius, center: the points overflow"),
     (lambda: rk.paths.line(None, [1, 0], 0.1), "p1: expected real numbers"),
     (lambda: rk.paths.line([0, 0], [1j, 0], 0.1), "p2: expected real numbers"),
-    (lambda: rk.paths.line([0, 0], [1, 0], "abc"), "step: expected real numbers"),
+    (lambda: rk.paths.line([0, 0], [1, 0], "abc"), "step: expected a number, got str"),
     (lambda: rk.paths.circle(5, center=[[0.0], [1.0, 2.0]]), "center: expected real numbers"),
 ])
 def test_bad_paths_regressions(call, match):

@@ -35,6 +35,8 @@ COVERS = {
     "RRR3Singularity.__repr__",
     "RRR3Plan.poses", "RRR3Plan.alpha", "RRR3Plan.det_a_norm", "RRR3Plan.det_b_norm", "RRR3Plan.distance",
     "RRR3Plan.sign", "RRR3Plan.feasible", "RRR3Plan.__repr__", "RRR3.connect",
+    "RRR3.plan_loop", "RRR3LoopOptions", "RRR3Loop.plan", "RRR3Loop.nominal", "RRR3Loop.found", "RRR3Loop.reason",
+    "RRR3Loop.__repr__",
     "RRR3Workspace.cells", "RRR3Workspace.x", "RRR3Workspace.y", "RRR3Workspace.extent",
     "RRR3Workspace.cell_size", "RRR3Workspace.reachable_area", "RRR3Workspace.regular_area",
     "RRR3Workspace.area", "RRR3Workspace.__repr__",
@@ -270,19 +272,50 @@ def test_workspace_with_any_arguments(robot, phi, mode, n, tol):
 
 @given(robot=robots, points=arrays(shape=[(0, 2), (1, 2), (4, 2), (3, 3), (2,)]), phi=options, mode=modes,
        avoid=st.sampled_from([True, False, 1, None, "yes"]), max_step=options, margin=options,
-       serial_margin=options, span=options, resolution=options, smoothing=options)
+       serial_margin=options, span=options, resolution=options, smoothing=options,
+       closed=st.sampled_from([False, True, 1, None]))
 def test_plan_with_any_arguments(robot, points, phi, mode, avoid, max_step, margin, serial_margin, span, resolution,
-                                 smoothing):
-    names = ("points", "phi", "mode", "avoid", "max_step", "margin", "serial_margin", "span", "resolution", "smoothing")
+                                 smoothing, closed):
+    names = ("points", "phi", "mode", "avoid", "max_step", "margin", "serial_margin", "span", "resolution", "smoothing",
+             "closed")
     plan = run(lambda: robot.plan(points, phi=phi, mode=mode, avoid=avoid, max_step=max_step, margin=margin,
                                   serial_margin=serial_margin, span=span, resolution=resolution,
-                                  smoothing=smoothing), *names)
+                                  smoothing=smoothing, closed=closed), *names)
     if plan is None:
         return
-    check_plan(robot, np.asarray(points, float), plan, phi, mode, avoid, max_step, margin, serial_margin, span)
+    check_plan(robot, np.asarray(points, float), plan, phi, mode, avoid, max_step, margin, serial_margin, span,
+               closed=closed)
 
 
-@given(cls=st.sampled_from([rk.RRR3PlanOptions, rk.RRR3ConnectOptions]), data=st.data())
+@given(robot=robots, points=arrays(shape=[(0, 2), (1, 2), (3, 2), (3, 3), (2,)]),
+       sign=st.sampled_from([1, -1, 0, 2, True, 1.0, None]),
+       nominals=st.one_of(st.none(), arrays(shape=[(0,), (1,), (3,), (2, 2), ()]),
+                          st.lists(st.floats(-1.5, 1.5), min_size=1, max_size=4), st.sampled_from(["abc", 0.5])),
+       mode=modes, avoid=st.sampled_from([True, False, 1]), margin=options)
+def test_plan_loop_with_any_arguments(robot, points, sign, nominals, mode, avoid, margin):
+    """Found: the closed plan about one of the nominals, of the asked sign and feasible with
+    avoidance; not found: a reason and no poses; else an error naming the argument."""
+    kwargs = dict(sign=sign, mode=mode, avoid=avoid, margin=margin)
+    if nominals is not None:
+        kwargs["nominals"] = nominals
+    loop = run(lambda: robot.plan_loop(points, **kwargs), "points", *kwargs)
+    if loop is None:
+        return
+    tried = rk.RRR3LoopOptions().nominals if nominals is None else tuple(np.asarray(nominals, float))
+    assert isinstance(loop.found, bool) and repr(loop).startswith(f"RRR3Loop(found={loop.found}")
+    if not loop.found:
+        assert loop.reason in ("start", "plan") and loop.nominal is None and loop.plan.poses.shape == (0, 3)
+        return
+    assert loop.reason is None and loop.nominal in tried
+    event(f"found, avoid={avoid}")
+    plan = loop.plan
+    check_plan(robot, np.asarray(points, float), plan, loop.nominal, mode, avoid, 0.01, margin, 0.02, 1.0, closed=True)
+    assert np.sign(plan.det_a_norm[0]) == sign or avoid  # without avoidance the start is at the nominal
+    if avoid:
+        assert plan.feasible and plan.sign == sign
+
+
+@given(cls=st.sampled_from([rk.RRR3PlanOptions, rk.RRR3ConnectOptions, rk.RRR3LoopOptions]), data=st.data())
 def test_plan_and_connect_options_from_any_keywords(cls, data):
     """Any keywords: the options hold what was given, or a TypeError / ValueError names the keyword;
     validate() then passes or names the option out of range."""
@@ -295,6 +328,8 @@ def test_plan_and_connect_options_from_any_keywords(cls, data):
         got = getattr(o, name)
         if name == "mode":
             assert got == tuple(int(v) for v in np.asarray(value, float))
+        elif name == "nominals":
+            assert got == tuple(float(v) for v in np.asarray(value, float))
         elif isinstance(got, bool):
             assert got is bool(value)
         else:
@@ -610,10 +645,11 @@ def numpy_distance(robot, pose, alpha):
     return sv[-1] / sv[0]
 
 
-def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_margin, span):
+def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_margin, span, closed=False):
     """The plan's arrays have the documented shapes, and ``feasible`` is what the rows verify:
     every pose reachable in the mode (its alpha closes the loops with the mode's elbow signs),
-    |det B| / l1^3 >= serial_margin, distance >= margin, one sign of det A, steps <= max_step."""
+    |det B| / l1^3 >= serial_margin, distance >= margin, one sign of det A, steps <= max_step (for
+    a closed path the step from the last pose to the first too)."""
     k = points.shape[0]
     assert plan.poses.shape == plan.alpha.shape == (k, 3)
     assert plan.det_a_norm.shape == plan.det_b_norm.shape == plan.distance.shape == (k,)
@@ -642,7 +678,8 @@ def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_m
         sign = np.sign(np.linalg.det(A))
         ok_strict &= abs(db) >= serial_margin + slack and dist >= margin + 1e-7 and sign == plan.sign
         ok_loose &= abs(db) >= serial_margin - slack and dist >= margin - 1e-7 and (sign == plan.sign or abs(da) < slack)
-    steps = np.abs(np.diff(plan.poses[:, 2]))
+    phis = np.append(plan.poses[:, 2], plan.poses[0, 2]) if closed and k > 1 else plan.poses[:, 2]
+    steps = np.abs(np.diff(phis))
     ok_strict &= bool(np.all(steps <= max_step - slack))
     ok_loose &= bool(np.all(steps <= max_step + slack))
     if plan.feasible:
@@ -654,9 +691,9 @@ def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_m
 @given(data=st.data(), robot=geometry(), count=st.integers(1, 5), avoid=st.booleans(), phi=st.floats(-1, 1),
        max_step=st.sampled_from([0.02, 0.05, 0.2, 1.0]), ratio=st.integers(1, 4), span=st.floats(0, 1),
        margin=st.sampled_from([0.0, 0.01, 0.05, 0.2]), serial_margin=st.sampled_from([0.0, 0.01, 0.05]),
-       smoothing=st.sampled_from([0.0, 1.0, 10.0]))
+       smoothing=st.sampled_from([0.0, 1.0, 10.0]), closed=st.booleans())
 def test_plan_feasible_iff_verified(data, robot, count, avoid, phi, max_step, ratio, span, margin, serial_margin,
-                                    smoothing):
+                                    smoothing, closed):
     mode = data.draw(good_modes)
     reach = robot.l1 + robot.l2
     start = np.array(data.draw(st.lists(st.floats(-1, 1), min_size=2, max_size=2))) * reach
@@ -664,9 +701,55 @@ def test_plan_feasible_iff_verified(data, robot, count, avoid, phi, max_step, ra
     points = start + np.cumsum(walk.reshape(count, 2) * reach, axis=0)
     resolution = max(max_step / ratio, 0.01)
     plan = robot.plan(points, phi=phi, mode=mode, avoid=avoid, max_step=max_step, margin=margin,
-                      serial_margin=serial_margin, span=span, resolution=resolution, smoothing=smoothing)
+                      serial_margin=serial_margin, span=span, resolution=resolution, smoothing=smoothing, closed=closed)
     event(f"feasible={plan.feasible}")
-    check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_margin, span)
+    check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_margin, span, closed=closed)
+
+
+
+def start_side(robot, point, phi, mode):
+    """The sign of det A at the loop's first point at orientation phi, 0 where a leg cannot reach."""
+    try:
+        return int(np.sign(robot.singularity((*point, phi), mode).det_a_norm))
+    except rk.UnreachableError:
+        return 0
+
+
+@given(data=st.data(), robot=geometry(), count=st.integers(2, 6), sign=st.sampled_from([1, -1]),
+       nominals=st.lists(st.floats(-1, 1), min_size=1, max_size=4), avoid=st.booleans(),
+       margin=st.sampled_from([0.0, 0.05, 0.2]))
+def test_plan_loop_takes_the_first_nominal_that_suits(data, robot, count, sign, nominals, avoid, margin):
+    """The nominal used is the first of the list that the documented rule accepts, each rule checked
+    here on the poses (start's side through RRR3.singularity, the closed plan's rows by check_plan)."""
+    mode = data.draw(good_modes)
+    reach = robot.l1 + robot.l2
+    start = np.array(data.draw(st.lists(st.floats(-0.3, 0.3), min_size=2, max_size=2))) * reach
+    walk = np.array(data.draw(st.lists(st.floats(-0.05, 0.05), min_size=2 * count, max_size=2 * count)))
+    points = start + np.cumsum(walk.reshape(count, 2) * reach, axis=0)
+    loop = robot.plan_loop(points, sign=sign, nominals=nominals, mode=mode, avoid=avoid, margin=margin,
+                           resolution=0.01, span=0.5)
+    event(f"found={loop.found}, reason={loop.reason}")
+    sides = [start_side(robot, points[0], phi, mode) for phi in nominals]
+    if not any(s == sign for s in sides):
+        assert not loop.found and loop.reason == "start"
+        return
+    if not avoid:
+        keeps = [all(start_side(robot, p, phi, mode) == sign for p in points) for phi in nominals]
+        first = 0 if sides[0] == sign else next((i for i, k in enumerate(keeps) if k), sides.index(sign))
+        assert loop.found and loop.nominal == nominals[first]
+        np.testing.assert_array_equal(loop.plan.poses[:, 2], nominals[first])
+        return
+    plans = [robot.plan(points, phi=phi, mode=mode, margin=margin, resolution=0.01, span=0.5, closed=True)
+             for phi in nominals]
+    suits = [s == sign and p.feasible and p.sign == sign for s, p in zip(sides, plans)]
+    if not any(suits):
+        assert not loop.found and loop.reason == "plan"
+        return
+    first = suits.index(True)
+    assert loop.found and loop.nominal == nominals[first]
+    np.testing.assert_array_equal(loop.plan.poses, plans[first].poses)
+    check_plan(robot, points, loop.plan, nominals[first], mode, True, 0.01, margin, 0.02, 0.5, closed=True)
+    assert loop.plan.feasible and np.all(np.sign(loop.plan.det_a_norm) == sign)
 
 
 # --- regressions: the cases the fuzzing found --------------------------------------------------------
@@ -711,11 +794,11 @@ def test_design_study_arguments_are_named():
         rrr3_design.area_vs_platform_radius(l2=1.3e154, n=10)
     with pytest.raises(ValueError, match="platform_radii: expected an array of real numbers"):  # imaginary part dropped
         rrr3_design.area_vs_platform_radius([0.05 + 1j], n=10)
-    with pytest.raises(ValueError, match="base_radius: expected a number"):  # numpy's message named nothing
+    with pytest.raises(TypeError, match="base_radius: expected a number, got str"):  # numpy's message named nothing
         rrr3_design.area_vs_platform_radius(base_radius="abc", n=10)
-    with pytest.raises(ValueError, match="base_radius: must be a positive finite length"):  # blamed platform_radii
+    with pytest.raises(ValueError, match="base_radius: must be a positive finite number"):  # blamed platform_radii
         rrr3_design.area_vs_platform_radius(base_radius=float("nan"), n=10)
-    with pytest.raises(ValueError, match="platform_radius: expected a number"):
+    with pytest.raises(TypeError, match="platform_radius: expected a number, got NoneType"):
         rrr3_design.best_l2([0.1], [0.1], platform_radius=None, n=10)
 
 

@@ -357,3 +357,26 @@ def test_restarts_are_capped():
     for bad, kind in ((2.5, "float"), ("3", "str"), (True, "bool")):  # a wrong kind of object
         with pytest.raises(TypeError, match=f"^restarts: expected None or int, got {kind}$"):
             rk.ik(chain, T, np.zeros(6), restarts=bad)
+
+
+def test_stall_window_drops_crawling_attempts_only_while_restarts_are_left():
+    # A planar 2R told to reach (3, 0.5), 1 m beyond its reach: NR takes every step and never
+    # succeeds, so each attempt runs until the stall rule drops it or max_iter ends it. The last
+    # attempt has no restart left and is never dropped.
+    chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 2)
+
+    def iterations(window):
+        r = rk.ik(chain, [3.0, 0.5], np.zeros(2), task="xy", method="nr", restarts=3, max_iter=50, seed=1,
+                  stall_window=window)
+        assert not r.success and r.attempts == 4
+        return r.iterations
+
+    assert iterations(0) == 4 * 50  # never dropped
+    assert iterations(50) == 4 * 50  # the window is never complete within max_iter
+    assert iterations(1) == 3 * 1 + 50  # no attempt halves its cost in one step beyond reach
+    assert 3 * 6 + 50 <= iterations(6) < 4 * 50  # the default: dropped at a multiple of 6
+    assert rk.IKOptions().stall_window == rk.IK_DEFAULTS["stall_window"] == 6
+    with pytest.raises(ValueError, match=r"stall_window: must be >= 0 \(0: never drop an attempt\)"):
+        rk.ik(chain, [1.0, 0.5], np.zeros(2), task="xy", stall_window=-1)
+    with pytest.raises(TypeError, match="stall_window: expected int, got float"):
+        rk.IKOptions(stall_window=2.5)

@@ -181,3 +181,74 @@ def test_plan_and_connect_options_are_the_cores():
     assert (o.phi, o.margin, o.mode) == (0.45, 0.1, (1, 1, 1))
     a, b = robot.plan(points, phi=0.45, margin=0.1), robot.plan(points, **{n: getattr(o, n) for n in o.fields})
     np.testing.assert_array_equal(a.poses, b.poses)
+
+
+# --- closed paths (RRR3PlanOptions.closed) ------------------------------------------------------
+
+def simulator_paths():
+    from robokin_sim.scene_rrr3 import CIRCLE_RADIUS, CLOVER_K, PATH_POINTS
+    return {"circle": rk.paths.circle(PATH_POINTS, radius=CIRCLE_RADIUS), "clover": rk.paths.clover(PATH_POINTS, k=CLOVER_K)}
+
+
+def check_closed_plan(robot, path, plan, mode=MODE, max_step=0.01, margin=0.05):
+    """A closed plan, checked pose by pose through RRR3.singularity (not the plan's own numbers) and
+    the seed's formulas: it joins up, keeps one sign of det A, and stays clear by the margin."""
+    phi = plan.poses[:, 2]
+    np.testing.assert_array_equal(plan.poses[:, :2], path)
+    assert abs(phi[-1] - phi[0]) <= max_step + 1e-12  # the join
+    assert np.max(np.abs(np.diff(phi))) <= max_step + 1e-12
+    sings = [robot.singularity(p, mode) for p in plan.poses]
+    det = np.array([s.det_a_norm for s in sings])
+    assert np.all(np.sign(det) == plan.sign) and plan.sign in (-1, 1)
+    assert min(s.distance for s in sings) >= margin
+    assert all(s.kind == "none" for s in sings)
+    np.testing.assert_allclose(det, det_a_norm(robot, plan.poses, mode), atol=1e-12)
+
+
+@pytest.mark.parametrize("name,phi", [("clover", 0.0), ("clover", 0.65), ("circle", 0.0), ("circle", 0.45)])
+def test_a_closed_plan_joins_up_with_one_sign_clear_of_singularities(robot, name, phi):
+    path = simulator_paths()[name]
+    plan = robot.plan(path, phi=phi, mode=MODE, closed=True)
+    assert plan.feasible
+    check_closed_plan(robot, path, plan)
+
+
+def test_the_open_clover_plan_does_not_join_and_the_closed_one_does(robot):
+    path = simulator_paths()["clover"]
+    open_plan, closed = robot.plan(path, mode=MODE), robot.plan(path, mode=MODE, closed=True)
+    assert open_plan.feasible and abs(open_plan.poses[-1, 2] - open_plan.poses[0, 2]) > 0.01  # 0.025 rad
+    assert closed.feasible and abs(closed.poses[-1, 2] - closed.poses[0, 2]) <= 0.01
+    check_closed_plan(robot, path, closed)
+
+
+@pytest.mark.parametrize("name", ["circle", "clover"])
+@pytest.mark.parametrize("phi", [0.0, 0.3, 0.65, -0.5])
+def test_closed_plan_is_the_simulators_old_python(robot, name, phi):
+    from rrr3_loop_reference import avoidance_plan
+    path = simulator_paths()[name]
+    np.testing.assert_allclose(robot.plan(path, phi=phi, mode=MODE, closed=True).poses[:, 2],
+                               avoidance_plan(robot, path, MODE, phi=phi), rtol=0, atol=1e-12)
+
+
+def test_closed_changes_nothing_without_avoidance_or_for_one_point(robot):
+    path = simulator_paths()["clover"]
+    for kwargs in [dict(avoid=False), dict(avoid=False, phi=0.3)]:
+        a, b = robot.plan(path, **kwargs), robot.plan(path, closed=True, **kwargs)
+        np.testing.assert_array_equal(a.poses, b.poses)
+        assert a.feasible == b.feasible and a.sign == b.sign
+    one = robot.plan(path[:1], closed=True)
+    np.testing.assert_array_equal(one.poses, robot.plan(path[:1]).poses)
+    assert robot.plan(np.zeros((0, 2)), closed=True).poses.shape == (0, 3)
+    # A loop that is unreachable everywhere: no crash, infeasible.
+    far = robot.plan(np.array([[1.0, 1.0], [1.0, 1.01], [1.01, 1.0]]), closed=True)
+    assert not far.feasible and np.isnan(far.alpha).all()
+
+
+def test_closed_bad_input_names_the_argument(robot):
+    with pytest.raises(TypeError, match="closed"):
+        robot.plan(rk.paths.circle(10), closed="yes")
+    with pytest.raises(ValueError, match="points"):
+        robot.plan(np.zeros((5, 3)), closed=True)
+    with pytest.raises(ValueError, match="max_step"):
+        robot.plan(rk.paths.circle(10), closed=True, max_step=0.0)
+    assert rk.RRR3PlanOptions().closed is False and rk.RRR3PlanOptions(closed=True).closed is True

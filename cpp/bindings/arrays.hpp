@@ -16,6 +16,26 @@
 namespace robokin::bind {
 
 namespace py = pybind11;
+
+// A parameter that takes anything numpy can convert (arrays, lists, numbers): any object is
+// accepted here and converted, with errors naming the argument, by the helpers below. The type
+// stubs show it as numpy.typing.ArrayLike.
+class ArrayLike : public py::object {
+ public:
+  using py::object::object;
+  static bool check_(py::handle) { return true; }
+};
+
+}  // namespace robokin::bind
+
+namespace pybind11::detail {
+template <>
+struct handle_type_name<robokin::bind::ArrayLike> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+}  // namespace pybind11::detail
+
+namespace robokin::bind {
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 [[noreturn]] inline void fail(const std::string& message) { throw py::value_error(message); }

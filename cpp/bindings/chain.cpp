@@ -56,13 +56,6 @@ Matrix4 optional_tool(py::handle tool) {
   return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
 }
 
-void optional_limits(py::handle limits, Vector& lower, Vector& upper) {
-  if (limits.is_none()) return;
-  py::sequence pair = as_tuple_of(limits, "limits", 2, "a pair (lower, upper) of arrays");
-  lower = as_vector(pair[0], "limits", -1, false);
-  upper = as_vector(pair[1], "limits", -1, false);
-}
-
 Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::handle limits) {
   py::sequence rows = as_rows(rows_obj, "rows");
   std::vector<DHRow> parsed;
@@ -77,9 +70,8 @@ Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::han
     row.prismatic = joint_letter(r[4], name, "RP") == "P";
     parsed.push_back(row);
   }
-  Vector lower, upper;
-  optional_limits(limits, lower, upper);
-  return Chain::from_dh(parsed, modified, optional_tool(tool), lower, upper);
+  const JointLimits lim = limits_arg(limits, -1);
+  return Chain::from_dh(parsed, modified, optional_tool(tool), lim.lower, lim.upper);
 }
 
 Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle limits) {
@@ -97,9 +89,8 @@ Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle l
     spec.tip = as_transform(s[2], (name + " tip").c_str());
     parsed.push_back(spec);
   }
-  Vector lower, upper;
-  optional_limits(limits, lower, upper);
-  return Chain::from_segments(parsed, optional_tool(tool), lower, upper);
+  const JointLimits lim = limits_arg(limits, -1);
+  return Chain::from_segments(parsed, optional_tool(tool), lim.lower, lim.upper);
 }
 
 Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
@@ -126,7 +117,7 @@ FkOutput fk_output_of(py::handle obj) {
   fail("out: expected 'frame' or 'position', got '" + s + "'");
 }
 
-py::array fk(const Chain& c, py::handle q_obj, py::handle out_obj) {
+py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
   const FkOutput what = fk_output_of(out_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
@@ -156,7 +147,7 @@ py::array fk(const Chain& c, py::handle q_obj, py::handle out_obj) {
   return out;
 }
 
-py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
+py::array jacobian(const Chain& c, ArrayLike q_obj, py::handle task_obj) {
   const Task task = task_of(task_obj);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
@@ -181,7 +172,7 @@ py::array jacobian(const Chain& c, py::handle q_obj, py::handle task_obj) {
   return out;
 }
 
-py::array_t<double> frames(const Chain& c, py::handle q_obj) {
+py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
   py::array_t<double> out({static_cast<py::ssize_t>(f.size()), py::ssize_t{4}, py::ssize_t{4}});
   for (size_t i = 0; i < f.size(); ++i)
@@ -190,16 +181,15 @@ py::array_t<double> frames(const Chain& c, py::handle q_obj) {
   return out;
 }
 
-py::array_t<double> point_in_frame(const Chain& c, py::handle q_obj, py::handle point_obj, long frame,
+py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike point_obj, long frame,
                                    long in_frame) {
-  const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
+  const Vector q = single_q(c, q_obj);
   const Vector p = as_vector(point_obj, "point", 3);
-  const long last = static_cast<long>(f.size()) - 1;
+  const long last = c.dof();  // frames: the base and one after each joint
   if (frame < 0 || frame > last) fail("frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(frame));
   if (in_frame < 0 || in_frame > last)
     fail("in_frame: expected 0.." + std::to_string(last) + ", got " + std::to_string(in_frame));
-  const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
-  const Eigen::VectorXd out = rel.topLeftCorner<3, 3>() * p + rel.topRightCorner<3, 1>();
+  const Eigen::VectorXd out = c.point_in_frame(q, p, static_cast<int>(frame), static_cast<int>(in_frame));
   require_finite_result(out.data(), 3, "q, point");
   return to_numpy(out);
 }
@@ -233,9 +223,9 @@ void bind_chain(py::module_& m) {
       .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
       .def("point_in_frame", &point_in_frame, py::arg("q"), py::arg("point"), py::arg("frame"),
            py::arg("in_frame") = 0, "Expresses a point given in frame `frame` in frame `in_frame`.")
-      .def("_fk_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
+      .def("_fk_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
-      .def("_jacobian_kdl", [](const Chain& c, py::handle q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
+      .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
   // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }

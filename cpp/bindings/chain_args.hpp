@@ -1,14 +1,17 @@
-// Arguments of the Chain methods (chain.cpp, manipulability.cpp): joint configurations, one (dof,)
-// or a batch (N, dof), checked once, read in place when already C-contiguous float64; task names.
+// Arguments of the Chain methods (chain.cpp, manipulability.cpp) and the closed forms: joint
+// configurations, one (dof,) or a batch (N, dof), checked once, read in place when already
+// C-contiguous float64; task names; joint limits.
 #pragma once
 
 #include "arrays.hpp"
 
 #include "robokin/chain.hpp"
+#include "robokin/limits.hpp"
 #include "robokin/task.hpp"
 
 #include <string>
-#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace robokin::bind {
 
@@ -44,15 +47,33 @@ inline Task task_of(py::handle obj) {
     Py_ssize_t len = 0;
     const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
     if (!s) throw py::error_already_set();
-    const std::string_view name(s, static_cast<size_t>(len));
-    if (name == "pose") return Task::Pose;
-    if (name == "xy") return Task::XY;
-    if (name == "position") return Task::Position;
-    if (name == "xyphi") return Task::XYPhi;
-    return parse_task(std::string(name));  // throws the ValueError naming the task
+    return parse_task(std::string(s, static_cast<size_t>(len)));  // short: no allocation; throws naming the task
   }
   // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
   throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
+}
+
+// Joint limits: None (none), or a pair (lower, upper) of arrays of dof values (any equal sizes for
+// dof < 0, which the Chain constructor checks), checked by the core's validate_limits.
+inline JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismatic = {}) {
+  JointLimits lim;
+  lim.prismatic = std::move(prismatic);
+  if (obj.is_none()) return lim;
+  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) || py::len(obj) != 2)
+    fail("limits: expected None or a pair (lower, upper) of arrays");
+  const py::sequence pair = py::reinterpret_borrow<py::sequence>(obj);
+  lim.lower = as_vector(pair[0], "limits", dof, false);
+  lim.upper = as_vector(pair[1], "limits", dof, false);
+  if (dof >= 0) validate_limits(dof, lim.lower, lim.upper);
+  return lim;
+}
+
+// The limits of a closed form bound to a chain: "default" for the chain's own (none when it has
+// not dof joints), else as limits_arg.
+inline JointLimits limits_or_default(const Chain& chain, py::handle obj, int dof) {
+  if (!py::isinstance<py::str>(obj)) return limits_arg(obj, dof);
+  if (obj.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
+  return chain.dof() == dof ? chain.limits() : JointLimits{};
 }
 
 }  // namespace robokin::bind

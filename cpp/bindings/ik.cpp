@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "results.hpp"
 #include "targets.hpp"
 
 #include "robokin/ik.hpp"
@@ -66,7 +67,7 @@ IkOptions options_arg(const py::kwargs& kwargs) {
   return o;
 }
 
-IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, py::handle seed, const py::kwargs& kwargs) {
+IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, py::handle seed, const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const Target t = one_target(o.task, target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
@@ -85,7 +86,7 @@ IkResult ik(const Chain& chain, py::handle target, py::handle q0_obj, py::handle
   return checked(r);
 }
 
-IkBatchResult ik_batch_py(const Chain& chain, py::handle targets_obj, py::handle q0_obj, py::handle seed, bool path,
+IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, py::handle seed, bool path,
                           const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const int n = chain.dof();
@@ -129,7 +130,7 @@ struct BoundSolver {
       : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o), solver(*chain, o), seeded(seeded_),
         seed(seed_), calls(calls_) {}
 
-  IkResult solve(py::handle target, py::handle q0_obj) {
+  IkResult solve(ArrayLike target, ArrayLike q0_obj) {
     const Target t = one_target(options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
@@ -147,7 +148,7 @@ struct BoundSolver {
   }
 };
 
-// Pickling: versioned state tuples (check_state, arrays.hpp).
+// Pickling: a versioned state tuple (check_state, arrays.hpp).
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
   check_state(t, 6, "IKSolver");  // (version, chain, options, seeded, seed, calls)
   const IkOptions o = t[2].cast<IkOptions>();
@@ -156,108 +157,36 @@ std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
                                        t[4].cast<std::uint64_t>(), t[5].cast<std::uint64_t>());
 }
 
-template <class T>
-py::array_t<T, py::array::c_style | py::array::forcecast> state_array(py::handle obj, const char* name) {
-  auto a = aligned_array<T>(obj);
-  if (!a) fail(std::string(name) + ": expected an array in the state");
-  return a;
-}
-
-IkBatchResult batch_from_state(const py::tuple& t) {
-  check_state(t, 7, "IKBatchResult");  // (version, q, success, iterations, attempts, error_p, error_r)
-  const auto q = state_array<double>(t[1], "q");
-  const auto success = state_array<bool>(t[2], "success");
-  const auto iterations = state_array<int>(t[3], "iterations"), attempts = state_array<int>(t[4], "attempts");
-  const auto ep = state_array<double>(t[5], "error_p"), er = state_array<double>(t[6], "error_r");
-  const py::ssize_t n = success.size();
-  if (q.ndim() != 2 || q.shape(0) != n || iterations.size() != n || attempts.size() != n || ep.size() != n ||
-      er.size() != n)
-    fail("IKBatchResult state: arrays of different lengths");
-  IkBatchResult r;
-  r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n, q.shape(1));
-  r.success = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(success.data(), n);
-  r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
-  r.attempts = Eigen::Map<const Eigen::ArrayXi>(attempts.data(), n);
-  r.error_p = Eigen::Map<const Vector>(ep.data(), n);
-  r.error_r = Eigen::Map<const Vector>(er.data(), n);
-  return r;
-}
-
 }  // namespace
 
 void bind_ik(py::module_& m) {
   IkOptionsClass(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.")
-      .field_as<std::string>("method", [](const IkOptions& o) { return std::string(ik_method_name(o.method)); },
-                             [](IkOptions& o, const std::string& v) { o.method = parse_ik_method(v); },
-                             "'lm', 'gn', 'nr' or 'halley'.")
-      .field_as<std::string>("task", [](const IkOptions& o) { return std::string(task_name(o.task)); },
-                             [](IkOptions& o, const std::string& v) { o.task = parse_task(v); },
-                             "'pose', 'position', 'xy' or 'xyphi'.")
-      .field("tol_p", &IkOptions::tol_p, "Position tolerance (m).")
-      .field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.")
-      .field("max_iter", &IkOptions::max_iter, "Iterations per attempt.")
-      .field("restarts", &IkOptions::restarts,
-             "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.")
-      .field("timeout", &IkOptions::timeout,
-             "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.")
-      .field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
-  py::class_<IkResult>(m, "IKResult", "What one numerical IK solve found.")
-      .def_property_readonly("q", [](const IkResult& r) { return to_numpy(r.q); },
-                             "(dof,) joints: the solution, or the best point found (within the limits).")
-      .def_readonly("success", &IkResult::success,
-                    "True when FK of q meets tol_p and tol_r (checked after wrapping and clamping).")
-      .def_readonly("iterations", &IkResult::iterations, "Iterations over every attempt.")
-      .def_readonly("attempts", &IkResult::attempts, "1 + the random restarts used.")
-      .def_readonly("error_p", &IkResult::error_p, "Position error at q (m).")
-      .def_readonly("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
-      .def("__bool__", [](const IkResult& r) { return r.success; })
-      .def(py::pickle(  // (version, q, success, iterations, attempts, error_p, error_r)
-          [](const IkResult& r) {
-            return py::make_tuple(kStateVersion, to_numpy(r.q), r.success, r.iterations, r.attempts, r.error_p,
-                                  r.error_r);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 7, "IKResult");
-            IkResult r;
-            r.q = as_vector(t[1], "q", -1, false);
-            r.success = t[2].cast<bool>();
-            r.iterations = t[3].cast<int>();
-            r.attempts = t[4].cast<int>();
-            r.error_p = t[5].cast<double>();
-            r.error_r = t[6].cast<double>();
-            return r;
-          }))
-      .def("__repr__", [](py::handle self) {
-        return repr_fields(self, {"success", "iterations", "attempts", "error_p", "error_r", "q"});
-      });
-  py::class_<IkBatchResult> batch(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).");
-  def_array(batch, "q", &IkBatchResult::q, "(N, dof) joints.");
-  def_array(batch, "success", &IkBatchResult::success, "(N,) verified successes.");
-  def_array(batch, "iterations", &IkBatchResult::iterations, "(N,) iterations.");
-  def_array(batch, "attempts", &IkBatchResult::attempts, "(N,) attempts (1 + restarts used).");
-  def_array(batch, "error_p", &IkBatchResult::error_p, "(N,) position errors (m).");
-  def_array(batch, "error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).");
-  batch
-      .def("__len__", [](const IkBatchResult& r) { return r.success.size(); })
-      .def(py::pickle(
-          [](py::handle self) {
-            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("success"), self.attr("iterations"),
-                                  self.attr("attempts"), self.attr("error_p"), self.attr("error_r"));
-          },
-          &batch_from_state))
-      .def("__repr__", [](py::handle self) {
-        return repr_fields(self, {"q", "success", "iterations", "attempts", "error_p", "error_r"});
-      });
+      .fields();
+  ResultClass<IkResult>(m, "IKResult", "What one numerical IK solve found.", false)
+      .value("success", &IkResult::success,
+             "True when FK of q meets tol_p and tol_r (checked after wrapping and clamping).")
+      .value("iterations", &IkResult::iterations, "Iterations over every attempt.")
+      .value("attempts", &IkResult::attempts, "1 + the random restarts used.")
+      .value("error_p", &IkResult::error_p, "Position error at q (m).")
+      .value("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
+      .array("q", &IkResult::q, "(dof,) joints: the solution, or the best point found (within the limits).")
+      .done_with([](py::class_<IkResult>& c) { c.def("__bool__", [](const IkResult& r) { return r.success; }); });
+  ResultClass<IkBatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).", true)
+      .array("q", &IkBatchResult::q, "(N, dof) joints.")
+      .array("success", &IkBatchResult::success, "(N,) verified successes.")
+      .array("iterations", &IkBatchResult::iterations, "(N,) iterations.")
+      .array("attempts", &IkBatchResult::attempts, "(N,) attempts (1 + restarts used).")
+      .array("error_p", &IkBatchResult::error_p, "(N,) position errors (m).")
+      .array("error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).")
+      .done();
   // The defaults as a solve resolves them (restarts and timeout None: until success within 5 ms).
   const IkOptions d;
   py::dict defaults;
-  defaults["method"] = ik_method_name(d.method);
-  defaults["task"] = task_name(d.task);
-  defaults["tol_p"] = d.tol_p;
-  defaults["tol_r"] = d.tol_r;
-  defaults["max_iter"] = d.max_iter;
+  const py::object fields = py::cast(d);
+  for (const std::string& name : field_names<IkOptions>()) defaults[name.c_str()] = fields.attr(name.c_str());
   defaults["restarts"] = d.max_restarts();
   defaults["timeout"] = d.budget();
+  defaults.attr("pop")("damping");  // None: the method's (default_damping)
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
   m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::kw_only(), py::arg("seed") = py::none(),
         "Numerical IK; options as keywords (IKOptions). Use robokin.ik.");
@@ -276,7 +205,7 @@ void bind_ik(py::module_& m) {
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
-      .def_property_readonly("method", [](const BoundSolver& b) { return ik_method_name(b.options.method); })
+      .def_property_readonly("method", [](const BoundSolver& b) { return name_of(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
       .def_property_readonly("options", [](const BoundSolver& b) { return b.options; }, "The solver's IKOptions (a copy).")
       .def(py::pickle(  // (version, chain, options, seeded, seed, calls): a copy continues the seed sequence

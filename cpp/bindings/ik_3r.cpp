@@ -2,6 +2,7 @@
 // and robokin.cuspidal).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 
 #include "robokin/ik_3r.hpp"
 
@@ -20,36 +21,15 @@ Arm3R arm_arg(const Chain& chain) {
   }
 }
 
-JointLimits limits_3r(const Chain& chain, py::handle limits) {
-  JointLimits lim;
-  if (py::isinstance<py::str>(limits)) {
-    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-    lim.lower = chain.lower(), lim.upper = chain.upper();
-    if (lim.lower.size() != 3) lim.lower.resize(0), lim.upper.resize(0);
-    return lim;
-  }
-  if (limits.is_none()) return lim;
-  if (!py::isinstance<py::sequence>(limits) || py::len(limits) != 2)
-    fail("limits: expected 'default', None or a pair (lower, upper)");
-  py::sequence pair = py::reinterpret_borrow<py::sequence>(limits);
-  lim.lower = as_vector(pair[0], "limits", 3, false);
-  lim.upper = as_vector(pair[1], "limits", 3, false);
-  for (int i = 0; i < 3; ++i) {
-    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
-    if (lim.lower(i) > lim.upper(i)) fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
-  }
-  return lim;
-}
-
 }  // namespace
 
 void bind_ik_3r(py::module_& m) {
   m.def(
       "ik_3r",
-      [](py::handle target, const Chain& chain, py::handle limits) {
+      [](ArrayLike target, const Chain& chain, py::handle limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
         const Arm3R arm = arm_arg(chain);
-        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_3r(chain, limits));
+        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3));
       },
       py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def(

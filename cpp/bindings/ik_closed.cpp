@@ -1,6 +1,7 @@
 // Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
@@ -18,40 +19,23 @@
 namespace robokin::bind {
 namespace {
 
-JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismatic = {}) {
-  JointLimits lim;
-  lim.prismatic = std::move(prismatic);
-  if (obj.is_none()) return lim;
-  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) || py::len(obj) != 2)
-    fail("limits: expected None or a pair (lower, upper) of arrays");
-  py::sequence pair = py::reinterpret_borrow<py::sequence>(obj);
-  lim.lower = as_vector(pair[0], "limits", dof, false);
-  lim.upper = as_vector(pair[1], "limits", dof, false);
-  for (int i = 0; i < dof; ++i) {
-    if (std::isnan(lim.lower(i)) || std::isnan(lim.upper(i))) fail("limits: contains NaN");
-    if (lim.lower(i) > lim.upper(i))
-      fail("limits: joint " + std::to_string(i) + " has its lower limit above its upper limit");
-  }
-  return lim;
-}
-
 double length_arg(double v, const char* name, bool positive) {
   if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
   if (positive && !(v > 0)) fail(std::string(name) + ": must be positive");
   return v;
 }
 
-ClosedFormSolutions planar_rp(py::handle target, py::handle limits) {
+ClosedFormSolutions planar_rp(ArrayLike target, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
 }
 
-ClosedFormSolutions planar_2r(py::handle target, double a1, double a2, py::handle limits) {
+ClosedFormSolutions planar_2r(ArrayLike target, double a1, double a2, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_2r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), p(0), p(1), limits_arg(limits, 2));
 }
 
-ClosedFormSolutions planar_3r(py::handle target, double a1, double a2, double a3, const std::string& method,
+ClosedFormSolutions planar_3r(ArrayLike target, double a1, double a2, double a3, const std::string& method,
                               py::handle limits) {
   const Vector p = as_vector(target, "target", 3);
   if (method != "algebraic" && method != "geometric")
@@ -71,19 +55,19 @@ ArmGeometry arm_arg(double d1, double a2, double a3, double d3, double d4) {
   return g;
 }
 
-ClosedFormSolutions anthropomorphic(py::handle target, double a2, double a3, double d1, py::handle limits) {
+ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, double d1, py::handle limits) {
   const Vector p = as_vector(target, "target", 3);
   return ik_anthropomorphic(arm_arg(d1, a2, a3, 0, 0), p, limits_arg(limits, 3));
 }
 
-ClosedFormSolutions spherical_wrist(py::handle target, double a2, double a3, double d3, double d4, double d1,
+ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
                                     double d6, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), T, limits_arg(limits, 6));
 }
 
-py::tuple spherical_wrist_path(py::handle targets_obj, double a2, double a3, double d3, double d4, double d1,
-                               double d6, py::handle q0_obj, py::handle limits) {
+py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
+                               double d6, ArrayLike q0_obj, py::handle limits) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
@@ -114,7 +98,7 @@ struct SphericalWrist {
   ArmGeometry arm;
   double d6;
   JointLimits limits;
-  ClosedFormSolutions solve(py::handle target) const {
+  ClosedFormSolutions solve(ArrayLike target) const {
     return ik_spherical_wrist(arm, d6, Rigid::from_matrix(as_transform(target, "target")), limits);
   }
 };
@@ -130,27 +114,16 @@ URArm ur_arm_arg(const Chain& chain) {
 }
 
 // limits: "default" (the chain's), None, or a pair.
-JointLimits ur_limits_arg(const Chain& chain, py::handle limits) {
-  if (py::isinstance<py::str>(limits)) {
-    if (limits.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-    JointLimits lim;
-    lim.lower = chain.lower(), lim.upper = chain.upper();
-    if (lim.lower.size() != 6) lim.lower.resize(0), lim.upper.resize(0);
-    return lim;
-  }
-  return limits_arg(limits, 6);
-}
-
-ClosedFormSolutions ur(py::handle target, const Chain& chain, py::handle limits) {
+ClosedFormSolutions ur(ArrayLike target, const Chain& chain, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_ur(ur_arm_arg(chain), chain, T, ur_limits_arg(chain, limits));
+  return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
-py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
 
-py::tuple ur_batch(py::handle targets_obj, const Chain& chain, py::handle limits) {
+py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, py::handle limits) {
   const URArm arm = ur_arm_arg(chain);
-  const JointLimits lim = ur_limits_arg(chain, limits);
+  const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
 
@@ -159,13 +132,13 @@ struct URSolver {
   const Chain* chain;  // kept alive by the Python object (keep_alive)
   URArm arm;
   JointLimits limits;
-  ClosedFormSolutions solve(py::handle target) const {
+  ClosedFormSolutions solve(ArrayLike target) const {
     return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
   }
-  py::tuple solve_batch(py::handle targets) const { return ur_batch_with(targets, *chain, arm, limits); }
+  py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
 };
 
-py::tuple ur_batch_with(py::handle targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
@@ -264,7 +237,7 @@ void bind_ik_closed(py::module_& m) {
       .def("__len__", &ClosedFormSolutions::count)
       .def(
           "nearest",
-          [](const ClosedFormSolutions& s, py::handle q_obj) -> py::object {
+          [](const ClosedFormSolutions& s, ArrayLike q_obj) -> py::object {
             const Vector q = as_vector(q_obj, "q", s.dof);
             const int k = nearest_solution(s, q.data());
             if (k < 0) return py::none();
@@ -291,7 +264,7 @@ void bind_ik_closed(py::module_& m) {
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
       .def(py::init([](const Chain& chain, py::handle limits) {
-             return URSolver{&chain, ur_arm_arg(chain), ur_limits_arg(chain, limits)};
+             return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
       .def("solve", &URSolver::solve, py::arg("target"))

@@ -21,7 +21,7 @@ Measure measure_of(py::handle obj) {
   return parse_measure(std::string(s, static_cast<size_t>(len)));  // std::invalid_argument -> ValueError
 }
 
-py::object manipulability(const Chain& c, py::handle q_obj, py::handle measure_obj, py::handle task_obj) {
+py::object manipulability(const Chain& c, ArrayLike q_obj, py::handle measure_obj, py::handle task_obj) {
   const Measure measure = measure_of(measure_obj);
   const Task task = task_of(task_obj);
   Array holder;
@@ -44,7 +44,7 @@ py::object manipulability(const Chain& c, py::handle q_obj, py::handle measure_o
   return std::move(out);
 }
 
-py::tuple ellipsoid(const Chain& c, py::handle q_obj, const std::string& part) {
+py::tuple ellipsoid(const Chain& c, ArrayLike q_obj, const std::string& part) {
   if (part != "translation" && part != "rotation")
     fail("part: expected 'translation' or 'rotation', got '" + part + "'");
   const Vector q = as_vector(q_obj, "q", c.dof());

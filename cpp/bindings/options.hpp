@@ -103,7 +103,8 @@ template <class T>
 struct HasValidate<T, std::void_t<decltype(std::declval<const T&>().validate())>> : std::true_type {};
 
 // Binds an options struct: a keyword-only constructor, one read-write property per field, equality,
-// a generic __repr__ and `fields` (the names, in order). Fields are declared with `field`.
+// a generic __repr__ and `fields` (the names, in order). Fields are declared with `field`, or all at
+// once from the struct's own list (`fields()`, from `T::fields` in its header).
 template <class T>
 class OptionsClass {
  public:
@@ -138,10 +139,24 @@ class OptionsClass {
     }, "What each option takes, in the order of fields: 'int', 'float', 'bool', 'str', 'None or int', ...");
   }
 
+  // One field: read-write as its C++ type, an enum by its name (the core's name_of / parse
+  // overloads beside the enum).
   template <class V>
   OptionsClass& field(const char* name, V T::*member, const char* doc) {
-    cls_.def_readwrite(name, member, doc);
-    fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+    if constexpr (std::is_enum_v<V>) {
+      return field_as<std::string>(
+          name, [member](const T& o) { return std::string(name_of(o.*member)); },
+          [member](T& o, const std::string& v) { parse(v, o.*member); }, doc);
+    } else {
+      cls_.def_readwrite(name, member, doc);
+      fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+      return *this;
+    }
+  }
+
+  // Every field the struct lists in its header (`T::fields`: keyword, member, doc), in that order.
+  OptionsClass& fields() {
+    T::fields([this](const char* name, auto member, const char* doc) { field(name, member, doc); });
     return *this;
   }
 
@@ -158,7 +173,6 @@ class OptionsClass {
     fields_of<T>().push_back({name, kind, false});
     return *this;
   }
-
 
   // T from keyword arguments (a dict): each must name a field and convert to its type.
   static T from_kwargs(const py::handle& kwargs) {

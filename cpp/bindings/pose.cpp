@@ -102,7 +102,7 @@ py::array vectors_from(py::handle obj, const char* name, bool rotations_too, lon
   return checked(out, name);
 }
 
-py::array pose_error_of(py::handle target_obj, py::handle current_obj) {
+py::array pose_error_of(ArrayLike target_obj, ArrayLike current_obj) {
   std::vector<Rigid> target, current;
   const long nt = read_frames(target_obj, "target", false, target);
   const long nc = read_frames(current_obj, "current", false, current);
@@ -121,13 +121,13 @@ py::array pose_error_of(py::handle target_obj, py::handle current_obj) {
 }  // namespace
 
 void bind_pose(py::module_& m) {
-  m.def("pose_from_rpy", [](py::handle rpy) {
+  m.def("pose_from_rpy", [](ArrayLike rpy) {
     return frames_from(rpy, "rpy", 3, [](const double* v) { return Rigid{rpy_to_matrix(v[0], v[1], v[2]), Eigen::Vector3d::Zero()}; });
   }, py::arg("rpy"), "Frames of rotations Rz(yaw) Ry(pitch) Rx(roll). Use robokin.pose.from_rpy.");
   m.def("pose_rpy", [](py::handle T) {
     return vectors_from(T, "T", true, 3, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector3d> out(o); out = matrix_to_rpy(T.R); });
   }, py::arg("T"), "(roll, pitch, yaw) of rotations. Use robokin.pose.rpy.");
-  m.def("pose_from_quaternion", [](py::handle q) {
+  m.def("pose_from_quaternion", [](ArrayLike q) {
     return frames_from(q, "quaternion", 4, [](const double* v) {
       const Eigen::Vector4d q(v[0], v[1], v[2], v[3]);
       const double norm = q.stableNorm();
@@ -138,13 +138,13 @@ void bind_pose(py::module_& m) {
   m.def("pose_quaternion", [](py::handle T) {
     return vectors_from(T, "T", true, 4, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector4d> out(o); out = matrix_to_quaternion(T.R); });
   }, py::arg("T"), "Unit quaternions (w, x, y, z), w >= 0. Use robokin.pose.quaternion.");
-  m.def("pose_from_rotation_vector", [](py::handle w) {
+  m.def("pose_from_rotation_vector", [](ArrayLike w) {
     return frames_from(w, "rotation_vector", 3, [](const double* v) { return Rigid{rotation_exp(Eigen::Vector3d(v[0], v[1], v[2])), Eigen::Vector3d::Zero()}; });
   }, py::arg("rotation_vector"), "Frames of rotation vectors (angle * axis). Use robokin.pose.from_axis_angle.");
   m.def("pose_rotation_vector", [](py::handle T) {
     return vectors_from(T, "T", true, 3, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector3d> out(o); out = rotation_vector(T.R); });
   }, py::arg("T"), "Rotation vectors (angle in [0, pi] times the unit axis). Use robokin.pose.axis_angle.");
-  m.def("pose_exp", [](py::handle xi) {
+  m.def("pose_exp", [](ArrayLike xi) {
     return frames_from(xi, "xi", 6, [](const double* v) { return se3_exp(Eigen::Map<const Vector6>(v)); });
   }, py::arg("xi"), "SE(3) exponential of twists (v, w). Use robokin.pose.exp.");
   m.def("pose_log", [](py::handle T) {

@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "results.hpp"
 #include "targets.hpp"
 
 #include "robokin/reach.hpp"
@@ -31,7 +32,7 @@ ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::hand
   return o;
 }
 
-ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const std::string& task_str,
+ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const std::string& task_str,
                   py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const Target t = one_target(task, target);
@@ -43,7 +44,7 @@ ReachResult reach(const Chain& chain, py::handle target, py::handle q_obj, const
   return r;
 }
 
-TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, const std::string& task_str,
+TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, const std::string& task_str,
                   py::handle nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const std::vector<Target> targets = many_targets(task, points, "points");
@@ -63,55 +64,19 @@ TrackResult track(const Chain& chain, py::handle points, py::handle q0_obj, cons
 
 void bind_reach(py::module_& m) {
   ReachOptionsClass(m, "ReachOptions", "The options of one Reach (seed 000, Algorithm 1); the seed's values by default.")
-      .field("max_iter", &ReachOptions::max_iter, "Iterations at most (the seed's n), in [1, 100000].")
-      .field("tol", &ReachOptions::tol, "Tolerance on the norm of the task error (the seed's delta).")
-      .field("gain", &ReachOptions::gain, "The seed's gain d: dp = d (p_target - p) / dt.")
-      .field("dt", &ReachOptions::dt, "The seed's time step.")
-      .field("saturate", &ReachOptions::saturate, "Clamp the joints to their limits after every step.")
-      .field("damping", &ReachOptions::damping, "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1.");
-  py::class_<ReachResult>(m, "ReachResult", "What one Reach call did.")
-      .def_property_readonly("q", [](const ReachResult& r) { return to_numpy(r.q); }, "Joints at the end.")
-      .def_readonly("converged", &ReachResult::converged, "True when the task error is below tol.")
-      .def_readonly("iterations", &ReachResult::iterations, "Iterations run.")
-      .def_readonly("error", &ReachResult::error, "Norm of the task error at q.")
-      .def(py::pickle(  // (version, q, converged, iterations, error)
-          [](const ReachResult& r) {
-            return py::make_tuple(kStateVersion, to_numpy(r.q), r.converged, r.iterations, r.error);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 5, "ReachResult");
-            return ReachResult{as_vector(t[1], "q", -1, false), t[2].cast<bool>(), t[3].cast<int>(), t[4].cast<double>()};
-          }))
-      .def("__repr__", [](py::handle self) { return repr_fields(self, {"converged", "iterations", "error", "q"}); });
-  py::class_<TrackResult> track_result(m, "TrackResult", "What tracking a path did, one row per path point.");
-  def_array(track_result, "q", &TrackResult::q, "(K, dof) joints after each point.");
-  def_array(track_result, "error", &TrackResult::error, "(K,) task error after each point.");
-  def_array(track_result, "converged", &TrackResult::converged, "(K,) True where the point was reached within tol.");
-  def_array(track_result, "iterations", &TrackResult::iterations, "(K,) Reach iterations per point.");
-  track_result
-      .def(py::pickle(  // (version, q, error, converged, iterations)
-          [](py::handle self) {
-            return py::make_tuple(kStateVersion, self.attr("q"), self.attr("error"), self.attr("converged"),
-                                  self.attr("iterations"));
-          },
-          [](const py::tuple& t) {
-            check_state(t, 5, "TrackResult");
-            const Array q = as_array(t[1], "q"), error = as_array(t[2], "error");
-            const auto converged = aligned_array<bool>(t[3]);
-            const auto iterations = aligned_array<int>(t[4]);
-            if (!converged || !iterations || q.ndim() != 2 || error.size() != q.shape(0) ||
-                converged.size() != q.shape(0) || iterations.size() != q.shape(0))
-              fail("TrackResult state: arrays of different lengths");
-            const Eigen::Index n = q.shape(0);
-            TrackResult r;
-            r.q = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(q.data(), n,
-                                                                                                         q.shape(1));
-            r.error = Eigen::Map<const Vector>(error.data(), n);
-            r.converged = Eigen::Map<const Eigen::Array<bool, Eigen::Dynamic, 1>>(converged.data(), n);
-            r.iterations = Eigen::Map<const Eigen::ArrayXi>(iterations.data(), n);
-            return r;
-          }))
-      .def("__repr__", [](py::handle self) { return repr_fields(self, {"q", "error", "converged", "iterations"}); });
+      .fields();
+  ResultClass<ReachResult>(m, "ReachResult", "What one Reach call did.", false)
+      .value("converged", &ReachResult::converged, "True when the task error is below tol.")
+      .value("iterations", &ReachResult::iterations, "Iterations run.")
+      .value("error", &ReachResult::error, "Norm of the task error at q.")
+      .array("q", &ReachResult::q, "Joints at the end.")
+      .done();
+  ResultClass<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.", true)
+      .array("q", &TrackResult::q, "(K, dof) joints after each point.")
+      .array("error", &TrackResult::error, "(K,) task error after each point.")
+      .array("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
+      .array("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
+      .done();
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
         py::arg("nullspace") = py::none(),
         "One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");
@@ -120,7 +85,7 @@ void bind_reach(py::module_& m) {
         "Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.");
   m.def(
       "joint_limit_cost",
-      [](const Chain& chain, py::handle q_obj) -> py::object {
+      [](const Chain& chain, ArrayLike q_obj) -> py::object {
         Array q = as_array(q_obj, "q");
         const long n = chain.dof();
         if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))

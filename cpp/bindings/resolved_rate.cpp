@@ -33,7 +33,7 @@ RateOptions rate_options(const Chain& chain, py::handle task, double damping, py
   return o;
 }
 
-py::array_t<double> resolved_rate(const Chain& chain, py::handle q_obj, py::handle twist_obj, double damping,
+py::array_t<double> resolved_rate(const Chain& chain, ArrayLike q_obj, ArrayLike twist_obj, double damping,
                                   py::handle nullspace, py::handle task) {
   const RateOptions o = rate_options(chain, task, damping, nullspace);
   const Vector q = as_vector(q_obj, "q", chain.dof());
@@ -45,7 +45,7 @@ py::array_t<double> resolved_rate(const Chain& chain, py::handle q_obj, py::hand
   return to_numpy(qdot);
 }
 
-py::tuple servo(const Chain& chain, py::handle poses, py::handle q0_obj, double dt, double gain, double damping,
+py::tuple servo(const Chain& chain, ArrayLike poses, ArrayLike q0_obj, double dt, double gain, double damping,
                 py::handle nullspace, py::handle task, bool saturate) {
   ServoOptions o;
   o.rate = rate_options(chain, task, damping, nullspace);

@@ -9,7 +9,7 @@ namespace robokin::bind {
 void bind_rpr(py::module_& m) {
   m.def(
       "rpr_self_motion",
-      [](py::handle point, py::handle t1_obj, double l1, double l3, py::handle lower_obj, py::handle upper_obj) {
+      [](ArrayLike point, ArrayLike t1_obj, double l1, double l3, ArrayLike lower_obj, ArrayLike upper_obj) {
         const Eigen::VectorXd p = as_vector(point, "point", 2);
         const Eigen::VectorXd t1 = as_vector(t1_obj, "t1");
         const Eigen::VectorXd lower = as_vector(lower_obj, "lower", 3, false);

@@ -6,11 +6,13 @@
 
 #include "robokin/rrr3.hpp"
 #include "robokin/rrr3_connect.hpp"
+#include "robokin/rrr3_loop.hpp"
 #include "robokin/rrr3_plan.hpp"
 #include "robokin/rrr3_workspace.hpp"
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -68,7 +70,7 @@ double positive_tol(double tol) {
   return tol;
 }
 
-py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mode_obj) {
+py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, py::handle mode_obj) {
   const Mode mode = as_mode(mode_obj);
   Array poses = as_array(poses_obj, "poses");
   if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
@@ -85,7 +87,7 @@ py::array_t<double> ik_batch(const RRR3& r, py::handle poses_obj, py::handle mod
   return out;
 }
 
-py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
+py::array_t<double> ik_all(const RRR3& r, ArrayLike pose_obj) {
   const Pose pose = as_pose(pose_obj);
   py::array_t<double> out = new_array({8, 3});
   for (int k = 0; k < 8; ++k) {
@@ -95,7 +97,7 @@ py::array_t<double> ik_all(const RRR3& r, py::handle pose_obj) {
   return out;
 }
 
-RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, int max_iter, double tol) {
+RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, int max_iter, double tol) {
   const Pose pose = as_pose(pose_obj);
   Array g = as_array(guess_obj, "guess");
   if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
@@ -107,7 +109,7 @@ RRR3Newton ik_newton(const RRR3& r, py::handle pose_obj, py::handle guess_obj, i
                      max_iter, tol);
 }
 
-RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_iter, double tol) {
+RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, int max_iter, double tol) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
   check_max_iter(max_iter);
@@ -115,7 +117,7 @@ RRR3Fk fk(const RRR3& r, py::handle alpha_obj, py::handle guess_obj, int max_ite
   return r.fk(alpha, guess, max_iter, tol);
 }
 
-py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
+py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   std::vector<Pose> poses;
   {
@@ -127,7 +129,7 @@ py::array_t<double> fk_all(const RRR3& r, py::handle alpha_obj) {
   return out;
 }
 
-py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+py::dict points(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   const Pose pose = as_pose(pose_obj);
   const Elbows A = r.elbows(r.ik_or_throw(pose, as_mode(mode_obj)));
   Elbows O, B;
@@ -142,7 +144,7 @@ py::dict points(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
   return d;
 }
 
-py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
+py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   Eigen::Matrix3d A, B;
   r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
   return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
@@ -150,8 +152,9 @@ py::tuple jacobians(const RRR3& r, py::handle pose_obj, py::handle mode_obj) {
 
 using PlanOptionsClass = OptionsClass<RRR3PlanOptions>;
 using ConnectOptionsClass = OptionsClass<RRR3ConnectOptions>;
+using LoopOptionsClass = OptionsClass<RRR3LoopOptions>;
 
-RRR3Plan plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
+RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
   Array pts = as_array(points_obj, "points");
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
@@ -164,7 +167,42 @@ RRR3Plan plan(const RRR3& r, py::handle points_obj, const py::kwargs& kwargs) {
   return plan_path(r, pts.data(), count, o, &progress);
 }
 
-RRR3Plan connect_poses(const RRR3& r, py::handle start_obj, py::handle goal_obj, const py::kwargs& kwargs) {
+// plan_loop(points, **kwargs): the loop's own options (sign, nominals) and the plan's (all but phi,
+// searched, and closed, always true).
+RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
+  Array pts = as_array(points_obj, "points");
+  if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
+  require_finite(pts.data(), pts.size(), "points");
+  const std::vector<std::string> loop_names = field_names<RRR3LoopOptions>();
+  std::vector<std::string> plan_names;
+  for (const std::string& n : field_names<RRR3PlanOptions>())
+    if (n != "phi" && n != "closed") plan_names.push_back(n);  // phi is searched, the plan always closed
+  auto has = [](const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+  };
+  py::dict loop_kwargs, plan_kwargs;
+  for (auto item : kwargs) {
+    const std::string name = py::str(item.first).cast<std::string>();
+    if (!has(loop_names, name) && !has(plan_names, name)) {
+      std::string all;
+      for (const std::string& n : loop_names) all += (all.empty() ? "" : ", ") + n;
+      for (const std::string& n : plan_names) all += ", " + n;
+      throw py::type_error("unexpected keyword argument '" + name + "' (options: " + all +
+                           "; phi is searched over nominals, the plan is always closed)");
+    }
+    (has(loop_names, name) ? loop_kwargs : plan_kwargs)[item.first] = item.second;
+  }
+  const RRR3LoopOptions loop = LoopOptionsClass::from_kwargs(loop_kwargs);
+  const RRR3PlanOptions o = PlanOptionsClass::from_kwargs(plan_kwargs);
+  loop.validate();
+  o.validate();
+  const long count = static_cast<long>(pts.shape(0));
+  PythonProgress progress("RRR3.plan_loop");
+  py::gil_scoped_release release;
+  return plan_loop(r, pts.data(), count, o, loop, &progress);
+}
+
+RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, const py::kwargs& kwargs) {
   const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
   const RRR3ConnectOptions o = ConnectOptionsClass::from_kwargs(kwargs);
   o.validate();
@@ -225,9 +263,8 @@ py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mo
   return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
 }
 
-}  // namespace
-
-void bind_rrr3(py::module_& m) {
+// The core's exceptions that carry data, as robokin.errors classes with that data as attributes.
+void register_errors() {
   // LegUnreachable -> robokin.UnreachableError (a ValueError) with the leg as an attribute. The
   // class is looked up when raised, so the import order of the package does not matter.
   py::register_exception_translator([](std::exception_ptr p) {
@@ -245,7 +282,10 @@ void bind_rrr3(py::module_& m) {
       PyErr_SetObject(cls.ptr(), exc.ptr());
     }
   });
+}
 
+// RRR3Newton: ik_newton's answer.
+void bind_newton(py::module_& m) {
   py::class_<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).")
       .def_property_readonly("alpha", [](const RRR3Newton& r) { return vec3(r.alpha); })
       .def_property_readonly("beta", [](const RRR3Newton& r) { return vec3(r.beta); })
@@ -272,7 +312,10 @@ void bind_rrr3(py::module_& m) {
                ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
                ", alpha=" + py::repr(vec3(r.alpha)).cast<std::string>() + ")";
       });
+}
 
+// RRR3Fk: fk's answer.
+void bind_fk(py::module_& m) {
   py::class_<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.")
       .def_property_readonly("pose", [](const RRR3Fk& r) { return vec3(r.pose); })
       .def_readonly("converged", &RRR3Fk::converged)
@@ -294,7 +337,10 @@ void bind_rrr3(py::module_& m) {
                ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
                ", pose=" + py::repr(vec3(r.pose)).cast<std::string>() + ")";
       });
+}
 
+// RRR3Singularity: singularity's answer.
+void bind_singularity(py::module_& m) {
   py::class_<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.")
       .def_readonly("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
       .def_readonly("det_a", &RRR3Singularity::det_a)
@@ -323,7 +369,10 @@ void bind_rrr3(py::module_& m) {
         return "RRR3Singularity(kind='" + s.kind + "', det_a_norm=" + std::to_string(s.det_a_norm) +
                ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
       });
+}
 
+// RRR3Plan: the answer of plan and connect.
+void bind_plan_result(py::module_& m) {
   py::class_<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan: the poses to follow and what they give.")
       .def_property_readonly("poses", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.poses)); },
                              "(K, 3) poses (x, y, phi).")
@@ -362,7 +411,35 @@ void bind_rrr3(py::module_& m) {
       .def("__repr__", [](const RRR3Plan& p) {
         return "RRR3Plan(points=" + std::to_string(p.poses.rows()) + ", feasible=" + (p.feasible ? "True" : "False") + ")";
       });
+}
 
+// RRR3Loop: plan_loop's answer.
+void bind_loop_result(py::module_& m) {
+  py::class_<RRR3Loop>(m, "RRR3Loop", "Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.")
+      .def_readonly("plan", &RRR3Loop::plan, "The closed RRR3Plan about nominal (no poses when none was found).")
+      .def_property_readonly("nominal", [](const RRR3Loop& l) -> py::object {
+        return l.found ? py::object(py::float_(l.nominal)) : py::object(py::none());
+      }, "The nominal orientation used (rad), None when none was found.")
+      .def_readonly("found", &RRR3Loop::found)
+      .def_property_readonly("reason", [](const RRR3Loop& l) -> py::object {
+        return l.found ? py::object(py::none()) : py::object(py::str(l.reason));
+      }, "Why none was found: 'start' (no nominal puts the first point on the side) or 'plan'; None when found.")
+      .def(py::pickle(  // (version, plan, nominal, found, reason)
+          [](const RRR3Loop& l) { return py::make_tuple(kStateVersion, l.plan, l.nominal, l.found, l.reason); },
+          [](const py::tuple& t) {
+            check_state(t, 5, "RRR3Loop");
+            RRR3Loop l;
+            l.plan = t[1].cast<RRR3Plan>();
+            l.nominal = t[2].cast<double>();
+            l.found = t[3].cast<bool>();
+            l.reason = t[4].cast<std::string>();
+            return l;
+          }))
+      .def("__repr__", [](py::handle self) { return repr_fields(self, {"found", "nominal", "reason"}); });
+}
+
+// RRR3Workspace: workspace's answer.
+void bind_workspace_result(py::module_& m) {
   py::class_<RRR3Workspace>(m, "RRR3Workspace", "Answer of RRR3.workspace: a constant-orientation map.")
       .def_property_readonly("cells", [](const RRR3Workspace& w) {
         py::array_t<std::uint8_t> out({w.n, w.n});
@@ -407,7 +484,10 @@ void bind_rrr3(py::module_& m) {
       .def("__repr__", [](const RRR3Workspace& w) {
         return "RRR3Workspace(n=" + std::to_string(w.n) + ", area=" + std::to_string(w.region_area) + ")";
       });
+}
 
+// The options structs of plan, connect and plan_loop.
+void bind_options(py::module_& m) {
   PlanOptionsClass(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.")
       .field("phi", &RRR3PlanOptions::phi, "Nominal orientation (rad).")
       .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3PlanOptions& o) { return mode_tuple(o.mode); },
@@ -418,7 +498,9 @@ void bind_rrr3(py::module_& m) {
       .field("serial_margin", &RRR3PlanOptions::serial_margin, "Smallest |det B| / l1^3 allowed.")
       .field("span", &RRR3PlanOptions::span, "Largest departure from the nominal orientation (rad), in [0, pi].")
       .field("resolution", &RRR3PlanOptions::resolution, "Orientation grid step (rad), at most max_step.")
-      .field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.");
+      .field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.")
+      .field("closed", &RRR3PlanOptions::closed,
+             "The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).");
   WorkspaceOptionsClass(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).")
       .field("phi", &RRR3WorkspaceOptions::phi, "The platform's orientation (rad).")
       .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3WorkspaceOptions& o) { return mode_tuple(o.mode); },
@@ -434,6 +516,19 @@ void bind_rrr3(py::module_& m) {
       .field("max_turn", &RRR3ConnectOptions::max_turn, "Largest rotation between consecutive poses (rad).")
       .field("resolution", &RRR3ConnectOptions::resolution, "Grid step in x and y (m), max_step to 1000 max_step.")
       .field("span", &RRR3ConnectOptions::span, "Orientations searched beyond the ends' (rad), in [0, pi].");
+  LoopOptionsClass(m, "RRR3LoopOptions", "The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'.")
+      .field("sign", &RRR3LoopOptions::sign, "The sign det A keeps all along (+1 or -1): the side of the parallel singularities.")
+      .field_as("nominals", "sequence of float",
+                [](const RRR3LoopOptions& o) { return py::tuple(py::cast(o.nominals)); },
+                [](RRR3LoopOptions& o, py::handle v) {
+                  const Eigen::VectorXd a = as_vector(v, "nominals");
+                  o.nominals.assign(a.data(), a.data() + a.size());
+                },
+                "Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.");
+}
+
+// RRR3_DEFAULTS: the seed's robot and the shared thresholds, read-only.
+void bind_defaults(py::module_& m) {
   py::dict defaults;
   defaults["base_radius"] = kDefaultBaseRadius;
   defaults["platform_radius"] = kDefaultPlatformRadius;
@@ -443,24 +538,18 @@ void bind_rrr3(py::module_& m) {
   defaults["near_distance"] = kNearDistance;
   defaults["serial_margin"] = kSerialMargin;
   m.attr("RRR3_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
+}
 
+// rrr3_region_areas: the design study's areas (robokin.rrr3_design).
+void bind_design_study(py::module_& m) {
   m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
         py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("n") = 150, py::arg("tol") = kSingularTol,
         "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
+}
 
-  // Docstrings that list the options with their defaults (kept for the module's lifetime).
-  static const std::string plan_doc =
-      keyword_list<RRR3PlanOptions>("plan(points, *") + "\n\n"
-      "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;\n"
-      "options keyword-only (RRR3PlanOptions).";
-  static const std::string connect_doc =
-      keyword_list<RRR3ConnectOptions>("connect(start, goal, *") + "\n\n"
-      "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
-      "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
-      "why there is none (the two poses are in different singularity-free regions of the mode);\n"
-      "options keyword-only (RRR3ConnectOptions).";
-  py::class_<RRR3>(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).")
-      .def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
+// RRR3's constructor, lengths, base joints and modes.
+void def_geometry(py::class_<RRR3>& cls) {
+  cls.def(py::init([](double rb, double re, double l1, double l2) { return RRR3(rb, re, l1, l2); }),
            py::arg("base_radius") = kDefaultBaseRadius, py::arg("platform_radius") = kDefaultPlatformRadius,
            py::arg("l1") = kDefaultL1, py::arg("l2") = kDefaultL2)
       .def_property_readonly("base_radius", &RRR3::base_radius)
@@ -484,8 +573,12 @@ void bind_rrr3(py::module_& m) {
           modes.append(py::make_tuple(md[0], md[1], md[2]));
         }
         return py::tuple(modes);
-      }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.")
-      .def("ik", [](const RRR3& r, py::handle pose, py::handle mode) {
+      }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.");
+}
+
+// RRR3's inverse and forward models, drawing points, Jacobians and singularities.
+void def_kinematics(py::class_<RRR3>& cls) {
+  cls.def("ik", [](const RRR3& r, ArrayLike pose, py::handle mode) {
         return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
@@ -506,17 +599,42 @@ void bind_rrr3(py::module_& m) {
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
       .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
-      .def("singularity", [](const RRR3& r, py::handle pose, py::handle mode, double tol) {
+      .def("singularity", [](const RRR3& r, ArrayLike pose, py::handle mode, double tol) {
         return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = kSingularTol,
-           "Classification with tol on the normalised determinants.")
-      .def("workspace", &workspace_map, py::arg("phi") = RRR3WorkspaceOptions{}.phi,
-           py::arg("mode") = mode_tuple(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
-           py::arg("tol") = RRR3WorkspaceOptions{}.tol,
+           "Classification with tol on the normalised determinants.");
+}
+
+// RRR3's workspace and planning (plan, connect, plan_loop).
+void def_planning(py::class_<RRR3>& cls) {
+  // Docstrings that list the options with their defaults (kept for the module's lifetime).
+  static const std::string plan_doc =
+      keyword_list<RRR3PlanOptions>("plan(points, *") + "\n\n"
+      "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;\n"
+      "options keyword-only (RRR3PlanOptions).";
+  static const std::string connect_doc =
+      keyword_list<RRR3ConnectOptions>("connect(start, goal, *") + "\n\n"
+      "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
+      "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
+      "why there is none (the two poses are in different singularity-free regions of the mode);\n"
+      "options keyword-only (RRR3ConnectOptions).";
+  static const char* loop_doc =
+      "plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)\n\n"
+      "The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all\n"
+      "along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or\n"
+      "why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).";
+  cls.def("workspace", &workspace_map, py::arg("phi") = RRR3WorkspaceOptions{}.phi,
+          py::arg("mode") = mode_tuple(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
+          py::arg("tol") = RRR3WorkspaceOptions{}.tol,
            "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
       .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())
-      .def(py::pickle(  // (version, base_radius, platform_radius, l1, l2)
+      .def("plan_loop", &loop_plan, py::arg("points"), loop_doc);
+}
+
+// RRR3 as a value: pickle, equality, hash, repr.
+void def_value(py::class_<RRR3>& cls) {
+  cls.def(py::pickle(  // (version, base_radius, platform_radius, l1, l2)
           [](const RRR3& r) { return py::make_tuple(kStateVersion, r.base_radius(), r.platform_radius(), r.l1(), r.l2()); },
           [](const py::tuple& t) {
             check_state(t, 5, "RRR3");
@@ -536,6 +654,26 @@ void bind_rrr3(py::module_& m) {
         return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
                exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";
       });
+}
+
+}  // namespace
+
+void bind_rrr3(py::module_& m) {
+  register_errors();
+  bind_newton(m);
+  bind_fk(m);
+  bind_singularity(m);
+  bind_plan_result(m);
+  bind_loop_result(m);
+  bind_workspace_result(m);
+  bind_options(m);
+  bind_defaults(m);
+  bind_design_study(m);
+  py::class_<RRR3> cls(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).");
+  def_geometry(cls);
+  def_kinematics(cls);
+  def_planning(cls);
+  def_value(cls);
 }
 
 }  // namespace robokin::bind

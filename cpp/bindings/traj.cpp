@@ -30,7 +30,7 @@ Vector optional_vector(py::handle obj, const char* name, long n) {
 }
 
 // (q0, q1) of one size n >= 1.
-long joint_pair(py::handle q0_obj, py::handle q1_obj, Vector& q0, Vector& q1) {
+long joint_pair(ArrayLike q0_obj, ArrayLike q1_obj, Vector& q0, Vector& q1) {
   q0 = as_vector(q0_obj, "q0");
   if (q0.size() == 0) fail("q0: expected at least one joint, got shape (0,)");
   q1 = as_vector(q1_obj, "q1", q0.size());
@@ -77,7 +77,7 @@ py::array copy_of(const double* data, long count) {
 }
 
 // Sample times: 1-D, at least 2, finite, strictly increasing, a finite span (a copy).
-py::array checked_times(py::handle t_obj) {
+py::array checked_times(ArrayLike t_obj) {
   Array t = as_array(t_obj, "t");
   if (t.ndim() != 1 || t.shape(0) < 2) fail("t: expected a 1-D array of at least 2 times, got shape " + shape_of(t));
   require_finite(t.data(), t.size(), "t");
@@ -94,14 +94,14 @@ py::tuple quintic_at(const Vector& q0, const Vector& q1, const Vector& qd0, cons
   return sample(law, t, names);
 }
 
-py::tuple quintic(py::handle q0_obj, py::handle q1_obj, py::handle t_obj, py::handle qd0_obj, py::handle qd1_obj) {
+py::tuple quintic(ArrayLike q0_obj, ArrayLike q1_obj, ArrayLike t_obj, ArrayLike qd0_obj, ArrayLike qd1_obj) {
   Vector q0, q1;
   const long n = joint_pair(q0_obj, q1_obj, q0, q1);
   const Vector qd0 = optional_vector(qd0_obj, "qd0", n), qd1 = optional_vector(qd1_obj, "qd1", n);
   return quintic_at(q0, q1, qd0, qd1, checked_times(t_obj), "q0, q1, qd0, qd1, t");
 }
 
-py::tuple trapezoidal(py::handle q0_obj, py::handle q1_obj, py::handle vmax_obj, py::handle amax_obj, double dt) {
+py::tuple trapezoidal(ArrayLike q0_obj, ArrayLike q1_obj, ArrayLike vmax_obj, ArrayLike amax_obj, double dt) {
   Vector q0, q1;
   const long n = joint_pair(q0_obj, q1_obj, q0, q1);
   const Vector vmax = positive_vector(vmax_obj, "vmax", n), amax = positive_vector(amax_obj, "amax", n);
@@ -109,7 +109,7 @@ py::tuple trapezoidal(py::handle q0_obj, py::handle q1_obj, py::handle vmax_obj,
   return sample(law, vector_array(sample_times(law.duration(), dt, kMaxValues / n)), "q0, q1, vmax, amax, dt");
 }
 
-py::tuple via_points(py::handle points_obj, py::handle vmax_obj, py::handle amax_obj, double dt) {
+py::tuple via_points(ArrayLike points_obj, ArrayLike vmax_obj, ArrayLike amax_obj, double dt) {
   Array p = as_array(points_obj, "points");
   if (p.ndim() != 2 || p.shape(0) < 1 || p.shape(1) < 1)
     fail("points: expected a (M, n) array, M >= 1 via points of n >= 1 joints, got shape " + shape_of(p));
@@ -123,8 +123,8 @@ py::tuple via_points(py::handle points_obj, py::handle vmax_obj, py::handle amax
   return py::make_tuple(r[0], r[1], r[2], r[3], to_numpy(law.via_times()));
 }
 
-py::tuple cartesian(py::handle T0_obj, py::handle T1_obj, const std::string& law_name, py::handle t_obj,
-                    py::handle vmax_obj, py::handle amax_obj, double dt) {
+py::tuple cartesian(py::handle T0_obj, py::handle T1_obj, const std::string& law_name, ArrayLike t_obj,
+                    ArrayLike vmax_obj, ArrayLike amax_obj, double dt) {
   const Rigid T0 = Rigid::from_matrix(as_transform(T0_obj, "T0")), T1 = Rigid::from_matrix(as_transform(T1_obj, "T1"));
   const CartesianLine line(T0, T1);
   Vector zero = Vector::Zero(2), end(2);

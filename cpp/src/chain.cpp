@@ -1,5 +1,6 @@
 #include "robokin/chain.hpp"
 
+#include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
 #include "fast_math.hpp"
@@ -45,29 +46,6 @@ Rigid frame_with_z(const Eigen::Vector3d& axis) {
   return g;
 }
 
-void check_limits(int dof, Vector& lower, Vector& upper) {
-  const double inf = std::numeric_limits<double>::infinity();
-  if (lower.size() == 0 && upper.size() == 0) {
-    lower = Vector::Constant(dof, -inf);
-    upper = Vector::Constant(dof, inf);
-    return;
-  }
-  if (lower.size() != dof || upper.size() != dof)
-    throw std::invalid_argument("limits: expected (lower, upper) with " + std::to_string(dof) +
-                                " values each, got " + std::to_string(lower.size()) + " and " +
-                                std::to_string(upper.size()));
-  for (int i = 0; i < dof; ++i) {
-    if (std::isnan(lower(i)) || std::isnan(upper(i)))
-      throw std::invalid_argument("limits: joint " + std::to_string(i) + " has a NaN limit");
-    if (lower(i) > upper(i))
-      throw std::invalid_argument("limits: joint " + std::to_string(i) +
-                                  " has its lower limit above its upper limit");
-    if (lower(i) == inf || upper(i) == -inf)
-      throw std::invalid_argument("limits: joint " + std::to_string(i) +
-                                  " has no admissible value (lower +inf or upper -inf)");
-  }
-}
-
 }  // namespace
 
 Matrix4 Rigid::matrix() const {
@@ -91,7 +69,11 @@ Rigid Rigid::from_matrix(const Matrix4& m) { return {m.topLeftCorner<3, 3>(), m.
 Chain::Chain(KDL::Chain chain, const Vector& lower, const Vector& upper)
     : kdl_(std::move(chain)), dof_(static_cast<int>(kdl_.getNrOfJoints())), lower_(lower), upper_(upper) {
   if (dof_ == 0) throw std::invalid_argument("chain: a chain needs at least one joint");
-  check_limits(dof_, lower_, upper_);
+  validate_limits(dof_, lower_, upper_);
+  if (lower_.size() == 0) {
+    lower_ = Vector::Constant(dof_, -INFINITY);
+    upper_ = Vector::Constant(dof_, INFINITY);
+  }
   for (const KDL::Segment& s : kdl_.segments) records_.push_back(SegmentRecord::of(s));
   build_fast_path();
 }
@@ -558,6 +540,12 @@ std::vector<Matrix4> Chain::frames(const Vector& q) const {
   }
   out.back() = Rigid::from_kdl(T).matrix();  // trailing fixed segments (the tool) belong to the last frame
   return out;
+}
+
+Eigen::Vector3d Chain::point_in_frame(const Vector& q, const Eigen::Vector3d& point, int frame, int in_frame) const {
+  const std::vector<Matrix4> f = frames(q);
+  const Matrix4 rel = Rigid::from_matrix(f[in_frame]).inverse().matrix() * f[frame];
+  return rel.topLeftCorner<3, 3>() * point + rel.topRightCorner<3, 1>();
 }
 
 }  // namespace robokin

@@ -19,38 +19,6 @@ constexpr double kPi = M_PI;
 // |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
 constexpr double kCosEps = 1e-12;
 
-}  // namespace
-
-bool fit_limits(double* q, int n, const JointLimits& lim) {
-  for (int i = 0; i < n; ++i) {
-    const bool prismatic = !lim.prismatic.empty() && lim.prismatic[i];
-    if (!prismatic) q[i] = wrap_angle(q[i]);
-    if (lim.lower.size() == 0) continue;
-    const double lo = lim.lower(i), hi = lim.upper(i);
-    // A hair of tolerance: a solution exactly at a limit must not be lost to rounding.
-    const double eps = 1e-12 * std::max(1.0, std::abs(q[i]));
-    if (q[i] >= lo - eps && q[i] <= hi + eps) {
-      q[i] = std::min(std::max(q[i], lo), hi);
-      continue;
-    }
-    if (prismatic) return false;
-    bool fitted = false;
-    for (int k = 1; k <= 3 && !fitted; ++k)
-      for (int sgn : {1, -1}) {
-        const double v = q[i] + sgn * k * 2.0 * kPi;
-        if (v >= lo - eps && v <= hi + eps) {
-          q[i] = std::min(std::max(v, lo), hi);
-          fitted = true;
-          break;
-        }
-      }
-    if (!fitted) return false;
-  }
-  return true;
-}
-
-namespace {
-
 // Every solution is checked against the forward model before it is returned: the closed forms
 // clamp cosines within kCosEps of +-1 and fix a free joint at a singularity, so a pose a hair out of
 // reach, or lost to rounding, must not pass as a solution. Position error at most kTolP times the

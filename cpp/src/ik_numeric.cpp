@@ -1,8 +1,9 @@
 // Numerical inverse kinematics: LM, GN, NR and Halley with joint limits and seeded restarts.
 #include "robokin/ik.hpp"
-#include "robokin/angles.hpp"
-
+#include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
+
+#include "linalg.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,17 +15,8 @@
 namespace robokin {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
-// With restarts left, an attempt whose cost has not halved over this many iterations is dropped.
-constexpr int kStallWindow = 6;
-
-// |(x, y, z)|, also when the squares overflow (a target beyond ~1e154): std::hypot only then.
-double norm3(double x, double y, double z) {
-  const double n = std::sqrt(x * x + y * y + z * z);
-  return std::isfinite(n) ? n : std::hypot(x, y, z);
-}
 
 double wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -66,15 +58,15 @@ class IkSolver::Budget {
   double seconds_, cpu0_ = 0.0, check_at_ = 0.0;
 };
 
-IkMethod parse_ik_method(const std::string& name) {
-  if (name == "lm") return IkMethod::LM;
-  if (name == "gn") return IkMethod::GN;
-  if (name == "nr") return IkMethod::NR;
-  if (name == "halley") return IkMethod::Halley;
-  throw std::invalid_argument("method: expected one of 'lm', 'gn', 'nr', 'halley', got '" + name + "'");
+void parse(const std::string& name, IkMethod& method) {
+  if (name == "lm") method = IkMethod::LM;
+  else if (name == "gn") method = IkMethod::GN;
+  else if (name == "nr") method = IkMethod::NR;
+  else if (name == "halley") method = IkMethod::Halley;
+  else throw std::invalid_argument("method: expected one of 'lm', 'gn', 'nr', 'halley', got '" + name + "'");
 }
 
-const char* ik_method_name(IkMethod method) {
+const char* name_of(IkMethod method) {
   switch (method) {
     case IkMethod::LM: return "lm";
     case IkMethod::GN: return "gn";
@@ -98,6 +90,7 @@ void IkOptions::validate() const {
   if (!(tol_p > 0) || !std::isfinite(tol_p)) throw std::invalid_argument("tol_p: must be a positive number");
   if (!(tol_r > 0) || !std::isfinite(tol_r)) throw std::invalid_argument("tol_r: must be a positive number");
   if (max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
+  if (stall_window < 0) throw std::invalid_argument("stall_window: must be >= 0 (0: never drop an attempt)");
   if (restarts && *restarts < 0) throw std::invalid_argument("restarts: must be >= 0");
   if (restarts && *restarts > kMaxRestarts)
     throw std::invalid_argument("restarts: must be at most " + std::to_string(kMaxRestarts) +
@@ -137,68 +130,27 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   Jw_.resize(m_, n_);
   M_.resize(m_, n_);
   An_.resize(n_, n_);
-  Am_.resize(m_, m_);
   e_.resize(m_);
   et_.resize(m_);
   r_.resize(m_);
   dq_.resize(n_);
   a_.resize(n_);
   g_.resize(n_);
-  ym_.resize(m_);
   qt_.resize(n_);
   qb_.resize(n_);
   frozen_.assign(n_, false);
 }
 
-// Joint value v brought within the limits of joint i, by multiples of 2 pi for a revolute joint.
-// A non-finite v never fits. With a finite lower limit, the smallest shift up from below lo (or
-// down from above hi) that reaches lo; with lo = -inf (v above a finite hi), the smallest shift
-// down to reach hi: both keep the result finite.
+// Joint value v brought within the limits of joint i (fit_into_limits: by 2 pi for a revolute).
 bool IkSolver::fit(int i, double& v) const {
-  if (!std::isfinite(v)) return false;
-  const double lo = chain_->lower()(i), hi = chain_->upper()(i);
-  if (v >= lo && v <= hi) return true;
-  if (chain_->prismatic(i) || !(hi - lo > 0)) return false;
-  const double k = std::isfinite(lo) ? std::ceil((lo - v) / kTwoPi) : std::floor((hi - v) / kTwoPi);
-  const double w = v + k * kTwoPi;
-  if (std::isfinite(w) && w >= lo && w <= hi) {
-    v = w;
-    return true;
-  }
-  return false;
+  return fit_into_limits(v, chain_->lower()(i), chain_->upper()(i), !chain_->prismatic(i));
 }
 
-// The finite point of joint i's limits nearest to v (NaN counts as 0; an infinite v beyond an
-// infinite limit gives the other limit, or 0 when both are infinite).
-double IkSolver::clamp(int i, double v) const {
-  const double lo = chain_->lower()(i), hi = chain_->upper()(i);
-  if (std::isnan(v)) v = 0.0;
-  v = std::min(std::max(v, lo), hi);
-  if (std::isfinite(v)) return v;
-  if (v > 0) return std::isfinite(lo) ? lo : std::min(0.0, hi);
-  return std::isfinite(hi) ? hi : std::max(0.0, lo);
-}
+double IkSolver::clamp(int i, double v) const { return nearest_in_limits(v, chain_->lower()(i), chain_->upper()(i)); }
 
 void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const {
   task_error(target, T, e);
-  switch (opt_.task) {
-    case Task::Pose:
-      ep = norm3(e[0], e[1], e[2]);
-      er = std::sqrt(e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
-      return;
-    case Task::Position:
-      ep = norm3(e[0], e[1], e[2]);
-      er = 0;
-      return;
-    case Task::XY:
-      ep = std::hypot(e[0], e[1]);
-      er = 0;
-      return;
-    case Task::XYPhi:
-      ep = std::hypot(e[0], e[1]);
-      er = std::abs(e[2]);
-      return;
-  }
+  task_error_norms(opt_.task, e, ep, er);
 }
 
 void IkSolver::errors(const Target& target, const double* q, double& ep, double& er) const {
@@ -218,15 +170,12 @@ double IkSolver::evaluate(const Target& target, const Vector& q, Eigen::MatrixXd
 }
 
 void IkSolver::select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const {
-  switch (opt_.task) {
-    case Task::Pose: J = J6; return;
-    case Task::Position: J = J6.topRows(3); return;
-    case Task::XY: J = J6.topRows(2); return;
-    case Task::XYPhi:
-      J.topRows(2) = J6.topRows(2);
-      J.row(2) = J6.row(5);
-      return;
+  if (m_ == 6) {
+    J = J6;
+    return;
   }
+  const int* rows = task_row_indices(opt_.task);
+  for (int r = 0; r < m_; ++r) J.row(r) = J6.row(rows[r]);
 }
 
 bool IkSolver::met(double ep, double er) const { return ep < opt_.tol_p && er < tol_r_; }
@@ -284,24 +233,23 @@ void IkSolver::normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu
   dq = llt_n_.solve(g_);
 }
 
+// dq = J^T (J J^T + lambda^2 I)^-1 r = (J^T J + lambda^2 I)^-1 J^T r, the damped least-squares
+// step: with fewer joints than task rows (J J^T singular by its shape) from the joints' normal
+// equations, else the minimum-norm step (min_norm_solve, linalg.hpp, with its singular fallback)
+// for the task's fixed number of rows.
 void IkSolver::damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-  // dq = J^T (J J^T + lambda^2 I)^-1 r
-  if (m_ == 6) {
-    using M6 = Eigen::Matrix<double, 6, 6>;
-    using V6 = Eigen::Matrix<double, 6, 1>;
-    const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> Jf(J.data(), 6, n_);
-    M6 A;
-    A.noalias() = Jf * Jf.transpose();
-    A.diagonal().array() += damping_ * damping_;
-    const V6 y = A.llt().solve(Eigen::Map<const V6>(r.data()));
-    dq.noalias() = Jf.transpose() * y;
-    return;
+  if (m_ > n_) return normal_solve(J, r, damping_ * damping_, 0.0, dq);
+  const auto solve = [&](auto rows) {
+    constexpr int M = decltype(rows)::value;
+    const Eigen::Map<const Eigen::Matrix<double, M, Eigen::Dynamic>> Jm(J.data(), M, n_);
+    const Eigen::Matrix<double, M, 1> rhs = r.head<M>();
+    min_norm_solve<M>(Jm, rhs, damping_, dq);
+  };
+  switch (m_) {
+    case 6: return solve(std::integral_constant<int, 6>());
+    case 3: return solve(std::integral_constant<int, 3>());
+    default: return solve(std::integral_constant<int, 2>());
   }
-  Am_.noalias() = J * J.transpose();
-  Am_.diagonal().array() += damping_ * damping_;
-  llt_m_.compute(Am_);
-  ym_ = llt_m_.solve(r);
-  dq.noalias() = J.transpose() * ym_;
 }
 
 // Column k of sum_j a_j dJ/dq_j (the kinematic Hessian applied to a), from the Jacobian's columns:
@@ -339,126 +287,134 @@ void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
   }
 }
 
-// One attempt from q (within limits) for at most `budget` iterations; q is left at the best point.
-// LM and GN accept only decreasing steps; NR and Halley take every step (they may climb out of a
-// basin), so the lowest-cost point seen is kept in qb_ and restored when the attempt ends.
+// The state of one attempt between its iterations: the cost |e|^2 at q, the lowest cost seen
+// (NR, Halley), LM's damping mu and its growth factor nu.
+struct IkSolver::Attempt {
+  double cost = 0.0, best_cost = 0.0, mu = 0.0, nu = 2.0;
+};
+
+// q moves to the trial point qt_ (with its Jacobian and error).
+void IkSolver::take_trial(Vector& q, double cost_t, Attempt& a) {
+  q.swap(qt_);
+  J_.swap(Jt_);
+  e_.swap(et_);
+  a.cost = cost_t;
+}
+
+// Levenberg-Marquardt: the damped normal equations, a step kept only when it decreases the cost,
+// the damping updated from the gain ratio of the actual to the predicted decrease (Nielsen).
+IkSolver::Step IkSolver::lm_step(const Target& target, Vector& q, Attempt& a) {
+  constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+    normal_solve(J, r, a.mu, 0.0, dq);
+  });
+  double ept, ert;
+  const double cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+  r_ = e_;
+  r_.noalias() -= J_ * dq_;
+  const double predicted = a.cost - r_.squaredNorm();
+  const double rho = predicted > 0 ? (a.cost - cost_t) / predicted : -1.0;
+  if (cost_t < a.cost && rho > 0) {
+    take_trial(q, cost_t, a);
+    if (met(ept, ert)) return Step::Solved;
+    const double t = 2 * rho - 1;
+    a.mu *= std::max(kMuShrink, 1.0 - t * t * t);
+    a.nu = 2;
+    return Step::Moved;
+  }
+  a.mu *= a.nu;
+  a.nu *= 2;
+  // mu beyond all scale: a local minimum, nothing decreases the error.
+  return a.mu > 1e20 || !std::isfinite(a.mu) ? Step::Stuck : Step::Moved;
+}
+
+// Gauss-Newton: the normal equations with a hair of regularisation for a singular J, and a
+// backtracking line search on the direction down to 1/2048 of the step (beyond: a local minimum).
+IkSolver::Step IkSolver::gn_step(const Target& target, Vector& q, Attempt& a) {
+  constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
+    normal_solve(J, r, 1e-12, 1e-12, dq);
+  });
+  a_ = dq_;
+  double alpha = 1.0;
+  for (int ls = 0; ls < 12; ++ls, alpha *= 0.5) {
+    for (int i = 0; i < n_; ++i) {
+      double v = q(i) + alpha * a_(i);
+      if (!fit(i, v)) v = clamp(i, v);
+      qt_(i) = v;
+    }
+    double ept, ert;
+    const double cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+    if (cost_t < a.cost) {
+      take_trial(q, cost_t, a);
+      return met(ept, ert) ? Step::Solved : Step::Moved;
+    }
+  }
+  return Step::Stuck;
+}
+
+// Newton-Raphson (the damped pseudoinverse step) and Halley (the Newton step a, then the
+// correction: solve (J + 1/2 H a) b = e; the Newton step when the free correction is not finite or
+// more than twice as long: J + 1/2 H a is then near singular, and a step through the limits solved
+// from it would be decided by rounding). Every step is taken; the lowest-cost point seen is kept
+// in qb_.
+IkSolver::Step IkSolver::newton_step(const Target& target, Vector& q, Attempt& a) {
+  const auto pinv = [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) { damped_pinv(J, r, dq); };
+  bool newton = true;
+  if (opt_.method == IkMethod::Halley) {
+    damped_pinv(J_, e_, a_);
+    hessian_times(*chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
+    select_rows(HA_, M_);
+    M_ = J_ + 0.5 * M_;
+    damped_pinv(M_, e_, dq_);
+    newton = !dq_.allFinite() || dq_.norm() > 2.0 * a_.norm() + 1e-12;
+    if (!newton) constrained_step(q, M_, e_, pinv);
+  }
+  if (newton) constrained_step(q, J_, e_, pinv);
+  if (!(dq_.lpNorm<Eigen::Infinity>() >= 1e-15)) return Step::Stuck;  // stalled (or not finite)
+  double ept, ert;
+  const double cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
+  if (!std::isfinite(cost_t)) return Step::Stuck;  // no step out of a non-finite pose
+  take_trial(q, cost_t, a);
+  if (met(ept, ert)) return Step::Solved;
+  if (a.cost < a.best_cost) {
+    qb_ = q;
+    a.best_cost = a.cost;
+  }
+  return Step::Moved;
+}
+
+// One attempt from q (within limits) for at most `budget` iterations of the method's step; q is
+// left at the best point. LM and GN accept only decreasing steps; NR and Halley take every step
+// (they may climb out of a basin), so the lowest-cost point seen is restored when the attempt ends.
 bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int budget, Budget& clock,
                        bool may_stall, Progress* progress) {
   double ep, er;
-  double cost = evaluate(target, q, J_, e_, ep, er);
+  Attempt a;
+  a.cost = evaluate(target, q, J_, e_, ep, er);
   if (met(ep, er)) return true;
   qb_ = q;
-  double best_cost = cost;
+  a.best_cost = a.cost;
   const auto give_up = [&]() {
-    if (best_cost < cost || !std::isfinite(cost)) q = qb_;
+    if (a.best_cost < a.cost || !std::isfinite(a.cost)) q = qb_;
     return false;
   };
-  double mu = 0, nu = 2;
-  if (opt_.method == IkMethod::LM) {
-    mu = damping_ * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
-  }
-  double window_cost = cost;
+  if (opt_.method == IkMethod::LM) a.mu = damping_ * std::max(1e-12, J_.colwise().squaredNorm().maxCoeff());
+  double window_cost = a.cost;
   for (int it = 0; it < budget; ++it) {
     if ((it & 3) == 3 && clock.spent()) return give_up();
     if ((it & 255) == 255) report(progress, it, budget);
-    if (may_stall && it > 0 && it % kStallWindow == 0) {
-      if (!(cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
-      window_cost = cost;
+    if (may_stall && opt_.stall_window > 0 && it > 0 && it % opt_.stall_window == 0) {
+      if (!(a.cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
+      window_cost = a.cost;
     }
     if (iterations < std::numeric_limits<int>::max()) ++iterations;
-    double ept, ert, cost_t;
+    Step step;
     switch (opt_.method) {
-      case IkMethod::LM: {
-        constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-          normal_solve(J, r, mu, 0.0, dq);
-        });
-        cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
-        // Gain ratio of the actual to the predicted (linear model) decrease, Nielsen's update.
-        r_ = e_;
-        r_.noalias() -= J_ * dq_;
-        const double predicted = cost - r_.squaredNorm();
-        const double rho = predicted > 0 ? (cost - cost_t) / predicted : -1.0;
-        if (cost_t < cost && rho > 0) {
-          q.swap(qt_);
-          J_.swap(Jt_);
-          e_.swap(et_);
-          cost = cost_t;
-          if (met(ept, ert)) return true;
-          const double t = 2 * rho - 1;
-          mu *= std::max(kMuShrink, 1.0 - t * t * t);
-          nu = 2;
-        } else {
-          mu *= nu;
-          nu *= 2;
-          if (mu > 1e20 || !std::isfinite(mu)) return give_up();  // a local minimum: nothing decreases the error
-        }
-        break;
-      }
-      case IkMethod::GN: {
-        constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-          normal_solve(J, r, 1e-12, 1e-12, dq);  // a hair of regularisation for singular J
-        });
-        // Backtracking line search on the Gauss-Newton direction.
-        double alpha = 1.0;
-        a_ = dq_;
-        bool decreased = false;
-        for (int ls = 0; ls < 12; ++ls) {  // down to 1/2048 of the step: beyond, a local minimum
-          for (int i = 0; i < n_; ++i) {
-            double v = q(i) + alpha * a_(i);
-            if (!fit(i, v)) v = clamp(i, v);
-            qt_(i) = v;
-          }
-          cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
-          if (cost_t < cost) {
-            decreased = true;
-            break;
-          }
-          alpha *= 0.5;
-        }
-        if (!decreased) return give_up();
-        q.swap(qt_);
-        J_.swap(Jt_);
-        e_.swap(et_);
-        cost = cost_t;
-        if (met(ept, ert)) return true;
-        break;
-      }
-      case IkMethod::NR:
-      case IkMethod::Halley: {
-        if (opt_.method == IkMethod::Halley) {
-          // Newton step a, then Halley's correction: solve (J + 1/2 H a) b = e.
-          damped_pinv(J_, e_, a_);
-          hessian_times(*chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
-          select_rows(HA_, M_);
-          M_ = J_ + 0.5 * M_;
-          constrained_step(q, M_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-            damped_pinv(J, r, dq);
-          });
-          if (!dq_.allFinite() || dq_.norm() > 2.0 * a_.norm() + 1e-12) {
-            constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-              damped_pinv(J, r, dq);
-            });
-          }
-        } else {
-          constrained_step(q, J_, e_, [&](const Eigen::MatrixXd& J, const Vector& r, Vector& dq) {
-            damped_pinv(J, r, dq);
-          });
-        }
-        if (!(dq_.lpNorm<Eigen::Infinity>() >= 1e-15)) return give_up();  // stalled (or not finite)
-        cost_t = evaluate(target, qt_, Jt_, et_, ept, ert);
-        if (!std::isfinite(cost_t)) return give_up();  // no step out of a non-finite pose
-        q.swap(qt_);
-        J_.swap(Jt_);
-        e_.swap(et_);
-        cost = cost_t;
-        if (met(ept, ert)) return true;
-        if (cost < best_cost) {
-          qb_ = q;
-          best_cost = cost;
-        }
-        break;
-      }
+      case IkMethod::LM: step = lm_step(target, q, a); break;
+      case IkMethod::GN: step = gn_step(target, q, a); break;
+      default: step = newton_step(target, q, a); break;  // NR, Halley
     }
+    if (step == Step::Solved) return true;
+    if (step == Step::Stuck) return give_up();
   }
   return give_up();
 }
@@ -498,11 +454,7 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
 void IkSolver::finalise(const Target& target, IkResult& r) const {
   for (int i = 0; i < n_; ++i) {
     double& v = r.q(i);
-    if (!chain_->prismatic(i) && std::isfinite(v)) {
-      const double w = wrap_angle(v);
-      if (w >= chain_->lower()(i) && w <= chain_->upper()(i)) v = w;
-    }
-    if (!fit(i, v)) v = clamp(i, v);
+    if (!settle_into_limits(v, chain_->lower()(i), chain_->upper()(i), !chain_->prismatic(i))) v = clamp(i, v);
   }
   errors(target, r.q.data(), r.error_p, r.error_r);
   r.success = r.q.allFinite() && std::isfinite(r.error_p) && std::isfinite(r.error_r) && met(r.error_p, r.error_r);

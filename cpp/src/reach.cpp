@@ -1,6 +1,6 @@
 #include "robokin/reach.hpp"
 
-#include "dls.hpp"
+#include "linalg.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
@@ -80,17 +80,6 @@ Reacher::Reacher(const Chain& chain, Task task, const ReachOptions& options)
   correction_.resize(n_);
 }
 
-namespace {
-
-// |e|, also when its squares overflow (a target beyond ~1e154): the scaled norm, only then.
-template <class V>
-double error_norm(const V& e) {
-  const double n = e.norm();
-  return std::isfinite(n) ? n : e.stableNorm();
-}
-
-}  // namespace
-
 // The loop with M task rows and N joints known at compile time (N = Eigen::Dynamic otherwise):
 // fixed-size matrices on the stack, maps over the Reacher's buffers.
 template <int M, int N>
@@ -106,7 +95,7 @@ int Reacher::run_rows(const Target& target, double& error) {
   const bool use_nullspace = opt_.nullspace_weights.size() != 0;
   const double step = opt_.gain / opt_.dt;
   task_error(target, T_, e_);
-  error = error_norm(e);
+  error = safe_norm(e);
   int iterations = 0;
   do {
     for (int r = 0; r < M; ++r) J.row(r) = J6_.row(rows[r]);
@@ -130,7 +119,7 @@ int Reacher::run_rows(const Target& target, double& error) {
     chain_.fk_jacobian(q_.data(), T_, J6_.data());
     task_error(target, T_, e_);
     ++iterations;
-    error = error_norm(e);
+    error = safe_norm(e);
   } while (iterations < opt_.max_iter && !(error < opt_.tol));
   return iterations;
 }

@@ -1,7 +1,7 @@
 #include "robokin/resolved_rate.hpp"
 #include "robokin/reach.hpp"
 
-#include "dls.hpp"
+#include "linalg.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -76,17 +76,6 @@ Rigid frame_of(const Target& t) {
   return T;
 }
 
-void split_error(Task task, const double* e, double& ep, double& er) {
-  switch (task) {
-    case Task::Pose:
-      ep = std::hypot(e[0], e[1], e[2]), er = std::hypot(e[3], e[4], e[5]);
-      return;
-    case Task::Position: ep = std::hypot(e[0], e[1], e[2]), er = 0.0; return;
-    case Task::XY: ep = std::hypot(e[0], e[1]), er = 0.0; return;
-    case Task::XYPhi: ep = std::hypot(e[0], e[1]), er = std::abs(e[2]); return;
-  }
-}
-
 }  // namespace
 
 void RateController::servo(const ServoOptions& o, const Target* targets, long count, const Vector& q0, double* q_out,
@@ -100,7 +89,7 @@ void RateController::servo(const ServoOptions& o, const Target* targets, long co
     if (k % 256 == 0) report(progress, k, count);
     chain_.fk_jacobian(q.data(), T, J6_.data());
     task_error(targets[k], T, e);
-    split_error(opt_.task, e, error_p[k], error_r[k]);
+    task_error_norms(opt_.task, e, error_p[k], error_r[k]);
     if (k + 1 < count) task_error(targets[k + 1], frame_of(targets[k]), ff);
     for (int r = 0; r < m_; ++r) rhs[r] = (k + 1 < count ? ff[r] : 0.0) / o.dt + o.gain * e[r] / o.dt;
     double* qdot = qdot_out + k * n_;

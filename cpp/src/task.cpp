@@ -1,6 +1,8 @@
 #include "robokin/task.hpp"
 #include "robokin/angles.hpp"
 
+#include "linalg.hpp"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -69,6 +71,17 @@ void task_error(const Target& t, const Rigid& T, double* e) {
       e[1] = t.value(1) - T.p(1);
       e[2] = wrap_angle(t.value(2) - planar_angle(T));
       return;
+  }
+}
+
+void task_error_norms(Task task, const double* e, double& ep, double& er) {
+  using V2 = Eigen::Map<const Eigen::Vector2d>;
+  using V3 = Eigen::Map<const Eigen::Vector3d>;
+  switch (task) {
+    case Task::Pose: ep = safe_norm(V3(e)), er = safe_norm(V3(e + 3)); return;
+    case Task::Position: ep = safe_norm(V3(e)), er = 0.0; return;
+    case Task::XY: ep = safe_norm(V2(e)), er = 0.0; return;
+    case Task::XYPhi: ep = safe_norm(V2(e)), er = std::abs(e[2]); return;
   }
 }
 

@@ -1,9 +1,34 @@
-"""Argument checks shared by the pure-Python modules (paths, plots): each error names the argument.
-(Arguments of the core's calls are checked in the bindings, cpp/bindings/arrays.hpp.)"""
+"""Argument checks of what Python computes itself (robots, paths, plots, the 3-RRR design study):
+each error names the argument; a value of the wrong kind is a TypeError, a value out of range a
+ValueError. (Arguments of the core's calls are converted in the bindings, cpp/bindings/arrays.hpp,
+and the core validates its own options.)"""
 
 from __future__ import annotations
 
+import math
+import numbers
+
 import numpy as np
+
+
+def number(value, name: str, *, minimum: float = -math.inf, positive: bool = False) -> float:
+    """A real scalar (a Python or numpy number, or a 0-d array of one; not a bool) as a float.
+
+    Raises:
+        TypeError: not a real number.
+        ValueError: not finite, not positive (``positive``) or below ``minimum``.
+    """
+    scalar = isinstance(value, numbers.Real) or (isinstance(value, np.ndarray) and value.ndim == 0
+                                                 and value.dtype.kind in "iuf")
+    if isinstance(value, (bool, np.bool_)) or not scalar:
+        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+    v = float(value)
+    if positive and not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
+    if not (math.isfinite(v) and v >= minimum):
+        raise ValueError(f"{name}: must be a finite number" + (f" >= {minimum:g}" if minimum > -math.inf else "")
+                         + f", got {value!r}")
+    return v
 
 
 def real_array(value, name: str) -> np.ndarray:

@@ -11,12 +11,14 @@ to 1, is therefore returned only when the stretched arm really is that close).
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Optional
 
 import numpy as np
 
 from . import _core
+from . import robots as _robots
 from ._core import UR_POSTURES, Chain, IKSolutions
 
 __all__ = [
@@ -37,7 +39,8 @@ __all__ = [
 ]
 
 #: PUMA 560 standard DH (P. Corke's Robotics Toolbox ``Puma560``, as in :func:`robokin.robots.puma560`).
-PUMA560 = {"d1": 0.0, "a2": 0.4318, "a3": 0.0203, "d3": 0.15005, "d4": 0.4318, "d6": 0.0}
+PUMA560 = {"d1": _robots.PUMA560_D[0], "a2": _robots.PUMA560_A[1], "a3": _robots.PUMA560_A[2],
+           "d3": _robots.PUMA560_D[2], "d4": _robots.PUMA560_D[3], "d6": _robots.PUMA560_D[5]}
 
 
 def _limits(limits):
@@ -128,24 +131,12 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
-_PUMA560_CACHE: dict = {}
-
-
-def _puma560_limits():
-    if "limits" not in _PUMA560_CACHE:
-        from .robots import puma560 as _puma
-
-        _PUMA560_CACHE["limits"] = _puma().limits
-    return _PUMA560_CACHE["limits"]
-
-
+@functools.lru_cache(maxsize=2)
 def _puma560_solver(default_limits: bool):
-    key = "default" if default_limits else "none"
-    if key not in _PUMA560_CACHE:
-        g = PUMA560
-        lim = _puma560_limits() if default_limits else None
-        _PUMA560_CACHE[key] = _core._SphericalWrist6R(g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], lim)
-    return _PUMA560_CACHE[key]
+    """The PUMA's closed-form solver, bound once per choice of limits (the per-call cost is the solve)."""
+    g = PUMA560
+    lim = _robots.PUMA560_LIMITS if default_limits else None
+    return _core._SphericalWrist6R(g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], lim)
 
 
 def puma560(target, limits="default") -> IKSolutions:
@@ -181,7 +172,7 @@ def puma560_path(targets, q0, limits="default"):
         False and the row repeats the previous joints.
     """
     if isinstance(limits, str) and limits == "default":
-        limits = _puma560_limits()
+        limits = _robots.PUMA560_LIMITS
     g = PUMA560
     return _core.ik_spherical_wrist_path(
         targets, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], q0, _limits(limits)

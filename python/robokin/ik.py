@@ -83,6 +83,8 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
             ``damping``: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
             ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
             lambda (default 1e-9); unused by ``gn``. None selects the default.
+            ``stall_window``: with restarts left, an attempt whose squared error has not halved
+            over this many iterations is dropped for a restart (default 6); 0: never dropped.
 
     Returns:
         IKResult with ``q``, ``success``, ``iterations``, ``attempts``, ``error_p``, ``error_r``.

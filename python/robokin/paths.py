@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._checks import real_array
+from ._checks import number, real_array
 
 __all__ = ["MAX_POINTS", "line", "circle", "clover"]
 
@@ -32,16 +32,6 @@ def _count(n, name: str = "n") -> int:
     return int(n)
 
 
-def _positive(value, name: str) -> float:
-    v = real_array(value, name)
-    if v.ndim != 0:
-        raise TypeError(f"{name}: expected a number, got shape {v.shape}")
-    v = float(v)
-    if not (math.isfinite(v) and v > 0):
-        raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
-    return v
-
-
 def line(p1, p2, step: float) -> np.ndarray:
     """Points from ``p1`` to ``p2`` (both included), evenly spaced at most ``step`` apart.
 
@@ -55,7 +45,7 @@ def line(p1, p2, step: float) -> np.ndarray:
     a, b = _point(p1, "p1"), _point(p2, "p2")
     if a.shape != b.shape:
         raise ValueError(f"p2: expected the dimension of p1 ({a.shape[0]}), got {b.shape[0]}")
-    step = _positive(step, "step")
+    step = number(step, "step", positive=True)
     with np.errstate(over="ignore"):  # an overflow is reported below, by name
         d = b - a
     length = math.hypot(*d)  # no overflow in the squares
@@ -80,7 +70,7 @@ def circle(n: int, radius: float = 0.1, center=(0.0, 0.0)) -> np.ndarray:
 
     The seed program's circle has radius 0.1 m about the origin.
     """
-    n, radius, c = _count(n), _positive(radius, "radius"), _center(center)
+    n, radius, c = _count(n), number(radius, "radius", positive=True), _center(center)
     t = 2.0 * np.pi * np.arange(n) / n
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by _finite, by name
         return _finite(c + radius * np.column_stack((np.cos(t), np.sin(t))), "radius, center")
@@ -91,7 +81,7 @@ def clover(n: int, k: float = 0.02, center=(0.0, 0.0)) -> np.ndarray:
 
     Polar about ``center``, ``t_k = 2 pi k / n`` (no repeat).
     """
-    n, k, c = _count(n), _positive(k, "k"), _center(center)
+    n, k, c = _count(n), number(k, "k", positive=True), _center(center)
     t = 2.0 * np.pi * np.arange(n) / n
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by _finite, by name
         r = k * (1.0 + np.cos(4 * t) + 2.0 * np.sin(4 * t) ** 2)

@@ -16,10 +16,12 @@ import operator
 import numpy as np
 
 from ._core import Chain
+from ._checks import number
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
            "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
-           "irb120", "gen3", "puma560", "names", "get", "rpr_self_motion"]
+           "irb120", "gen3", "puma560", "PUMA560_A", "PUMA560_D", "PUMA560_ALPHA", "PUMA560_LIMITS", "names", "get",
+           "rpr_self_motion"]
 
 #: Seed 000's planar RPR: link 1, the prismatic stroke, link 3 (metres).
 RPR_L1, RPR_STROKE, RPR_L3 = 1.5, 1.5, 1.0
@@ -29,17 +31,6 @@ RPR_LIMITS = (np.array([0.0, 0.0, 0.0]), np.array([math.pi / 2, RPR_STROKE, math
 #: with t1 = pi/2 (these joints), and ends at point 2 (x, y).
 RPR_LINE_Q1 = np.array([math.pi / 2, 0.75, math.pi / 2])
 RPR_LINE_P2 = np.array([1.5, 1.0])
-
-
-def _length(value, name: str, minimum: float = -math.inf) -> float:
-    """A finite real argument as a float; the error names the argument (not the DH row it goes to)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
-    value = float(value)
-    if not (math.isfinite(value) and value >= minimum):
-        raise ValueError(f"{name}: must be a finite number" + (f" >= {minimum:g}" if minimum > -math.inf else "")
-                         + f", got {value!r}")
-    return value
 
 
 def _translate_x(length: float) -> np.ndarray:
@@ -68,13 +59,13 @@ def prr(a2: float = 1.0, a3: float = 1.0) -> Chain:
     DH table ``(a, alpha, d, theta)``: ``(0, pi/2, d1, 0)``, ``(a2, 0, 0, theta2)``,
     ``(a3, 0, 0, theta3)``; ``q = (d1, theta2, theta3)``; frame 3 is the tool (the seed omits T_e^3).
     """
-    a2, a3 = _length(a2, "a2"), _length(a3, "a3")
+    a2, a3 = number(a2, "a2"), number(a3, "a3")
     return Chain.from_dh([(0.0, math.pi / 2, 0.0, 0.0, "P"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R")])
 
 
 def planar_3r(a1: float = 1.0, a2: float = 1.0, a3: float = 1.0) -> Chain:
     """A planar 3R arm (seed 003, example 2): three revolute joints about z, links a1, a2, a3."""
-    a1, a2, a3 = _length(a1, "a1"), _length(a2, "a2"), _length(a3, "a3")
+    a1, a2, a3 = number(a1, "a1"), number(a2, "a2"), number(a3, "a3")
     return Chain.from_dh([(a, 0.0, 0.0, 0.0, "R") for a in (a1, a2, a3)])
 
 
@@ -83,7 +74,7 @@ def rp(stroke: float = 1.0) -> Chain:
 
     The tip is at ``d2 (cos theta1, sin theta1)``; ``d2`` is limited to ``[0, stroke]``.
     """
-    stroke = _length(stroke, "stroke", minimum=0.0)
+    stroke = number(stroke, "stroke", minimum=0.0)
     return Chain.from_dh(
         [(0.0, math.pi / 2, 0.0, math.pi / 2, "R"), (0.0, 0.0, 0.0, 0.0, "P")],
         limits=([-math.inf, 0.0], [math.inf, stroke]),
@@ -275,19 +266,22 @@ def gen3() -> Chain:
     upper = np.array([inf, math.radians(128.9), inf, math.radians(147.8), inf, math.radians(120.3), inf])
     lower = -upper
     return Chain.from_segments(segments, limits=(lower, upper))
+#: The PUMA 560's standard DH lengths (m) and twists, and its joint limits (rad): the one statement
+#: of its geometry (robokin.closed.PUMA560 and its closed form read them).
+PUMA560_A = (0.0, 0.4318, 0.0203, 0.0, 0.0, 0.0)
+PUMA560_D = (0.0, 0.0, 0.15005, 0.4318, 0.0, 0.0)
+PUMA560_ALPHA = (math.pi / 2, 0.0, -math.pi / 2, math.pi / 2, -math.pi / 2, 0.0)
+PUMA560_LIMITS = (np.radians([-160, -45, -225, -110, -100, -266]), np.radians([160, 225, 45, 170, 100, 266]))
+
+
 def puma560() -> Chain:
     """Unimation PUMA 560, standard DH as in P. Corke's Robotics Toolbox (``Puma560``, after
     Corke and Armstrong-Helouvry, 1994): a = (0, 0.4318, 0.0203, 0, 0, 0),
     d = (0, 0, 0.15005, 0.4318, 0, 0), alpha = (pi/2, 0, -pi/2, pi/2, -pi/2, 0); limits in degrees
     (-160, 160), (-45, 225), (-225, 45), (-110, 170), (-100, 100), (-266, 266).
     """
-    p = math.pi
-    a = (0.0, 0.4318, 0.0203, 0.0, 0.0, 0.0)
-    d = (0.0, 0.0, 0.15005, 0.4318, 0.0, 0.0)
-    alpha = (p / 2, 0.0, -p / 2, p / 2, -p / 2, 0.0)
-    lower = np.radians([-160, -45, -225, -110, -100, -266])
-    upper = np.radians([160, 225, 45, 170, 100, 266])
-    return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=(lower, upper))
+    a, d, alpha = PUMA560_A, PUMA560_D, PUMA560_ALPHA
+    return Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)], limits=PUMA560_LIMITS)
 
 
 # The catalogue by name: every builder above, each callable without arguments (the seeds' robots

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core
+from ._checks import number
 
 __all__ = ["AreaCurve", "BestL2", "area_vs_platform_radius", "best_l2"]
 
@@ -58,17 +59,6 @@ def _values(values, name: str) -> np.ndarray:
     return v
 
 
-def _length(value, name: str) -> float:
-    """One length of the geometry as a positive float (the core checks its range)."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected a number, got {value!r}") from None
-    if not (np.isfinite(v) and v > 0):
-        raise ValueError(f"{name}: must be a positive finite length, got {v}")
-    return v
-
-
 def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: float = 0.10, l2: float = 0.10,
                             phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: float = _core.RRR3_DEFAULTS["singular_tol"],
                             *, areas=None) -> AreaCurve:
@@ -80,7 +70,7 @@ def area_vs_platform_radius(platform_radii=None, base_radius: float = 0.15, l1: 
     ``rrr3_region_areas``; robokin.dask passes its chunked one).
     """
     areas = _core.rrr3_region_areas if areas is None else areas
-    base_radius, l1, l2 = _length(base_radius, "base_radius"), _length(l1, "l1"), _length(l2, "l2")
+    base_radius, l1, l2 = number(base_radius, "base_radius", positive=True), number(l1, "l1", positive=True), number(l2, "l2", positive=True)
     radii = _values(np.linspace(0.01, base_radius, 30) if platform_radii is None else platform_radii, "platform_radii")
     robots = np.column_stack((np.full_like(radii, base_radius), radii, np.full_like(radii, l1), np.full_like(radii, l2)))
     return AreaCurve(radii, areas(robots, phi, mode, n, tol), float(base_radius), float(l1),
@@ -98,7 +88,7 @@ def best_l2(l1_values, l2_values, base_radius: float = 0.15, platform_radius: fl
     0.15 m equilateral platform (side / sqrt(3)). ``areas``: as :func:`area_vs_platform_radius`.
     """
     areas = _core.rrr3_region_areas if areas is None else areas
-    base_radius, platform_radius = _length(base_radius, "base_radius"), _length(platform_radius, "platform_radius")
+    base_radius, platform_radius = number(base_radius, "base_radius", positive=True), number(platform_radius, "platform_radius", positive=True)
     l1s, l2s = _values(l1_values, "l1_values"), _values(l2_values, "l2_values")
     g1, g2 = np.meshgrid(l1s, l2s, indexing="ij")
     robots = np.column_stack((np.full(g1.size, base_radius), np.full(g1.size, platform_radius), g1.ravel(), g2.ravel()))

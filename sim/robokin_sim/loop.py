@@ -112,6 +112,100 @@ class _Keyboard:
         return Input(pressed=frozenset(pressed), held=frozenset(held), drag=(drag_x, drag_y), wheel=wheel)
 
 
+def _start_pygame(config: Config):
+    """pygame with its display and fonts up: the dummy video driver headless, and SDL kept off the
+    signals (SDL would turn SIGINT and SIGTERM into a quit event that a headless run never reads:
+    signals are Python's, robokin_sim.signals)."""
+    if config.headless:
+        # Must be set before pygame initialises its display.
+        os.environ["SDL_VIDEODRIVER"] = "dummy"
+        os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    os.environ["SDL_NO_SIGNAL_HANDLERS"] = "1"
+    import pygame
+
+    pygame.display.init()
+    pygame.font.init()
+    return pygame
+
+
+def _open_screen(pygame, config: Config, scene):
+    """The window, or headless an off-screen surface of the same size."""
+    if config.headless:
+        return pygame.Surface(config.size)
+    screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
+    pygame.display.set_caption(f"robokin-sim: {getattr(scene, 'title', config.robot)}")
+    return screen
+
+
+def _apply(inp: Input, scene, hud) -> bool:
+    """The frame's keys and pointer: to the HUD (pause, help) and the scene. False on Esc (quit)."""
+    if "esc" in inp.pressed:
+        return False
+    if "space" in inp.pressed:
+        hud.paused = not hud.paused
+    if "h" in inp.pressed:
+        hud.help = not hud.help
+    for key in sorted(inp.pressed):
+        scene.press(key, inp.held)
+    if inp.drag != (0, 0) or inp.wheel:
+        scene.pointer(inp.drag, inp.wheel)
+    return True
+
+
+class _Outputs:
+    """The recording and the log of a run: each written under its name only when the run ends
+    normally (close); an interrupted run discards both, leaving no temporary file."""
+
+    def __init__(self) -> None:
+        self.recorder = self.log = None
+        self.surface = self.renderer = None
+
+    def open(self, pygame, config: Config, scene, screen_size) -> None:
+        from .csvlog import CsvLog
+        from .recording import Recorder
+
+        if config.record:
+            size = record_size(config, screen_size)
+            self.recorder = Recorder(config.record, fps=1.0 / DT, every=config.record_every, width=size[0])
+            self.surface = pygame.Surface(size)
+            self.renderer = make_renderer(config.robot, size)
+        self.log = CsvLog(config.log, scene.columns, flush=not config.headless) if config.log else None
+
+    def log_step(self, scene) -> None:
+        if self.log is not None:
+            self.log.write(scene.row())
+
+    def record_step(self, pygame, scene, hud, state) -> None:
+        """One recording frame per simulation step, when the recording wants it (state: the scene's
+        state if already taken this frame)."""
+        if self.recorder is None:
+            return
+        if not self.recorder.wants():
+            self.recorder.skip()
+            return
+        state = state or scene.state()
+        self.renderer.draw(self.surface, state, dataclasses.replace(hud, fps=None, recording=False))
+        self.recorder.add(pygame.surfarray.array3d(self.surface).swapaxes(0, 1))
+
+    def discard(self) -> None:
+        if self.recorder is not None:
+            self.recorder.discard()
+        if self.log is not None:
+            self.log.discard()
+
+    def close(self) -> tuple:
+        """(recording, log) written, or None for each not asked for."""
+        record = log = None
+        try:
+            if self.recorder is not None:
+                record = self.recorder.close()
+        finally:
+            if self.log is not None:
+                log = self.log.close()
+        return record, log
+
+
 def run(config: Config, render: bool = True) -> RunResult:
     """Runs the simulator.
 
@@ -123,29 +217,12 @@ def run(config: Config, render: bool = True) -> RunResult:
     Returns:
         RunResult with the frames and steps run and the files written.
     """
-    if config.headless:
-        # Must be set before pygame initialises its display.
-        os.environ["SDL_VIDEODRIVER"] = "dummy"
-        os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    # SDL would turn SIGINT and SIGTERM into a quit event (that a headless run never reads):
-    # signals are Python's (robokin_sim.signals).
-    os.environ["SDL_NO_SIGNAL_HANDLERS"] = "1"
-    import pygame
-
-    from .csvlog import CsvLog
+    pygame = _start_pygame(config)
     from .outputs import save_png
-    from .recording import Recorder
     from .render_common import Hud
 
-    pygame.display.init()
-    pygame.font.init()
     scene = make_scene(config)
-    if config.headless:
-        screen = pygame.Surface(config.size)
-    else:
-        screen = pygame.display.set_mode(config.size, pygame.RESIZABLE)
-        pygame.display.set_caption(f"robokin-sim: {getattr(scene, 'title', config.robot)}")
+    screen = _open_screen(pygame, config, scene)
     # The window is drawn every frame; headless, the screen only when asked (render) and not
     # recording (the recording has its own frames), and once at the end for a screenshot.
     draw_screen = not config.headless or (render and not config.record)
@@ -157,16 +234,10 @@ def run(config: Config, render: bool = True) -> RunResult:
     budget = _frame_budget(config)
     frames = 0
     started = last = time.perf_counter()
-    written_record = written_log = written_shot = None
-    recorder = log = None
-    record_surface = record_renderer = None
+    written_shot = None
+    outputs = _Outputs()
     try:
-        if config.record:
-            size = record_size(config, screen.get_size())
-            recorder = Recorder(config.record, fps=1.0 / DT, every=config.record_every, width=size[0])
-            record_surface = pygame.Surface(size)
-            record_renderer = make_renderer(config.robot, size)
-        log = CsvLog(config.log, scene.columns, flush=not config.headless) if config.log else None
+        outputs.open(pygame, config, scene, screen.get_size())
         drawn = False
         while budget is None or frames < budget:
             inp = next(script, NO_INPUT)
@@ -175,21 +246,12 @@ def run(config: Config, render: bool = True) -> RunResult:
                 inp = Input(inp.pressed | live.pressed, inp.held | live.held, live.drag, live.wheel)
                 if keyboard.quit:
                     break
-            if "esc" in inp.pressed:
+            if not _apply(inp, scene, hud):
                 break
-            if "space" in inp.pressed:
-                hud.paused = not hud.paused
-            if "h" in inp.pressed:
-                hud.help = not hud.help
-            for key in sorted(inp.pressed):
-                scene.press(key, inp.held)
-            if inp.drag != (0, 0) or inp.wheel:
-                scene.pointer(inp.drag, inp.wheel)
             stepped = not hud.paused
             if stepped:
                 scene.step(inp.held)
-                if log is not None:
-                    log.write(scene.row())
+                outputs.log_step(scene)
             state = None
             if draw_screen:
                 if keyboard is not None and screen.get_size() != pygame.display.get_surface().get_size():
@@ -197,13 +259,8 @@ def run(config: Config, render: bool = True) -> RunResult:
                 state = scene.state()
                 renderer.draw(screen, state, hud)
                 drawn = True
-            if recorder is not None and stepped:
-                if recorder.wants():
-                    state = state or scene.state()
-                    record_renderer.draw(record_surface, state, dataclasses.replace(hud, fps=None, recording=False))
-                    recorder.add(pygame.surfarray.array3d(record_surface).swapaxes(0, 1))
-                else:
-                    recorder.skip()
+            if stepped:
+                outputs.record_step(pygame, scene, hud, state)
             frames += 1
             if keyboard is not None:
                 pygame.display.flip()
@@ -219,19 +276,11 @@ def run(config: Config, render: bool = True) -> RunResult:
             written_shot = save_png(pygame, screen, config.screenshot)
     except BaseException:
         # Interrupted (a signal, an error): the recording and the log would be cut short, so neither
-        # is written under its name (nor is a temporary file left behind).
-        if recorder is not None:
-            recorder.discard()
-        if log is not None:
-            log.discard()
+        # is written under its name.
+        outputs.discard()
         raise
     else:
-        try:
-            if recorder is not None:
-                written_record = recorder.close()
-        finally:
-            if log is not None:
-                written_log = log.close()
+        written_record, written_log = outputs.close()
     finally:
         pygame.display.quit()
     return RunResult(

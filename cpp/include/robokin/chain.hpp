@@ -2,6 +2,7 @@
 // specialised evaluation path for the hot calls (forward kinematics and the Jacobian).
 #pragma once
 
+#include "robokin/limits.hpp"
 #include "robokin/progress.hpp"
 
 #include <Eigen/Dense>
@@ -94,6 +95,12 @@ class Chain {
   const Vector& lower() const { return lower_; }
   const Vector& upper() const { return upper_; }
   bool prismatic(int joint) const { return links_[joint].prismatic; }
+  // The limits as the closed forms take them (lower, upper and which joints are prismatic).
+  JointLimits limits() const {
+    JointLimits lim{lower_, upper_, {}};
+    for (int i = 0; i < dof_; ++i) lim.prismatic.push_back(prismatic(i));
+    return lim;
+  }
   const KDL::Chain& kdl() const { return kdl_; }
 
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
@@ -112,6 +119,8 @@ class Chain {
   Matrix4 fk_kdl(const Vector& q) const;
   Matrix6X jacobian_kdl(const Vector& q) const;
   std::vector<Matrix4> frames(const Vector& q) const;  // base, frame 1..dof (last: tool applied)
+  // A point given in frame `frame` (an index into frames(q)) expressed in frame `in_frame`.
+  Eigen::Vector3d point_in_frame(const Vector& q, const Eigen::Vector3d& point, int frame, int in_frame) const;
 
  private:
   // A constant frame applied on the right (T <- T * F); move / turn say whether its translation /

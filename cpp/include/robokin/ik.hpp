@@ -18,8 +18,9 @@ namespace robokin {
 
 enum class IkMethod { LM, GN, NR, Halley };
 
-IkMethod parse_ik_method(const std::string& name);  // "lm" | "gn" | "nr" | "halley"
-const char* ik_method_name(IkMethod method);
+// Names of the methods: "lm" | "gn" | "nr" | "halley" (parse throws std::invalid_argument("method: ...")).
+void parse(const std::string& name, IkMethod& method);
+const char* name_of(IkMethod method);
 
 // The one source of the default damping (IkOptions::damping unset selects it): lm 1e-1 (initial mu
 // relative to max diag(J^T J)), nr 1e-6 and halley 1e-9 (lambda of the damped pseudoinverse), gn 0
@@ -53,6 +54,26 @@ struct IkOptions {
   // lambda of the damped pseudoinverse (nr, halley) / initial mu relative to max diag(J^T J) (lm).
   // Unset: default_damping(method).
   std::optional<double> damping;
+  // With restarts left, an attempt whose cost |e|^2 has not halved over this many iterations is
+  // dropped for a restart (a crawling attempt costs more than a fresh start); 0: never dropped.
+  int stall_window = 6;
+
+  // Every option, its Python keyword and its doc, in order: the bindings bind exactly these (an
+  // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("method", &IkOptions::method, "'lm', 'gn', 'nr' or 'halley'.");
+    field("task", &IkOptions::task, "'pose', 'position', 'xy' or 'xyphi'.");
+    field("tol_p", &IkOptions::tol_p, "Position tolerance (m).");
+    field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.");
+    field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
+    field("restarts", &IkOptions::restarts,
+          "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.");
+    field("timeout", &IkOptions::timeout, "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.");
+    field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
+    field("stall_window", &IkOptions::stall_window,
+          "With restarts left, drop an attempt whose cost has not halved over this many iterations; 0: never.");
+  }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
@@ -93,10 +114,17 @@ class IkSolver {
   void errors(const Target& target, const double* q, double& error_p, double& error_r) const;
 
  private:
-  class Budget;  // the time budget: the thread's CPU time (ik_numeric.cpp)
+  class Budget;    // the time budget: the thread's CPU time (ik_numeric.cpp)
+  struct Attempt;  // the state of one attempt between iterations (ik_numeric.cpp)
+  enum class Step { Moved, Solved, Stuck };
   // One attempt from q; with may_stall, it gives up early when the error stops decreasing.
   bool attempt(const Target& target, Vector& q, int& iterations, int budget, Budget& clock, bool may_stall,
                Progress* progress);
+  // One iteration of each method from q (its Jacobian J_ and error e_ current).
+  Step lm_step(const Target& target, Vector& q, Attempt& a);
+  Step gn_step(const Target& target, Vector& q, Attempt& a);
+  Step newton_step(const Target& target, Vector& q, Attempt& a);  // nr, halley
+  void take_trial(Vector& q, double cost_t, Attempt& a);
   double evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep, double& er);
   void errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const;
   void select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const;
@@ -120,11 +148,11 @@ class IkSolver {
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
-  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_, Am_;
-  Vector e_, et_, r_, dq_, a_, g_, ym_, qt_, qb_;
+  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_;
+  Vector e_, et_, r_, dq_, a_, g_, qt_, qb_;
   std::vector<bool> frozen_;
   Rigid T_;
-  Eigen::LLT<Eigen::MatrixXd> llt_n_, llt_m_;
+  Eigen::LLT<Eigen::MatrixXd> llt_n_;
 };
 
 // What ik_batch found, one row per target.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "robokin/chain.hpp"
+#include "robokin/limits.hpp"
 
 #include <string>
 #include <vector>
@@ -22,18 +23,6 @@ struct ClosedFormSolutions {
     postures.push_back(posture);
   }
 };
-
-// Joint limits for the filter; empty vectors mean unlimited. Revolute angles are first wrapped to
-// (-pi, pi], then shifted by a multiple of 2 pi into the limits when one fits (a joint with a
-// range wider than 2 pi keeps the representative nearest to 0).
-struct JointLimits {
-  Vector lower, upper;
-  std::vector<bool> prismatic;  // empty: every joint revolute
-};
-
-// Wraps revolute angles to (-pi, pi] and fits them into the limits (shifting by 2 pi when that
-// helps); false when a joint cannot be brought within its limits.
-bool fit_limits(double* q, int n, const JointLimits& lim);
 
 // Planar RP (seed 003, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the
 // stroke forward (d2 >= 0) and, when the limits allow a negative stroke, the one backwards.

@@ -25,6 +25,18 @@ struct ReachOptions {
   // joint-limit avoidance, 1 / (q_max - q_min), 0 where a joint is unlimited).
   Vector nullspace_weights;
 
+  // The options Python sets by keyword, with their docs, in order (the bindings bind exactly these;
+  // the null-space weights come from rk.reach's `nullspace` argument).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("max_iter", &ReachOptions::max_iter, "Iterations at most (the seed's n), in [1, 100000].");
+    field("tol", &ReachOptions::tol, "Tolerance on the norm of the task error (the seed's delta).");
+    field("gain", &ReachOptions::gain, "The seed's gain d: dp = d (p_target - p) / dt.");
+    field("dt", &ReachOptions::dt, "The seed's time step.");
+    field("saturate", &ReachOptions::saturate, "Clamp the joints to their limits after every step.");
+    field("damping", &ReachOptions::damping, "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1.");
+  }
+
   // Throws std::invalid_argument("name: ...") for an option out of range or not fitting the chain.
   void validate(const Chain& chain) const;
 };

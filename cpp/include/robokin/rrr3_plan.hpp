@@ -16,6 +16,7 @@ struct RRR3PlanOptions {
   double span = 1.0;         // largest departure from the nominal orientation (rad)
   double resolution = 0.005;  // orientation grid step (rad), at most max_step
   double smoothing = 10.0;   // weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2
+  bool closed = false;       // the path is a loop (its last point joins its first): the plan joins up too
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
@@ -26,7 +27,8 @@ struct RRR3Plan {
   Eigen::VectorXd det_a_norm, det_b_norm, distance;  // along the path (NaN where unreachable)
   int sign = 0;           // the sign of det A kept along the path (0 when none could be chosen)
   bool feasible = false;  // every pose reachable, clear of serial singularities, distance >= margin,
-                          // det A of one sign and orientation steps <= max_step
+                          // det A of one sign and orientation steps <= max_step (for a closed
+                          // path the step from the last pose back to the first too)
 };
 
 // The pose sequence for count points (count x 2, row-major). With avoidance the orientation
@@ -35,6 +37,14 @@ struct RRR3Plan {
 // reachable in the mode, |det B| / l1^3 >= serial_margin, det A of the sign it has at the first
 // point, |phi_k - phi_{k-1}| <= max_step. A distance to parallel singularities below margin is
 // penalised heavily rather than forbidden, so a path always comes back; `feasible` tells.
+//
+// closed (with avoidance, more than one point): the path is a loop, and an open plan's ends need
+// not meet. The loop is cut where it is clearest of parallel singularities at the nominal
+// orientation (among the points with det A of the first point's sign there): the orientation is
+// at the nominal one at both ends of the cut, so the plan of the loop rolled to start at the cut,
+// rolled back, joins up. That plan is returned when it is feasible and its join (last pose to
+// first) is at most max_step; else the plan of the path as given (its `feasible` then says
+// whether it joins).
 RRR3Plan plan_path(const RRR3& robot, const double* points, long count, const RRR3PlanOptions& options,
                    Progress* progress = nullptr);
 

@@ -12,6 +12,9 @@ enum class Task { Pose, Position, XY, XYPhi };
 
 Task parse_task(const std::string& name);  // "pose" | "position" | "xy" | "xyphi"
 const char* task_name(Task task);
+// The same as the overloads every named enum of the core has (options fields bind them by name).
+inline void parse(const std::string& name, Task& task) { task = parse_task(name); }
+inline const char* name_of(Task task) { return task_name(task); }
 int task_rows(Task task);  // 6, 3, 2, 3
 
 // A target for a task: pose -> a rigid frame; position -> (x, y, z); xy -> (x, y); xyphi -> (x, y, phi).
@@ -24,6 +27,11 @@ struct Target {
 // Error (target - current) in task coordinates, rows as task_rows(); the orientation error of a
 // pose is the rotation vector of R_target R^T, the planar angle error is wrapped to (-pi, pi].
 void task_error(const Target& target, const Rigid& current, double* err);
+
+// The position and orientation parts of a task error (as task_error writes it) as the success
+// tests read them: |translation rows| (overflow-safe) and |rotation vector| or |phi error|
+// (0 for a task without orientation).
+void task_error_norms(Task task, const double* err, double& error_p, double& error_r);
 
 // Rotation vector (angle * axis, angle in [0, pi]) of a rotation matrix.
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R);

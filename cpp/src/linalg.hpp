@@ -1,5 +1,7 @@
-// The damped least-squares step shared by the Reach loop (reach.cpp) and resolved-rate control
-// (resolved_rate.cpp): the minimum-norm solution of J dq = rhs, and seed 000's homogeneous term.
+// Linear algebra written once for the core: the damped least-squares (minimum-norm) step with its
+// singular fallback, shared by the Reach loop (reach.cpp), resolved-rate control
+// (resolved_rate.cpp) and the numerical IK's Newton steps (ik_numeric.cpp); seed 000's homogeneous
+// term; the overflow-safe norm of an error.
 #pragma once
 
 #include <Eigen/Dense>
@@ -55,6 +57,13 @@ void min_norm_solve(const JMap& J, const Eigen::Matrix<double, M, 1>& rhs, doubl
   } else {
     out = Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(rhs));
   }
+}
+
+// |v|, also when its squares overflow (a target beyond ~1e154): the scaled norm, only then.
+template <class V>
+double safe_norm(const V& v) {
+  const double n = v.norm();
+  return std::isfinite(n) ? n : v.stableNorm();
 }
 
 // dq += (1 - J^p J) h with h = weights .* (qbar - q): seed 000's homogeneous term (eqs. 5-7), which

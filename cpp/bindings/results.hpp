@@ -1,0 +1,108 @@
+// Result structs of the core, bound mechanically: each field once (a scalar read-only, an Eigen
+// member as a numpy array), and from that list a generic __repr__, a versioned pickle
+// (kStateVersion, field values in order) and, for a batch result, __len__.
+#pragma once
+
+#include "arrays.hpp"
+#include "options.hpp"
+
+#include <pybind11/pybind11.h>
+
+#include <functional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace robokin::bind {
+
+namespace py = pybind11;
+
+template <class T>
+class ResultClass {
+ public:
+  // batch: every array field has one row per item (checked on unpickling; __len__ is the rows).
+  ResultClass(py::module_& m, const char* name, const char* doc, bool batch)
+      : cls_(m, name, doc), name_(name), batch_(batch) {}
+
+  // A scalar field (bool, int, double), read-only.
+  template <class V>
+  ResultClass& value(const char* name, V T::*member, const char* doc) {
+    static_assert(std::is_arithmetic_v<V>, "value(): a scalar member");
+    cls_.def_readonly(name, member, doc);
+    names_.push_back(name);
+    restore_.push_back([member](T& r, py::handle v, const char*, long) { r.*member = v.cast<V>(); });
+    return *this;
+  }
+
+  // An Eigen member (vector or array: (rows,), row-major matrix: (rows, cols)): in a batch result a
+  // read-only view of the result's buffer (def_array); otherwise a fresh array (the caller's to keep).
+  template <class M>
+  ResultClass& array(const char* name, M T::*member, const char* doc) {
+    using Scalar = typename M::Scalar;
+    static_assert(M::ColsAtCompileTime == 1 || M::IsRowMajor, "array(): a column or a row-major matrix");
+    if (batch_) {
+      def_array(cls_, name, member, doc);
+    } else {
+      cls_.def_property_readonly(name, [member](const T& r) {
+        const M& a = r.*member;
+        std::vector<py::ssize_t> shape{a.rows()};
+        if constexpr (M::ColsAtCompileTime != 1) shape.push_back(a.cols());
+        return py::array_t<Scalar>(shape, a.data());
+      }, doc);
+    }
+    names_.push_back(name);
+    restore_.push_back([member](T& r, py::handle v, const char* field, long rows) {
+      const auto a = aligned_array<Scalar>(v);
+      constexpr int ndim = M::ColsAtCompileTime == 1 ? 1 : 2;
+      if (!a || a.ndim() != ndim || (rows >= 0 && a.shape(0) != rows))
+        fail(std::string("state: ") + field + " is not an array of the result's shape");
+      const Eigen::Index n = a.shape(0), cols = ndim == 2 ? a.shape(1) : 1;
+      r.*member = Eigen::Map<const M>(a.data(), n, cols);
+    });
+    return *this;
+  }
+
+  // After the fields: __repr__, pickle, and __len__ of a batch.
+  void done() {
+    const std::vector<std::string> names = names_;
+    cls_.def("__repr__", [names](py::handle self) { return repr_fields(self, names); });
+    cls_.def(py::pickle(
+        [names](py::handle self) {
+          py::tuple state(names.size() + 1);
+          state[0] = py::int_(kStateVersion);
+          for (std::size_t i = 0; i < names.size(); ++i) state[i + 1] = self.attr(names[i].c_str());
+          return state;
+        },
+        [names, restore = restore_, batch = batch_, what = name_](const py::tuple& t) {
+          check_state(t, names.size() + 1, what.c_str());
+          T r;
+          long rows = -1;  // a batch: the rows of its first array field, which the others must match
+          for (std::size_t i = 0; i < names.size(); ++i) {
+            restore[i](r, t[i + 1], names[i].c_str(), batch ? rows : -1);
+            if (batch && rows < 0 && py::isinstance<py::array>(t[i + 1]))
+              rows = static_cast<long>(py::reinterpret_borrow<py::array>(t[i + 1]).shape(0));
+          }
+          return r;
+        }));
+    if (batch_) {
+      const std::string first = names_.front();
+      cls_.def("__len__", [first](py::handle self) { return py::len(self.attr(first.c_str())); });
+    }
+  }
+
+  // done(), then `extra(cls)` for what the type adds (e.g. __bool__).
+  template <class Extra>
+  void done_with(Extra extra) {
+    done();
+    extra(cls_);
+  }
+
+ private:
+  py::class_<T> cls_;
+  std::string name_;
+  bool batch_;
+  std::vector<std::string> names_;
+  std::vector<std::function<void(T&, py::handle, const char*, long)>> restore_;
+};
+
+}  // namespace robokin::bind
