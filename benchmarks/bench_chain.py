@@ -289,9 +289,10 @@ def bench_single(rng):
         line(f"jacobian {name}", ours_jac, "numpy", per_call("jac_np(q)", ns))
 
 
-def memory_floor(n: int, ref_best: float) -> None:
+def memory_floor(n: int, ref_best: float) -> float:
     """The memory traffic under batch FK: Q in (24 bytes per configuration), frames out (128 bytes),
-    timed with numpy on arrays of the same sizes in this run, printed as a ratio to numpy's FK."""
+    timed with numpy on arrays of the same sizes in this run, printed as a ratio to numpy's FK; returns
+    that floor (seconds): a fresh (N, 4, 4) output written once and Q read."""
     src = np.ones(16 * n)
     dst = np.empty_like(src)
     dst.fill(0.0)  # pages in: a copy between two warm arrays is pure memory bandwidth
@@ -306,6 +307,22 @@ def memory_floor(n: int, ref_best: float) -> None:
           f"zeroing included) + reading Q {read_q * 1e3:.1f} ms = {floor * 1e3:.1f} ms = {floor / ref_best:.3f} x numpy; "
           f"at the copy bandwidth alone {152 * n / bandwidth * 1e3:.1f} ms = {152 * n / bandwidth / ref_best:.3f} x",
           flush=True)
+    return floor
+
+
+def sincos_floor(n: int, ref_best: float, memory: float) -> float:
+    """What one thread cannot go below for n RPR frames: the memory floor plus the 2 n sines and
+    cosines alone (robokin's vectorised SLEEF sincos, timed per value on 10,000 values whose output
+    stays in the caches), before any product of the chain is formed. Printed; returns it (seconds)."""
+    from robokin import _testing
+
+    x = np.random.default_rng(1).uniform(-math.pi, math.pi, 10_000)
+    per_value = per_call("f(x)", {"f": _testing.vmath_sincos, "x": x}, budget=0.2)[0] / len(x)
+    floor = memory + 2 * n * per_value
+    print(f"  one-thread floor: the memory floor {memory * 1e3:.1f} ms + {2 * n:,} sincos at {per_value * 1e9:.2f} ns "
+          f"each {2 * n * per_value * 1e3:.1f} ms = {floor * 1e3:.1f} ms = {floor / ref_best:.3f} x numpy (page faults, "
+          "zeroing and the sincos run one after the other on one thread)", flush=True)
+    return floor
 
 
 def bench_batch(rng):
@@ -328,7 +345,12 @@ def bench_batch(rng):
              note=f"per configuration: {fmt(per(ours)[0]).strip()} vs {fmt(per(ref)[0]).strip()}",
              name=f"batch FK of {BATCH:,} RPR configurations, (N, 4, 4) out, 1 thread, vs numpy's vectorised "
                   "closed form (seed 000, eq. 1)")
-        memory_floor(BATCH, ref[0])
+        memory = memory_floor(BATCH, ref[0])
+        floor = sincos_floor(BATCH, ref[0], memory) / ref[0]
+        g = goals[-1]
+        g["note"] = (f"one-thread floor here {floor:.3f} x: a fresh (N, 4, 4) output (page faults, zeroing) and reading "
+                     f"Q {memory / ref[0]:.3f} x + the 2N sincos alone {floor - memory / ref[0]:.3f} x, measured in this run"
+                     + (f"; above the goal, so it cannot be met on one thread on this machine" if floor > g["limit"] else ""))
         positions = once(lambda: chain.fk(Q, out="position"), repeat=5)
         ref_pos = once(lambda: rpr_position_batch_np(Q), repeat=5)
         line("batch fk RPR positions, 1 thread", positions, "numpy", ref_pos,

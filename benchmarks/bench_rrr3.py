@@ -90,9 +90,9 @@ def main() -> list:
     print(f"workspace 400 x 400: {t_ws * 1e3:.1f} ms (goal <= 50 ms: {'met' if g['met'] else 'MISSED'})")
 
     for name, pts in [("circle r=0.1", rk.paths.circle(629, 0.1)), ("clover", rk.paths.clover(629))]:
-        plain = robot.plan(pts, 0.0, (1, 1, 1), avoid=False)
-        t_plan = best_time(lambda: robot.plan(pts, 0.0, (1, 1, 1)), repeat=3)
-        avoid = robot.plan(pts, 0.0, (1, 1, 1))
+        plain = robot.plan(pts, phi=0.0, mode=(1, 1, 1), avoid=False)
+        t_plan = best_time(lambda: robot.plan(pts, phi=0.0, mode=(1, 1, 1)), repeat=3)
+        avoid = robot.plan(pts, phi=0.0, mode=(1, 1, 1))
         d0, d1 = np.abs(plain.det_a_norm), np.abs(avoid.det_a_norm)
         print(f"{name}, {len(pts)} points, mode (1,1,1), phi = 0: min |det A| without avoidance "
               f"{d0.min() * robot.platform_radius:.2e} (det A / R_e {d0.min():.4f}), with avoidance "

@@ -171,6 +171,34 @@ def test_puma560_eight_solutions_by_fk():
         assert wrapped_distance(lim.q, q).min() < 1e-7  # joint 6 spans more than 2 pi: one representative
 
 
+def test_puma560_postures_by_geometry():
+    """The labels against each solution's geometry: "wrist no flip" has sin q5 > 0 and its flip is
+    the same arm with (q4 + pi, -q5, q6 + pi); "elbow up" has the elbow (origin of frame 2) above
+    the line from the shoulder to the wrist centre (origin of frame 4), in frame 1, whose y axis is
+    the base's z."""
+    puma = rk.robots.puma560()
+    lo, hi = puma.limits
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        T = puma.fk(rng.uniform(lo, hi))
+        s = rk.closed.puma560(T, limits=None)
+        assert len(s) == 8
+        by_label = dict(zip(s.postures, s.q))
+        for q, label in zip(s.q, s.postures):
+            assert (math.sin(q[4]) > 0) == ("wrist no flip" in label), label
+            if "wrist no flip" in label:
+                flip = by_label[label.replace("wrist no flip", "wrist flip")]
+                assert np.array_equal(flip[:3], q[:3])
+                assert wrapped_distance(flip[3:], q[3:] * [1, -1, 1] + [math.pi, 0, math.pi]) < 1e-12
+            f = puma.frames(q)
+            inv = np.linalg.inv(f[1])
+            e = (inv @ f[2][:, 3])[:2]
+            w = (inv @ f[4][:, 3])[:2]
+            above = e[1] - w[1] / w[0] * e[0]
+            if abs(above) > 1e-6:
+                assert (above > 0) == ("elbow up" in label), label
+
+
 def test_puma560_wrist_singularity_and_unreachable():
     puma = rk.robots.puma560()
     q = np.array([0.3, 0.2, -0.4, 0.5, 0.0, 0.7])

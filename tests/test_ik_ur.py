@@ -250,3 +250,34 @@ def test_not_a_ur_arm_and_bad_arguments():
         rk.closed.ur_batch(np.zeros((2, 3, 3)), rk.robots.ur5())
     with pytest.raises(ValueError, match="limits"):
         rk.closed.ur(np.eye(4), rk.robots.ur5(), limits="abc")
+
+
+@pytest.mark.parametrize("v", [1.1920929e-07, -1.1920929e-07, 3e-8])
+def test_ur_a_hair_off_the_wrist_and_elbow_singularities_finds_its_source(v):
+    """Every joint a hair off 0 (wrist and elbow nearly singular at once): the closed form's
+    rotations take the DH rows' cos(pi/2) (6e-17) as the chain has it. With an exact 0 there, q234
+    (from two entries of size ~1e-7) moved by ~1e-9, and the nearly stretched elbow came out of
+    reach: no solution at all for -1.2e-7."""
+    ur5 = rk.robots.ur5()
+    q = np.full(6, v)
+    T = ur5.fk(q)
+    s = rk.closed.ur(T, ur5, limits=None)
+    assert len(s) >= 1
+    for row in s.q:
+        assert np.abs(ur5.fk(row) - T).max() < 1e-9
+    d = np.remainder(s.q - q + np.pi, 2 * np.pi) - np.pi
+    assert np.min(np.max(np.abs(d), axis=1)) < 1e-6
+
+
+@pytest.mark.parametrize("v", [1.1920929e-07, -1.1920929e-07, 3e-8])
+def test_puma560_a_hair_off_the_wrist_singularity_finds_its_source(v):
+    """The PUMA's twin of the test above (its R03 takes the rows' cos(+-pi/2) as well)."""
+    puma = rk.robots.puma560()
+    q = np.array([0.3, 0.2, -0.4, 0.5, v, 0.7])
+    T = puma.fk(q)
+    s = rk.closed.puma560(T, limits=None)
+    assert len(s) >= 1
+    for row in s.q:
+        assert np.abs(puma.fk(row) - T).max() < 1e-9
+    d = np.remainder(s.q - q + np.pi, 2 * np.pi) - np.pi
+    assert np.min(np.max(np.abs(d[:, :3]), axis=1)) < 1e-6

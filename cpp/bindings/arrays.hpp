@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -155,6 +156,11 @@ inline void require_finite(const double* data, py::ssize_t size, const char* nam
 
 // A finite vector of length n (any length when n < 0).
 inline Eigen::VectorXd as_vector(py::handle obj, const char* name, long n = -1, bool finite = true) {
+  Float64View v;  // a float64 ndarray of the right shape is read in place
+  if (float64_view(obj, v) && v.ndim == 1 && (n < 0 || v.shape[0] == n)) {
+    if (finite) require_finite(v.data, v.size, name);
+    return Eigen::Map<const Eigen::VectorXd>(v.data, v.shape[0]);
+  }
   Array a = as_array(obj, name);
   if (a.ndim() != 1 || (n >= 0 && a.shape(0) != n))
     fail(std::string(name) + ": expected shape (" + (n >= 0 ? std::to_string(n) : "n") + ",), got " +
@@ -165,11 +171,17 @@ inline Eigen::VectorXd as_vector(py::handle obj, const char* name, long n = -1, 
 
 // A finite 4x4 homogeneous rigid transform (orthonormal rotation, last row 0 0 0 1).
 inline Eigen::Matrix4d as_transform(py::handle obj, const char* name) {
-  Array a = as_array(obj, name);
-  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
-    fail(std::string(name) + ": expected a (4, 4) homogeneous matrix, got shape " + shape_of(a));
-  require_finite(a.data(), a.size(), name);
-  const Eigen::Matrix4d m = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(a.data());
+  // A (4, 4) float64 ndarray is read in place (Float64View); anything else through as_array.
+  Float64View v;
+  std::optional<Array> a;  // holds the converted array while v points into it
+  if (!float64_view(obj, v) || v.ndim != 2 || v.shape[0] != 4 || v.shape[1] != 4) {
+    a = as_array(obj, name);
+    if (a->ndim() != 2 || a->shape(0) != 4 || a->shape(1) != 4)
+      fail(std::string(name) + ": expected a (4, 4) homogeneous matrix, got shape " + shape_of(*a));
+    v = view_of(*a);
+  }
+  require_finite(v.data, 16, name);
+  const Eigen::Matrix4d m = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(v.data);
   const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
   if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
       (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)

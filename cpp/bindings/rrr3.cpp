@@ -150,11 +150,6 @@ py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
 }
 
-double finite_option(double v, const char* name) {
-  if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
-  return v;
-}
-
 using PlanOptionsClass = OptionsClass<RRR3PlanOptions>;
 using ConnectOptionsClass = OptionsClass<RRR3ConnectOptions>;
 using LoopOptionsClass = OptionsClass<RRR3LoopOptions>;
@@ -228,19 +223,21 @@ std::string keyword_list(const std::string& head) {
   return s + ")";
 }
 
-long grid_size(long n) {
-  if (n < 2 || n > 5000) fail("n: expected a grid size in [2, 5000], got " + std::to_string(n));
-  return n;
+using WorkspaceOptionsClass = OptionsClass<RRR3WorkspaceOptions>;
+
+// The options of one map from the call's arguments (the same keywords as before, positional too).
+RRR3WorkspaceOptions workspace_options(double phi, py::handle mode_obj, long n, double tol) {
+  RRR3WorkspaceOptions o;
+  o.phi = phi, o.mode = as_mode(mode_obj), o.n = n, o.tol = tol;
+  o.validate();
+  return o;
 }
 
 RRR3Workspace workspace_map(const RRR3& r, double phi, py::handle mode_obj, long n, double tol) {
-  const Mode mode = as_mode(mode_obj);
-  finite_option(phi, "phi");
-  grid_size(n);
-  positive_tol(tol);
+  const RRR3WorkspaceOptions o = workspace_options(phi, mode_obj, n, tol);
   PythonProgress progress("RRR3.workspace");
   py::gil_scoped_release release;
-  return workspace(r, phi, mode, n, tol, &progress);
+  return workspace(r, o, &progress);
 }
 
 py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mode_obj, long n, double tol) {
@@ -256,15 +253,12 @@ py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mo
       fail("robots[" + std::to_string(k) + "]: " + e.what());
     }
   }
-  const Mode mode = as_mode(mode_obj);
-  finite_option(phi, "phi");
-  grid_size(n);
-  positive_tol(tol);
+  const RRR3WorkspaceOptions o = workspace_options(phi, mode_obj, n, tol);
   std::vector<double> areas;
   PythonProgress progress("design study");
   {
     py::gil_scoped_release release;
-    areas = region_areas(robots, phi, mode, n, tol, &progress);
+    areas = region_areas(robots, o, &progress);
   }
   return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
 }
@@ -507,6 +501,12 @@ void bind_options(py::module_& m) {
       .field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.")
       .field("closed", &RRR3PlanOptions::closed,
              "The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).");
+  WorkspaceOptionsClass(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).")
+      .field("phi", &RRR3WorkspaceOptions::phi, "The platform's orientation (rad).")
+      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3WorkspaceOptions& o) { return mode_tuple(o.mode); },
+                [](RRR3WorkspaceOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode.")
+      .field("n", &RRR3WorkspaceOptions::n, "n x n cells, n in [2, 5000].")
+      .field("tol", &RRR3WorkspaceOptions::tol, "Singular cell: |det B| / l1^3 or |det A| / R_e below tol.");
   ConnectOptionsClass(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).")
       .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3ConnectOptions& o) { return mode_tuple(o.mode); },
                 [](RRR3ConnectOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode, kept along the path.")
@@ -623,8 +623,9 @@ void def_planning(py::class_<RRR3>& cls) {
       "The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all\n"
       "along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or\n"
       "why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).";
-  cls.def("workspace", &workspace_map, py::arg("phi") = 0.0, py::arg("mode") = py::make_tuple(1, 1, 1),
-           py::arg("n") = 200, py::arg("tol") = kSingularTol,
+  cls.def("workspace", &workspace_map, py::arg("phi") = RRR3WorkspaceOptions{}.phi,
+          py::arg("mode") = mode_tuple(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
+          py::arg("tol") = RRR3WorkspaceOptions{}.tol,
            "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
       .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())

@@ -230,23 +230,34 @@ Chain::Fixed Chain::make_fixed(const Rigid& F) {
 template <int N>
 ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes) const {
   double v[N], s[N], c[N];
-  // One configuration: the sines and cosines of all joints first, in one vectorised pass (they do
-  // not depend on the chain product, which then runs without waiting for them).
-  constexpr int kMaxJoints = 32;
-  double v1[kMaxJoints], s1[kMaxJoints], c1[kMaxJoints];
-  const bool all_at_once = N == 1 && dof_ <= kMaxJoints;
+  // Up to kAtOnce lanes x joints (one configuration of up to 32 joints, fk_few's 8 of up to 32):
+  // the sines and cosines of all revolute joints first, in one vectorised pass (they do not depend
+  // on the chain product, which then runs without waiting for them); a value gives the same bits
+  // in any pass.
+  constexpr int kAtOnce = 256;
+  double v1[kAtOnce], s1[kAtOnce], c1[kAtOnce];
+  const bool all_at_once = N * dof_ <= kAtOnce && N <= Chain::kFkFew;
   if (all_at_once) {
-    for (int joint = 0; joint < dof_; ++joint) v1[joint] = links_[joint].scale * q[joint];
-    vmath::sincos(v1, s1, c1, dof_);
+    int m = 0;
+    for (int joint = 0; joint < dof_; ++joint) {
+      if (links_[joint].prismatic && N > 1) continue;
+      for (int k = 0; k < N; ++k) v1[m + k] = links_[joint].scale * q[k * stride + joint];
+      m += N;
+    }
+    vmath::sincos(v1, s1, c1, m);
   }
+  int at = 0;  // the next joint's first value in v1, s1, c1
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) std::fill_n(L.R[3 * i + j], N, base_.R(i, j));
     std::fill_n(L.p[i], N, base_.p(i));
   }
   for (int joint = 0; joint < dof_; ++joint) {
     const Link& link = links_[joint];
-    if (all_at_once) {
-      v[0] = v1[joint], s[0] = s1[joint], c[0] = c1[joint];
+    if (all_at_once && (N == 1 || !link.prismatic)) {
+      for (int k = 0; k < N; ++k) v[k] = v1[at + k], s[k] = s1[at + k], c[k] = c1[at + k];
+      at += N;
+    } else if (all_at_once) {  // a prismatic joint of several lanes: its values only
+      for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
     } else {
       for (int k = 0; k < N; ++k) v[k] = link.scale * q[k * stride + joint];
       if (!link.prismatic) vmath::sincos(v, s, c, N);
@@ -458,6 +469,23 @@ __attribute__((target("avx512f"), optimize("fp-contract=off"))) bool Chain::batc
   return batch_range_kernel(q, begin, end, out, what, stream);
 }
 #endif
+
+void Chain::fk_few(const double* q, int count, Rigid* out) const {
+  constexpr int kMaxJoints = 32;
+  if (count > kFkFew || dof_ > kMaxJoints) {  // not for this kernel: one at a time
+    for (int k = 0; k < count; ++k) fk(q + k * dof_, out[k]);
+    return;
+  }
+  if (count <= 0) return;
+  // Every lane is evaluated: the unused ones repeat the first configuration.
+  double padded[kFkFew * kMaxJoints];
+  std::copy(q, q + count * dof_, padded);
+  for (int k = count; k < kFkFew; ++k) std::copy(q, q + dof_, padded + k * dof_);
+  Lanes<kFkFew> L;
+  run_lanes<kFkFew>(L, padded, dof_, nullptr);
+  for (int k = 0; k < count; ++k) lane_to_rigid(L, k, out[k]);
+}
+
 
 bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
   // A large frame output (beyond the caches) is faulted in at once and then streamed to memory.

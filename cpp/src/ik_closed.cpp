@@ -38,33 +38,6 @@ bool planar_tip_near(double a1, double a2, double t1, double t2, double x, doubl
          tol;
 }
 
-// One standard DH transform A = Rz(theta) Tz(d) Tx(a) Rx(alpha), for the checks, from the cosines
-// and sines of theta and alpha.
-Rigid dh_standard(double a, double ca, double sa, double d, double ct, double st) {
-  Rigid A;
-  A.R << ct, -st * ca, st * sa, st, ct * ca, -ct * sa, 0, sa, ca;
-  A.p << a * ct, a * st, d;
-  return A;
-}
-
-// cos and sin of the layouts' twists +-pi/2, once.
-const double kC90 = std::cos(kPi / 2), kS90 = std::sin(kPi / 2), kCm90 = std::cos(-kPi / 2), kSm90 = std::sin(-kPi / 2);
-
-// Frame 3 of the anthropomorphic arm (rows (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0)) at q.
-Rigid arm_fk(const ArmGeometry& g, const double* q) {
-  return dh_standard(0, kC90, kS90, g.d1, std::cos(q[0]), std::sin(q[0])) *
-         dh_standard(g.a2, 1, 0, 0, std::cos(q[1]), std::sin(q[1])) *
-         dh_standard(g.a3, 1, 0, 0, std::cos(q[2]), std::sin(q[2]));
-}
-
-// Tool frame of the arm of ArmGeometry (standard DH, the PUMA layout) with a spherical wrist and a
-// tool offset d6, from the joints' cosines c and sines s.
-Rigid wrist_arm_fk(const ArmGeometry& g, double d6, const double* c, const double* s) {
-  return dh_standard(0, kC90, kS90, g.d1, c[0], s[0]) * dh_standard(g.a2, 1, 0, 0, c[1], s[1]) *
-         dh_standard(g.a3, kCm90, kSm90, g.d3, c[2], s[2]) * dh_standard(0, kC90, kS90, g.d4, c[3], s[3]) *
-         dh_standard(0, kCm90, kSm90, 0, c[4], s[4]) * dh_standard(0, 1, 0, d6, c[5], s[5]);
-}
-
 double arm_size(const ArmGeometry& g, double d6) {
   return std::abs(g.d1) + g.a2 + std::abs(g.a3) + std::abs(g.d3) + std::abs(g.d4) + std::abs(d6);
 }
@@ -106,9 +79,11 @@ bool elbow_angle(double a1, double a2, double w, double& c, double& s, bool& sin
 const char* singular_elbow(double c) { return c > 0 ? "elbow straight" : "elbow folded"; }
 
 // The planar 2R solutions (theta1, theta2) of links a1, a2 for the point (x, y), algebraically:
-// s2 = +sqrt (elbow down) then -sqrt (elbow up); one when singular. Returns the count.
-int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], const char* label[2],
-                    bool& singular) {
+// s2 = +sqrt (elbow down) then -sqrt (elbow up); one when singular. Returns the count and, for
+// solution k, theta_i = atan2(yx[k][i][0], yx[k][i][1]) (the arc tangents are the caller's: one
+// at a time, or several solutions' in one vectorised pass).
+int planar_2r_args(double a1, double a2, double x, double y, double yx[2][2][2], const char* label[2],
+                   bool& singular) {
   // In units of the longer link (the angles do not change): the squares below neither overflow
   // for huge arms nor underflow for tiny ones.
   const double unit = std::max(a1, a2);
@@ -121,12 +96,22 @@ int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], c
     const double s2 = k == 0 ? sin2 : -sin2;
     const double k1 = a1 + a2 * c2, k2 = a2 * s2;
     // s1, c1 share the positive denominator x^2 + y^2: atan2 does not need it.
-    th[k][0] = std::atan2(k1 * y - k2 * x, k1 * x + k2 * y);
-    th[k][1] = std::atan2(s2, c2);
+    yx[k][0][0] = k1 * y - k2 * x, yx[k][0][1] = k1 * x + k2 * y;
+    yx[k][1][0] = s2, yx[k][1][1] = c2;
     label[k] = singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up");
   }
   // The base angle is free when the point is on the first axis (x = y = 0, a1 = a2).
   if (x * x + y * y < 1e-24) singular = true;
+  return count;
+}
+
+// planar_2r_args with libm's atan2: th[k] = (theta1, theta2) of solution k.
+int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], const char* label[2],
+                    bool& singular) {
+  double yx[2][2][2];
+  const int count = planar_2r_args(a1, a2, x, y, yx, label, singular);
+  for (int k = 0; k < count; ++k)
+    for (int i = 0; i < 2; ++i) th[k][i] = std::atan2(yx[k][i][0], yx[k][i][1]);
   return count;
 }
 
@@ -150,49 +135,104 @@ struct ArmSolution {
 };
 
 // The arm's solutions (q1, q2, q3) putting the wrist centre (origin of frame 4; the tip for the
-// anthropomorphic arm) at p. In frame 1 the wrist is at
+// anthropomorphic arm) at p, written to out (at most 4); returns their count. In frame 1 the wrist is at
 //   (a2 c2 + a3 c23 - d4 s23, a2 s2 + a3 s23 + d4 c23, d3),
 // so with r = a2 c2 + a3 c23 - d4 s23:  px = c1 r + d3 s1,  py = s1 r - d3 c1,  pz - d1 = a2 s2 + ...
 // r = +-sqrt(px^2 + py^2 - d3^2) (shoulder right / left), q1 = atan2(py, px) + atan2(d3, r); then
 // a planar 2R in (r, pz - d1) with links a2 and L = |(a3, d4)| at an angle offset psi = atan2(d4, a3).
-std::vector<ArmSolution> arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular) {
-  std::vector<ArmSolution> out;
-  const double L = std::hypot(g.a3, g.d4), psi = std::atan2(g.d4, g.a3);
+int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, ArmSolution out[4]) {
+  const double L = std::hypot(g.a3, g.d4);
   // In units of the arm's longest length, as in planar_2r_solve (no overflow or underflow).
   const double unit = std::max({g.a2, L, std::abs(g.d3)});
   const double px = p.x() / unit, py = p.y() / unit, d3 = g.d3 / unit;
   const double rho2 = px * px + py * py;
   const double disc = rho2 - d3 * d3;
-  if (!(disc >= -kCosEps * std::max(1.0, rho2))) return out;  // also when rho2 overflowed to inf - inf
+  if (!(disc >= -kCosEps * std::max(1.0, rho2))) return 0;  // also when rho2 overflowed to inf - inf
   const double rmag = std::sqrt(std::max(0.0, disc)) * unit;
   // r = 0: both shoulders coincide (and with d3 = 0, q1 is free: 0 is returned).
   const bool shoulder_singular = rmag < 1e-12 * unit;
   const double z = p.z() - g.d1;
-  for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
+  const int sides = shoulder_singular ? 1 : 2;
+  // Every arc tangent in one vectorised pass: atan2(py, px), psi = atan2(d4, a3), atan2(d3, r) of
+  // each shoulder, then the planar 2R's (theta1, theta2) of each shoulder's elbows.
+  double y[12], x[12], t[12];
+  y[0] = p.y(), x[0] = p.x(), y[1] = g.d4, x[1] = g.a3;
+  const char* lab[2][2];
+  int n[2] = {0, 0};
+  bool elbow_singular[2] = {false, false};
+  for (int side = 0; side < sides; ++side) {
     const double r = side == 0 ? rmag : -rmag;
-    const double q1 = std::atan2(p.y(), p.x()) + std::atan2(g.d3, r);
-    double th[2][2];
-    const char* lab[2];
-    bool elbow_singular = false;
-    const int n = planar_2r_solve(g.a2, L, r, z, th, lab, elbow_singular);
-    for (int k = 0; k < n; ++k) {
-      ArmSolution s;
+    y[2 + side] = g.d3, x[2 + side] = r;
+    double yx[2][2][2];
+    n[side] = planar_2r_args(g.a2, L, r, z, yx, lab[side], elbow_singular[side]);
+    for (int k = 0; k < n[side]; ++k)
+      for (int i = 0; i < 2; ++i) y[4 + 4 * side + 2 * k + i] = yx[k][i][0], x[4 + 4 * side + 2 * k + i] = yx[k][i][1];
+  }
+  vmath::atan2(y, x, t, 4 + 4 * sides);
+  const double psi = t[1];
+  int count = 0;
+  for (int side = 0; side < sides; ++side) {
+    const double r = side == 0 ? rmag : -rmag;
+    const double q1 = t[0] + t[2 + side];
+    for (int k = 0; k < n[side]; ++k) {
+      const double th1 = t[4 + 4 * side + 2 * k], th2 = t[4 + 4 * side + 2 * k + 1];
+      ArmSolution& s = out[count++];
       s.q[0] = q1;
-      s.q[1] = th[k][0];
-      s.q[2] = th[k][1] - psi;
+      s.q[1] = th1;
+      s.q[2] = th2 - psi;
       s.shoulder = shoulder_singular ? 2 : side;
-      if (n == 1) {
-        s.elbow = th[k][1] > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
+      if (n[side] == 1) {
+        s.elbow = th2 > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
       } else {
         // Elbow above the shoulder-wrist line: sin(theta') < 0 when the wrist is in front (r > 0).
-        const bool up = (std::sin(th[k][1]) < 0) != (r < 0);
+        // theta' = atan2(s2, c2) with s2 = +-sqrt(...) != 0 here: sin(theta') has the sign of s2,
+        // negative for the second solution of planar_2r_args (k = 1).
+        const bool up = (k == 1) != (r < 0);
         s.elbow = up ? 0 : 1;
       }
-      out.push_back(s);
     }
-    singular = singular || elbow_singular || shoulder_singular;
+    singular = singular || elbow_singular[side] || shoulder_singular;
   }
-  return out;
+  return count;
+}
+
+// One step F <- F A of a standard DH chain, A = Rz(theta) Tz(d) Tx(a) Rx(alpha) with alpha 0,
+// +pi/2 or -pi/2 (twist = 0, +1, -1: Rx then only swaps columns), from cos and sin of theta:
+// 18 products where a general 4 x 4 product takes 64.
+inline __attribute__((always_inline)) void dh_step(Rigid& F, double a, double d, int twist, double ct, double st) {
+  const Eigen::Vector3d x = ct * F.R.col(0) + st * F.R.col(1), y = ct * F.R.col(1) - st * F.R.col(0);
+  const Eigen::Vector3d z = F.R.col(2);
+  F.p += a * x + d * z;
+  F.R.col(0) = x;
+  if (twist == 0) {
+    F.R.col(1) = y;
+  } else if (twist > 0) {  // Rx(pi/2): y' = z, z' = -y
+    F.R.col(1) = z, F.R.col(2) = -y;
+  } else {  // Rx(-pi/2): y' = -z, z' = y
+    F.R.col(1) = -z, F.R.col(2) = y;
+  }
+}
+
+// Tool frame of the arm of ArmGeometry (standard DH, the PUMA layout) with a spherical wrist and a
+// tool offset d6, from the joints' cosines c and sines s.
+Rigid wrist_arm_fk(const ArmGeometry& g, double d6, const double* c, const double* s) {
+  Rigid F;
+  dh_step(F, 0, g.d1, +1, c[0], s[0]);
+  dh_step(F, g.a2, 0, 0, c[1], s[1]);
+  dh_step(F, g.a3, g.d3, -1, c[2], s[2]);
+  dh_step(F, 0, g.d4, +1, c[3], s[3]);
+  dh_step(F, 0, 0, -1, c[4], s[4]);
+  dh_step(F, 0, d6, 0, c[5], s[5]);
+  return F;
+}
+
+// Frame 3 of the anthropomorphic arm (rows (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0)) at q.
+Rigid arm_fk(const ArmGeometry& g, const double* q) {
+  Rigid F;
+  dh_step(F, 0, g.d1, +1, std::cos(q[0]), std::sin(q[0]));
+  dh_step(F, g.a2, 0, 0, std::cos(q[1]), std::sin(q[1]));
+  dh_step(F, g.a3, 0, 0, std::cos(q[2]), std::sin(q[2]));
+  return F;
 }
 
 }  // namespace
@@ -294,8 +334,9 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   const auto reaches = [&](const double* q) {
     return (arm_fk(arm, q).p - p).norm() <= kTolP * arm_size(arm, 0);
   };
-  for (ArmSolution& s : arm_solve(arm, p, out.singular))
-    add_if_admissible(out, s.q, limits, arm_label(s.shoulder, s.elbow, 0), reaches);
+  ArmSolution arms[4];
+  const int n = arm_solve(arm, p, out.singular, arms);
+  for (int k = 0; k < n; ++k) add_if_admissible(out, arms[k].q, limits, arm_label(arms[k].shoulder, arms[k].elbow, 0), reaches);
   return out;
 }
 
@@ -306,38 +347,65 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   out.q.reserve(48);
   out.postures.reserve(8);
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
+  // In stages, each stage's sines, cosines and arc tangents for every arm solution or candidate in
+  // one vectorised pass (fast_math.hpp): the arm (q1, q2, q3), R03 from cos and sin of q1 and
+  // q2 + q3, the wrist's q4, then q5, q6; the candidates within the limits are then checked by
+  // the forward model, in their order.
+  ArmSolution arms[4];
+  const int na = arm_solve(arm, pw, out.singular, arms);
+  double ang[16], sn[16], cs[16];
+  for (int a = 0; a < na; ++a) ang[2 * a] = arms[a].q[0], ang[2 * a + 1] = arms[a].q[1] + arms[a].q[2];
+  vmath::sincos(ang, sn, cs, 2 * na);
+  // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
+  // (-c4 s5, -s4 s5, c5). Given q4, N = Rz(-q4) R36 = Ry(-q5) Rz(q6) gives q5 (third column
+  // (-s5, 0, c5)) and q6 (second row (s6, c6, 0)).
   const Eigen::Matrix3d rx_p = rot_x(kPi / 2), rx_m = rot_x(-kPi / 2);
-  // The candidates within the limits first, then every check's sines and cosines in one
-  // vectorised pass (fast_math.hpp), then the checks, in the candidates' order.
+  Eigen::Matrix3d M[4];
+  double my[4], mx[4], q4[8];
+  bool wrist_singular[4];
+  for (int a = 0; a < na; ++a) {
+    // R03 = Rz(q1) Rx(pi/2) Rz(q2 + q3) Rx(-pi/2), the twists' cosines as the DH rows have them
+    // (6e-17, not 0): near the wrist singularity M(0, 2) and M(1, 2) are tiny and q4 follows them.
+    Eigen::Matrix3d Rz1, Rz23;
+    Rz1 << cs[2 * a], -sn[2 * a], 0, sn[2 * a], cs[2 * a], 0, 0, 0, 1;
+    Rz23 << cs[2 * a + 1], -sn[2 * a + 1], 0, sn[2 * a + 1], cs[2 * a + 1], 0, 0, 0, 1;
+    const Eigen::Matrix3d R03 = Rz1 * rx_p * Rz23 * rx_m;
+    M[a].noalias() = R03.transpose() * T.R;
+    wrist_singular[a] = std::hypot(M[a](0, 2), M[a](1, 2)) < 1e-10;
+    out.singular = out.singular || wrist_singular[a];
+    my[a] = -M[a](1, 2), mx[a] = -M[a](0, 2);
+  }
+  vmath::atan2(my, mx, q4, na);
+  for (int a = na - 1; a >= 0; --a) {
+    const double v = wrist_singular[a] ? 0.0 : q4[a];  // in [-pi, pi], and so is the flip's
+    q4[2 * a] = v, q4[2 * a + 1] = v > 0 ? v - kPi : v + kPi;
+  }
+  vmath::sincos(q4, sn, cs, 2 * na);
+  double y56[16], x56[16], q56[16];
+  for (int k = 0; k < 2 * na; ++k) {
+    const Eigen::Matrix3d& m = M[k / 2];
+    const double c = cs[k], s = sn[k];  // N = Rz(-q4) M: rows c M0 + s M1, c M1 - s M0, M2
+    y56[2 * k] = -(c * m(0, 2) + s * m(1, 2)), x56[2 * k] = m(2, 2);
+    y56[2 * k + 1] = c * m(1, 0) - s * m(0, 0), x56[2 * k + 1] = c * m(1, 1) - s * m(0, 1);
+  }
+  vmath::atan2(y56, x56, q56, 4 * na);
   double q[8][6], angles[48], c[48], s[48];
   const char* posture[8];
   int n = 0;
-  for (ArmSolution& a : arm_solve(arm, pw, out.singular)) {
-    const Eigen::Matrix3d R03 = rot_z(a.q[0]) * rx_p * rot_z(a.q[1]) * rot_z(a.q[2]) * rx_m;
-    // R36 = Rz(q4) Rx(pi/2) Rz(q5) Rx(-pi/2) Rz(q6) = Rz(q4) Ry(-q5) Rz(q6): third column
-    // (-c4 s5, -s4 s5, c5). Given q4, N = Rz(-q4) R36 = Ry(-q5) Rz(q6) gives q5 (third column
-    // (-s5, 0, c5)) and q6 (second row (s6, c6, 0)).
-    const Eigen::Matrix3d M = R03.transpose() * T.R;
-    const double w = std::hypot(M(0, 2), M(1, 2));
-    const bool wrist_singular = w < 1e-10;
-    out.singular = out.singular || wrist_singular;
-    for (int flip = 0; flip < 2; ++flip) {
-      double q4 = wrist_singular ? 0.0 : std::atan2(-M(1, 2), -M(0, 2));
-      if (flip) q4 += kPi;
-      const Eigen::Matrix3d N = rot_z(-q4) * M;
-      double* v = q[n];
-      v[0] = a.q[0], v[1] = a.q[1], v[2] = a.q[2], v[3] = q4;
-      v[4] = std::atan2(-N(0, 2), N(2, 2)), v[5] = std::atan2(N(1, 0), N(1, 1));
-      if (!fit_limits(v, 6, limits)) continue;
-      posture[n] = arm_label(a.shoulder, a.elbow, flip ? 2 : 1);
-      std::copy(v, v + 6, angles + 6 * n);
-      ++n;
-    }
+  for (int k = 0; k < 2 * na; ++k) {
+    const ArmSolution& a = arms[k / 2];
+    double* v = q[n];
+    v[0] = a.q[0], v[1] = a.q[1], v[2] = a.q[2], v[3] = q4[k], v[4] = q56[2 * k], v[5] = q56[2 * k + 1];
+    if (!fit_limits(v, 6, limits)) continue;
+    posture[n] = arm_label(a.shoulder, a.elbow, k % 2 ? 2 : 1);
+    std::copy(v, v + 6, angles + 6 * n);
+    ++n;
   }
   vmath::sincos(angles, s, c, 6 * n);
+  const double size = arm_size(arm, d6);
   for (int k = 0; k < n; ++k) {
     const Rigid F = wrist_arm_fk(arm, d6, c + 6 * k, s + 6 * k);
-    if ((F.p - T.p).norm() <= kTolP * arm_size(arm, d6) && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
+    if ((F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
       out.add(q[k], posture[k]);
   }
   return out;
@@ -488,11 +556,6 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   const Eigen::Vector3d p = Td.p;
   const double size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) +
                       std::abs(arm.d5) + arm.base.p.norm() + arm.tool.p.norm();
-  const auto reaches = [&](const double* q) {
-    Rigid F;
-    chain.fk(q, F);
-    return (F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR;
-  };
   // Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist centre in a plane
   // d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions x1 . p = +-h.
   const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
@@ -503,65 +566,117 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   // disc carries the rounding of r^2 (~1e-16): h, its square root, is then ~1e-8 where the two
   // shoulders coincide, and the two q1 differ by ~h / d4.
   const bool shoulder_singular = disc <= 1e-13 * std::max(1.0, r * r);
-  const double phi = r > 0 ? std::atan2(p.y(), p.x()) : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
   if (shoulder_singular) out.singular = true;
+  const int sides = shoulder_singular ? 1 : 2;
   const double a2 = std::abs(arm.a2), a3 = std::abs(arm.a3);
-  for (int side = 0; side < (shoulder_singular ? 1 : 2); ++side) {
-    const double x1 = side == 0 ? -h : h;  // shoulder left: wrist centre on the -x1 side
-    const double q1 = phi + std::atan2(arm.d4, x1);
-    const Eigen::Matrix3d R01 = rot_z(q1) * rot_x(kPi / 2);
-    const Eigen::Matrix3d M = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
-    const Eigen::Vector3d P = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
-    const double w = std::hypot(M(0, 2), M(1, 2));
-    const bool wrist_singular = w < 1e-10;
-    if (wrist_singular) out.singular = true;
-    for (int flip = 0; flip < (wrist_singular ? 1 : 2); ++flip) {
-      double q234;
-      if (!wrist_singular) {
-        q234 = std::atan2(-M(1, 2), -M(0, 2)) + (flip ? kPi : 0.0);
+  // In stages, each stage's arc tangents, sines and cosines in one vectorised pass (fast_math.hpp):
+  // q1 of each shoulder; R01 from it; q234 of each wrist; then q5, q6 and the planar 2R of each
+  // (shoulder, wrist); the candidates within the limits are checked by chain.fk together.
+  double ya[3] = {p.y(), arm.d4, arm.d4}, xa[3] = {p.x(), -h, h}, ta[3];  // shoulder left: x1 = -h
+  vmath::atan2(ya, xa, ta, 1 + sides);
+  const double phi = r > 0 ? ta[0] : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
+  double q1[2], s1[2], c1[2];
+  for (int side = 0; side < sides; ++side) q1[side] = phi + ta[1 + side];
+  vmath::sincos(q1, s1, c1, sides);
+  Eigen::Matrix3d M[2];
+  Eigen::Vector3d P[2];
+  bool wrist_singular[2];
+  double yw[2], xw[2], tw[2];
+  for (int side = 0; side < sides; ++side) {
+    // Rz(q1) Rx(pi/2), with cos(pi/2) as the chain's DH row has it (6e-17, not 0): near the wrist
+    // singularity M(0, 2) and M(1, 2) are tiny and q234 follows their rounding.
+    Eigen::Matrix3d Rz1;
+    Rz1 << c1[side], -s1[side], 0, s1[side], c1[side], 0, 0, 0, 1;
+    const Eigen::Matrix3d R01 = Rz1 * rot_x(kPi / 2);
+    M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
+    P[side].noalias() = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
+    wrist_singular[side] = std::hypot(M[side](0, 2), M[side](1, 2)) < 1e-10;
+    if (wrist_singular[side]) out.singular = true;
+    yw[side] = -M[side](1, 2), xw[side] = -M[side](0, 2);
+  }
+  vmath::atan2(yw, xw, tw, sides);
+  // The (shoulder, wrist) pairs: q234 of each.
+  int pairs = 0, pair_side[4], pair_flip[4];
+  double q234[4], s234[4], c234[4];
+  for (int side = 0; side < sides; ++side)
+    for (int flip = 0; flip < (wrist_singular[side] ? 1 : 2); ++flip) {
+      double t;
+      if (!wrist_singular[side]) {
+        t = tw[side] + (flip ? kPi : 0.0);
       } else {
         // Axes 2, 3, 4, 6 parallel: q234 is free. The wrist's origin 4 is then on the circle
         // P + d5 (-sin t, cos t); the representative puts it where |W|^2 = a2^2 + a3^2 (the
         // elbow at a right angle) or as near as the circle comes.
-        const double rho = std::hypot(P.x(), P.y());
-        const double beta = std::atan2(P.x(), P.y());
+        const Eigen::Vector3d& Ps = P[side];
+        const double rho = std::hypot(Ps.x(), Ps.y());
+        const double beta = std::atan2(Ps.x(), Ps.y());
         const double den = 2.0 * arm.d5 * rho;
-        double t = 0.0;
+        t = 0.0;
         if (std::abs(den) > 1e-12 * unit * unit) {
           const double cv = (a2 * a2 + a3 * a3 - rho * rho - arm.d5 * arm.d5) / den;
           t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
         }
-        q234 = t;
       }
-      const Eigen::Matrix3d N = rot_z(-q234) * M;
-      const double q5 = std::atan2(-N(0, 2), N(2, 2)), q6 = std::atan2(N(1, 0), N(1, 1));
-      const double s234 = std::sin(q234), c234 = std::cos(q234);
-      // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
-      const double X = P.x() - arm.d5 * s234, Y = P.y() + arm.d5 * c234;
-      double th[2][2];
-      const char* lab[2];
-      bool elbow_singular = false;
-      const int n = planar_2r_solve(a2, a3, X, Y, th, lab, elbow_singular);
-      if (elbow_singular) out.singular = true;
-      for (int k = 0; k < n; ++k) {
-        // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
-        const double q2 = th[k][0] - (arm.a2 < 0 ? kPi : 0.0);
-        const double q3 = th[k][1] + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
-        const double ex = a2 * std::cos(th[k][0]), ey = a2 * std::sin(th[k][0]);
-        const double cross = X * ey - Y * ex;
-        int elbow;
-        if (n == 1) elbow = std::cos(th[k][1]) > 0 ? 2 : 3;
-        else elbow = ((cross > 0) == (X >= 0)) ? 0 : 1;
-        const double dh[6] = {q1, q2, q3, q234 - q2 - q3, q5, q6};
-        double q[6];
-        for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-        const int before = out.count();
-        add_if_admissible(out, q, limits,
-                          ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular ? 2 : flip), reaches);
-        if (slot && out.count() > before)
-          slot[before] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular ? 0 : flip);
-      }
+      pair_side[pairs] = side, pair_flip[pairs] = flip, q234[pairs++] = t;
     }
+  vmath::sincos(q234, s234, c234, pairs);
+  // Per pair: atan2 arguments of q5, q6 (2) and of the planar 2R's solutions (up to 2 x 2).
+  double y[24], x[24], t[24], X[4], Y[4];
+  int nk[4];
+  const char* lab[4][2];
+  bool elbow_singular[4];
+  for (int j = 0; j < pairs; ++j) {
+    const Eigen::Matrix3d& m = M[pair_side[j]];
+    const double c = c234[j], s = s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
+    y[6 * j] = -(c * m(0, 2) + s * m(1, 2)), x[6 * j] = m(2, 2);
+    y[6 * j + 1] = c * m(1, 0) - s * m(0, 0), x[6 * j + 1] = c * m(1, 1) - s * m(0, 1);
+    // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
+    const Eigen::Vector3d& Ps = P[pair_side[j]];
+    X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
+    double yx[2][2][2];
+    nk[j] = planar_2r_args(a2, a3, X[j], Y[j], yx, lab[j], elbow_singular[j]);
+    if (elbow_singular[j]) out.singular = true;
+    for (int k = 0; k < nk[j]; ++k)
+      for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
+    for (int i = 2 + 2 * nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
+  }
+  vmath::atan2(y, x, t, 6 * pairs);
+  double cand[8][6], checked[8 * 6];
+  const char* posture[8];
+  int cand_slot[8], n = 0;
+  for (int j = 0; j < pairs; ++j) {
+    const int side = pair_side[j], flip = pair_flip[j];
+    const double q5 = t[6 * j], q6 = t[6 * j + 1];
+    for (int k = 0; k < nk[j]; ++k) {
+      const double th1 = t[6 * j + 2 + 2 * k], th2 = t[6 * j + 3 + 2 * k];
+      // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
+      const double q2 = th1 - (arm.a2 < 0 ? kPi : 0.0);
+      const double q3 = th2 + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
+      int elbow;
+      if (nk[j] == 1) {
+        elbow = x[6 * j + 3] > 0 ? 2 : 3;  // cos theta2 > 0 (c2 of planar_2r_args): straight, else folded
+      } else {
+        // The elbow's side of the line to origin 4: X a2 sin(th1) - Y a2 cos(th1), whose sign is
+        // that of X y1 - Y x1 for th1 = atan2(y1, x1).
+        const double cross = X[j] * y[6 * j + 2 + 2 * k] - Y[j] * x[6 * j + 2 + 2 * k];
+        elbow = ((cross > 0) == (X[j] >= 0)) ? 0 : 1;
+      }
+      const double dh[6] = {q1[side], q2, q3, q234[j] - q2 - q3, q5, q6};
+      double* q = cand[n];
+      for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+      if (!fit_limits(q, 6, limits)) continue;
+      posture[n] = ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular[side] ? 2 : flip);
+      cand_slot[n] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
+      std::copy(q, q + 6, checked + 6 * n);
+      ++n;
+    }
+  }
+  Rigid F[8];
+  chain.fk_few(checked, n, F);
+  for (int k = 0; k < n; ++k) {
+    if (!((F[k].p - T.p).norm() <= kTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    if (slot) slot[out.count()] = cand_slot[k];
+    out.add(cand[k], posture[k]);
   }
   return out;
 }

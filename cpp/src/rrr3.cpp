@@ -31,6 +31,19 @@ void check_length(double v, const char* name) {
     throw std::invalid_argument(std::string(name) + ": must be a length in [1e-6, 1e6] m, got " + number(v));
 }
 
+// closure_error for the elbows A: max_i | |B_i - A_i| - l2 | with B_i as platform_joint computes
+// it (the same operations; cos and sin of phi once).
+double closure_at(const Eigen::Matrix<double, 3, 2>& A, const Pose& pose, const std::array<Eigen::Vector2d, 3>& b,
+                  double l2) {
+  const double c = std::cos(pose(2)), s = std::sin(pose(2));
+  double err = 0;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d B(pose(0) + c * b[i].x() - s * b[i].y(), pose(1) + s * b[i].x() + c * b[i].y());
+    err = std::max(err, std::abs((B - A.row(i).transpose()).norm() - l2));
+  }
+  return err;
+}
+
 }  // namespace
 
 RRR3::RRR3(double base_radius, double platform_radius, double l1, double l2)
@@ -167,16 +180,13 @@ RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, d
   x(2) = wrap_angle(x(2));
   res.pose = x;
   // The answer is verified where it is returned: wrapping a far-off orientation moves it by rounding.
-  res.error = closure_error(alpha, x);
+  res.error = closure_at(A, x, b_, l2_);  // closure_error(alpha, x), the elbows computed once
   res.converged = res.error < tol;
   return res;
 }
 
 double RRR3::closure_error(const Eigen::Vector3d& alpha, const Pose& pose) const {
-  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
-  double err = 0;
-  for (int i = 0; i < 3; ++i) err = std::max(err, std::abs((platform_joint(pose, i) - A.row(i).transpose()).norm() - l2_));
-  return err;
+  return closure_at(elbows(alpha), pose, b_, l2_);
 }
 
 Eigen::Matrix<double, 3, 2> RRR3::elbows(const Eigen::Vector3d& alpha) const {

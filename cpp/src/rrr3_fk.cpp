@@ -58,14 +58,18 @@ struct TrigPoly {
 
 struct Tables {
   double fit_phi[kFit], fit_cos[kFit][kDegree + 1], fit_sin[kFit][kDegree + 1];
+  double fit_c[kFit], fit_s[kFit];  // std::cos, std::sin of fit_phi (what Elimination::F takes)
   // scan_cos[k][j] = cos(k scan_phi[j]): k-major, so that the scan's loop over j vectorises.
   double scan_phi[kScan + 1], scan_cos[kDegree + 1][kScan], scan_sin[kDegree + 1][kScan];
+  double scan_h[kScan];  // scan_phi[j + 1] - scan_phi[j], the intervals' widths as search() takes them
   Tables() {
     for (int j = 0; j < kFit; ++j) {
       fit_phi[j] = -M_PI + 2 * M_PI * j / kFit;
       for (int k = 0; k <= kDegree; ++k) fit_cos[j][k] = std::cos(k * fit_phi[j]), fit_sin[j][k] = std::sin(k * fit_phi[j]);
+      fit_c[j] = std::cos(fit_phi[j]), fit_s[j] = std::sin(fit_phi[j]);
     }
     for (int j = 0; j <= kScan; ++j) scan_phi[j] = -M_PI + 2 * M_PI * j / kScan;
+    for (int j = 0; j < kScan; ++j) scan_h[j] = scan_phi[j + 1] - scan_phi[j];
     for (int j = 0; j < kScan; ++j)
       for (int k = 0; k <= kDegree; ++k)
         scan_cos[k][j] = std::cos(k * scan_phi[j]), scan_sin[k][j] = std::sin(k * scan_phi[j]);
@@ -89,8 +93,9 @@ struct Elimination {
     double D;
   };
 
-  double F(double phi, Detail* detail = nullptr) const {
-    const double c = std::cos(phi), s = std::sin(phi);
+  double F(double phi, Detail* detail = nullptr) const { return F(std::cos(phi), std::sin(phi), detail); }
+  // F from cos phi and sin phi.
+  double F(double c, double s, Detail* detail = nullptr) const {
     Eigen::Vector2d ci[3];
     for (int i = 0; i < 3; ++i)
       ci[i] = Eigen::Vector2d(c * b[i].x() - s * b[i].y(), s * b[i].x() + c * b[i].y()) - A.row(i).transpose();
@@ -209,6 +214,34 @@ void search(const TrigPoly& p, double curvature, double jerk, double lo, double 
     search(p, curvature, jerk, mid, hi, fmid, fhi, depth - 1, roots);
   }
 }
+// F on the scan, f[kScan] = f[0] (the wrap): the same sums as term by term at each phi, term k
+// over every phi at once (a loop the vectoriser takes; cloned for AVX2, no FMA: the same bits).
+__attribute__((target_clones("avx2", "default"))) void scan(const TrigPoly& p, const Tables& t, double* __restrict f) {
+  for (int j = 0; j < kScan; ++j) f[j] = p.a[0];
+  for (int k = 1; k <= kDegree; ++k) {
+    const double ak = p.a[k], bk = p.b[k];
+    const double* __restrict c = t.scan_cos[k];
+    const double* __restrict sn = t.scan_sin[k];
+    for (int j = 0; j < kScan; ++j) f[j] += ak * c[j] + bk * sn[j];
+  }
+  f[kScan] = f[0];
+}
+
+// quiet[j]: interval j has no zero at its ends, no sign change and min(|F(lo)|, |F(hi)|) >
+// max|F''| h^2 / 8, the test search() starts with (the same expression: the same decision), for
+// every interval in one branch-free loop.
+__attribute__((target_clones("avx2", "default"))) void quiet_intervals(const double* __restrict f,
+                                                                      const double* __restrict h, double curvature,
+                                                                      unsigned char* __restrict quiet) {
+  for (int j = 0; j < kScan; ++j) {
+    const double lo = f[j], hi = f[j + 1];
+    const bool same = (lo < 0) == (hi < 0);
+    const bool nonzero = (lo != 0) & (hi != 0);
+    const bool certified = std::min(std::abs(lo), std::abs(hi)) > curvature * h[j] * h[j] / 8;
+    quiet[j] = same & nonzero & certified;
+  }
+}
+
 }  // namespace
 
 std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
@@ -218,7 +251,7 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
 
   // Exact coefficients of F from kFit samples.
   double samples[kFit];
-  for (int j = 0; j < kFit; ++j) samples[j] = elim.F(t.fit_phi[j]);
+  for (int j = 0; j < kFit; ++j) samples[j] = elim.F(t.fit_c[j], t.fit_s[j]);
   TrigPoly p;
   double scale = 0;
   for (int k = 0; k <= kDegree; ++k) {
@@ -232,15 +265,8 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   if (!(scale > 0) || !std::isfinite(scale)) return out;
   for (int k = 0; k <= kDegree; ++k) p.a[k] /= scale, p.b[k] /= scale;
 
-  // F on the scan: the same sums as term by term at each phi, term k over every phi at once.
-  double f[kScan];
-  for (int j = 0; j < kScan; ++j) f[j] = p.a[0];
-  for (int k = 1; k <= kDegree; ++k) {
-    const double ak = p.a[k], bk = p.b[k];
-    const double* __restrict c = t.scan_cos[k];
-    const double* __restrict sn = t.scan_sin[k];
-    for (int j = 0; j < kScan; ++j) f[j] += ak * c[j] + bk * sn[j];
-  }
+  double f[kScan + 1];
+  scan(p, t, f);
 
   // Every interval of the scan either has a sign change (one root, refined), or is certified free
   // of roots by |F| >= min(|F(lo)|, |F(hi)|) - max|F''| h^2 / 8 (the error bound of linear
@@ -253,8 +279,12 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     curvature += k * k * std::hypot(p.a[k], p.b[k]);
     jerk += k * k * k * std::hypot(p.a[k], p.b[k]);
   }
+  unsigned char quiet[kScan];
+  quiet_intervals(f, t.scan_h, curvature, quiet);
   std::vector<double> roots;
+  roots.reserve(2 * kDegree);  // F has at most 2 * kDegree roots
   for (int j = 0; j < kScan; ++j) {
+    if (quiet[j]) continue;  // what search() would certify at once
     const int next = (j + 1) % kScan;
     const double lo = t.scan_phi[j], hi = t.scan_phi[j + 1];  // hi = pi for the last interval
     if (f[j] == 0) {
@@ -299,7 +329,9 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     mid -= step;
     return loops(A, mid, f, J) <= std::max(ep, eq) + 2 * eps * size;
   };
+  out.reserve(2 * kDegree);
   std::vector<double> error;  // closure error of each pose in out
+  error.reserve(2 * kDegree);
   auto add = [&](const Pose& guess, double phi) {
     if (!guess.allFinite()) return;
     RRR3Fk polished = fk(alpha, guess, 8, 1e-13);

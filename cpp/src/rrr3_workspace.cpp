@@ -5,26 +5,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace robokin {
 namespace {
 
-// det A / R_e and det B / l1^3 at one pose, or false when a leg cannot reach: the robot's own
-// inverse model (leg_alpha_args, via RRR3::ik) and Jacobians (RRR3::jacobians_at), one implementation
-// for the map, RRR3::singularity and the planner.
-bool dets(const RRR3& robot, const Pose& pose, const Mode& mode, double& det_a, double& det_b) {
-  Eigen::Vector3d alpha;
-  if (robot.ik(pose, mode, alpha.data()) >= 0) return false;
+// det A / R_e and det B / l1^3 at one pose whose actuated angles alpha (RRR3::ik's) are known: the
+// robot's own Jacobians (RRR3::jacobians_at), one implementation for the map, RRR3::singularity
+// and the planner.
+void dets(const RRR3& robot, const Pose& pose, const Eigen::Vector3d& alpha, double& det_a, double& det_b) {
   Eigen::Matrix3d A, B;
   robot.jacobians_at(pose, robot.elbows(alpha), A, B);
   det_a = A.determinant() / robot.platform_radius();
   det_b = B.determinant() / (robot.l1() * robot.l1() * robot.l1());
-  return true;
 }
 
 }  // namespace
 
-RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol, Progress* progress) {
+void RRR3WorkspaceOptions::validate() const {
+  if (!std::isfinite(phi)) throw std::invalid_argument("phi: must be finite");
+  check_mode(mode);
+  if (n < 2 || n > 5000) throw std::invalid_argument("n: expected a grid size in [2, 5000], got " + std::to_string(n));
+  if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
+}
+
+RRR3Workspace workspace(const RRR3& robot, const RRR3WorkspaceOptions& options, Progress* progress) {
+  options.validate();
+  const double phi = options.phi, tol = options.tol;
+  const Mode& mode = options.mode;
+  const long n = options.n;
   RRR3Workspace w;
   w.n = n;
   const double reach = robot.l1() + robot.l2();
@@ -43,11 +53,18 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
 
   std::vector<double> det_a(n * n, 0.0);
   parallel_for(n, 16, [&](long j0, long j1) {
+    // One row's inverse model at once (RRR3::ik_batch: RRR3::ik's bits, NaN rows where a leg
+    // cannot reach; a row is below its threshold for threads, so it runs here).
+    std::vector<double> poses(3 * n), alpha(3 * n);
     for (long j = j0; j < j1; ++j) {
       const double y = w.y0 + (j + 0.5) * w.h;
+      for (long i = 0; i < n; ++i) poses[3 * i] = w.x0 + (i + 0.5) * w.h, poses[3 * i + 1] = y, poses[3 * i + 2] = phi;
+      robot.ik_batch(poses.data(), n, mode, alpha.data());
       for (long i = 0; i < n; ++i) {
+        const Eigen::Vector3d a(alpha[3 * i], alpha[3 * i + 1], alpha[3 * i + 2]);
+        if (std::isnan(a(0))) continue;  // unreachable
         double da, db;
-        if (!dets(robot, Pose(w.x0 + (i + 0.5) * w.h, y, phi), mode, da, db)) continue;
+        dets(robot, Pose(poses[3 * i], y, phi), a, da, db);
         det_a[j * n + i] = da;
         w.cells[j * n + i] = static_cast<std::uint8_t>(
             std::abs(db) < tol ? WorkspaceCell::Serial : std::abs(da) < tol ? WorkspaceCell::Parallel : WorkspaceCell::Regular);
@@ -101,14 +118,15 @@ RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n,
   return w;
 }
 
-std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
-                                 long n, double tol, Progress* progress) {
+std::vector<double> region_areas(const std::vector<RRR3>& robots, const RRR3WorkspaceOptions& options,
+                                 Progress* progress) {
+  options.validate();
   std::vector<double> out;
   out.reserve(robots.size());
   const long parts = static_cast<long>(robots.size());
   for (long k = 0; k < parts; ++k) {
     PartProgress part(progress, k, parts);
-    out.push_back(workspace(robots[k], phi, mode, n, tol, progress ? &part : nullptr).region_area);
+    out.push_back(workspace(robots[k], options, progress ? &part : nullptr).region_area);
   }
   return out;
 }

@@ -217,9 +217,16 @@ def _ur_chain(robot) -> Chain:
 _UR_SOLVERS: dict = {}
 
 
+_UR_LAST: list = [None, None, None]  # (robot, limits, solver) of the last cached call
+
+
 def _ur_solver(robot, limits):
     """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
-    used last; a chain is held by its entry, so its id cannot be reused while cached."""
+    used last; a chain is held by its entry, so its id cannot be reused while cached. The same
+    Chain with the same "default" / None limits as the call before is answered first."""
+    last = _UR_LAST
+    if robot is last[0] and limits is last[1]:
+        return last[2]
     chain = _ur_chain(robot)
     if not (limits is None or (isinstance(limits, str) and limits == "default")):
         return _core._URSolver(chain, limits)
@@ -229,6 +236,8 @@ def _ur_solver(robot, limits):
         if len(_UR_SOLVERS) >= 16:
             _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
         hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
+    if robot is chain:  # a Chain (a dict's chain is looked up by value each time)
+        last[:] = [chain, limits, hit[1]]
     return hit[1]
 
 
@@ -258,6 +267,9 @@ def ur(target, robot, limits="default") -> IKSolutions:
         solutions of which one representative per shoulder and elbow is returned, "wrist
         singular", chosen with the elbow as near a right angle as the continuum allows).
     """
+    last = _UR_LAST  # _ur_solver's first test, inline: the same Chain and limits as the call before
+    if robot is last[0] and limits is last[1]:
+        return last[2].solve(target)
     return _ur_solver(robot, limits).solve(target)
 
 

@@ -7,6 +7,13 @@ namespace robokin {
 
 // a wrapped to [-pi, pi] (exact: std::remainder by 2 pi, which leaves |a| <= pi as it is: the
 // quotient rounds to 0, half to even at +-pi; skipping the call there is the same result, faster).
-inline double wrap_angle(double a) { return std::abs(a) <= M_PI ? a : std::remainder(a, 2.0 * M_PI); }
+// For pi < |a| < 3 pi the quotient is +-1 and a -+ 2 pi is exact (Sterbenz: a within [pi, 4 pi]):
+// the same result again (its zero signed as a's), without the call.
+inline double wrap_angle(double a) {
+  const double m = std::abs(a);
+  if (m <= M_PI) return a;
+  if (m < 3.0 * M_PI) return a < 0 ? -(m - 2.0 * M_PI) : m - 2.0 * M_PI;  // -0 for -2 pi, as remainder
+  return std::remainder(a, 2.0 * M_PI);
+}
 
 }  // namespace robokin

@@ -106,6 +106,10 @@ class Chain {
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
   void fk(const double* q, Rigid& out) const;
   void fk_jacobian(const double* q, Rigid& out, double* jac_colmajor_6xn) const;
+  // count <= kFkFew configurations (count x dof, row-major) evaluated together, one pass of the
+  // batch kernel: out[k] has the bits fk gives for row k (for the closed forms' checks).
+  static constexpr int kFkFew = 8;
+  void fk_few(const double* q, int count, Rigid* out) const;
   // count configurations (count x dof, row-major) -> count frames (16 values each) or points (3);
   // false when some result is not finite (joint values or lengths near overflow).
   bool fk_batch(const double* q, long count, double* out, FkOutput what = FkOutput::Frame,

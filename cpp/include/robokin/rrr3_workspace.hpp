@@ -20,17 +20,27 @@ struct RRR3Workspace {
                                 // sweep at this orientation without crossing a singularity
 };
 
+// What a workspace map is made of.
+struct RRR3WorkspaceOptions {
+  double phi = 0;             // the platform's orientation (rad)
+  Mode mode{1, 1, 1};         // the working mode
+  long n = 200;               // n x n cells, n in [2, 5000]
+  double tol = kSingularTol;  // singular cell: |det B| / l1^3 or |det A| / R_e below tol
+
+  // Throws std::invalid_argument("name: ...") for an option out of range.
+  void validate() const;
+};
+
 // The workspace at orientation phi in one working mode. The grid is the square around the
 // intersection of the three disks the platform centre can reach (leg i: centre O_i - R(phi) b_i,
 // radius l1 + l2). A reachable cell is "serial" when |det B| / l1^3 < tol and "parallel" when
 // |det A| / R_e < tol or det A has the opposite sign in a 4-neighbour (a singular curve crosses
 // between the two cell centres, so the curve shows without gaps however fine it is). Uses every core.
-RRR3Workspace workspace(const RRR3& robot, double phi, const Mode& mode, long n, double tol,
-                        Progress* progress = nullptr);
+// Validates the options (std::invalid_argument).
+RRR3Workspace workspace(const RRR3& robot, const RRR3WorkspaceOptions& options, Progress* progress = nullptr);
 
-// The largest singularity-free region area of each robot of a design study, at orientation phi
-// in mode.
-std::vector<double> region_areas(const std::vector<RRR3>& robots, double phi, const Mode& mode,
-                                 long n, double tol, Progress* progress = nullptr);
+// The largest singularity-free region area of each robot of a design study, on the maps of options.
+std::vector<double> region_areas(const std::vector<RRR3>& robots, const RRR3WorkspaceOptions& options,
+                                 Progress* progress = nullptr);
 
 }  // namespace robokin
