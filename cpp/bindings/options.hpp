@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <functional>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -48,6 +49,14 @@ template <class T>
 std::vector<FieldInfo>& fields_of() {
   static std::vector<FieldInfo> fields;
   return fields;
+}
+
+// T's fields' setters from a Python value, in the order of fields_of<T>() (from_kwargs calls them
+// on the struct directly: no Python attribute machinery per keyword).
+template <class T>
+std::vector<std::function<void(T&, py::handle)>>& setters_of() {
+  static std::vector<std::function<void(T&, py::handle)>> setters;
+  return setters;
 }
 
 template <class T>
@@ -150,6 +159,7 @@ class OptionsClass {
     } else {
       cls_.def_readwrite(name, member, doc);
       fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
+      setters_of<T>().push_back([member](T& o, py::handle v) { o.*member = v.cast<V>(); });
       return *this;
     }
   }
@@ -163,43 +173,54 @@ class OptionsClass {
   // A field shown to Python as another type V (an enum as its name): get(const T&) -> V, set(T&, V).
   template <class V, class Get, class Set>
   OptionsClass& field_as(const char* name, Get get, Set set, const char* doc) {
-    return field_as(name, FieldKind<V>::name(), get, set, doc);
+    cls_.def_property(name, get, set, doc);
+    fields_of<T>().push_back({name, FieldKind<V>::name(), false});
+    setters_of<T>().push_back([set](T& o, py::handle v) { set(o, v.cast<V>()); });
+    return *this;
   }
 
-  // The same with what the field takes said in words (its setter converts and checks the value).
+  // The same with what the field takes said in words: set(T&, py::handle) converts and checks.
   template <class Get, class Set>
   OptionsClass& field_as(const char* name, const std::string& kind, Get get, Set set, const char* doc) {
     cls_.def_property(name, get, set, doc);
     fields_of<T>().push_back({name, kind, false});
+    setters_of<T>().push_back(set);
     return *this;
   }
 
   // T from keyword arguments (a dict): each must name a field and convert to its type.
   static T from_kwargs(const py::handle& kwargs) {
-    py::object obj = py::cast(T{});
+    T o{};
+    const auto& fields = fields_of<T>();
     for (auto item : py::reinterpret_borrow<py::dict>(kwargs)) {
       const std::string name = py::str(item.first).cast<std::string>();
-      const auto& fields = fields_of<T>();
       const auto f = std::find_if(fields.begin(), fields.end(), [&](const FieldInfo& x) { return x.name == name; });
       if (f == fields.end())
         throw py::type_error("unexpected keyword argument '" + name + "' (options: " + join(field_names<T>()) + ")");
-      const std::string got = py::str(py::type::handle_of(item.second).attr("__name__")).cast<std::string>();
       if (f->integer && PyBool_Check(item.second.ptr())) throw py::type_error(name + ": expected " + f->kind + ", got bool");
       try {
-        obj.attr(name.c_str()) = item.second;
+        setters_of<T>()[static_cast<std::size_t>(f - fields.begin())](o, item.second);
+      } catch (const py::cast_error&) {
+        bad_value(*f, item.second);
       } catch (py::error_already_set& e) {
         if (!e.matches(PyExc_TypeError)) throw;
-        // An int too large for the field's C type converts to nothing: a bad value, not a bad kind.
-        if (f->integer && PyIndex_Check(item.second.ptr()))
-          throw py::value_error(name + ": out of range, got " + py::repr(item.second).cast<std::string>());
-        throw py::type_error(name + ": expected " + f->kind + ", got " + got);
+        bad_value(*f, item.second);
       }
     }
-    return obj.cast<T>();
+    return o;
   }
 
  private:
   py::class_<T> cls_;
+
+  // A value that did not convert: an int too large for the field's C type is a bad value (out of
+  // range), anything else a bad kind.
+  [[noreturn]] static void bad_value(const FieldInfo& f, py::handle value) {
+    if (f.integer && PyIndex_Check(value.ptr()))
+      throw py::value_error(f.name + ": out of range, got " + py::repr(value).cast<std::string>());
+    const std::string got = py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+    throw py::type_error(f.name + ": expected " + f.kind + ", got " + got);
+  }
 
   static std::string join(const std::vector<std::string>& names) {
     std::string s;
