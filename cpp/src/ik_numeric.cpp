@@ -10,6 +10,7 @@
 #include <ctime>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace robokin {
@@ -129,13 +130,11 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   Jt_.resize(m_, n_);
   Jw_.resize(m_, n_);
   M_.resize(m_, n_);
-  An_.resize(n_, n_);
   e_.resize(m_);
   et_.resize(m_);
   r_.resize(m_);
   dq_.resize(n_);
   a_.resize(n_);
-  g_.resize(n_);
   qt_.resize(n_);
   qb_.resize(n_);
   frozen_.assign(n_, false);
@@ -212,25 +211,44 @@ void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const
     if (frozen_[i]) dq_(i) = qt_(i) - q(i);
 }
 
-// dq = (J^T J + (mu + rel max diag(J^T J)) I)^-1 J^T r; fixed-size arithmetic for 6 x 6.
-void IkSolver::normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq) {
-  if (m_ == 6 && n_ == 6) {
-    using M6 = Eigen::Matrix<double, 6, 6>;
-    using V6 = Eigen::Matrix<double, 6, 1>;
-    const Eigen::Map<const M6> Jf(J.data());
-    M6 A;
-    A.noalias() = Jf.transpose() * Jf;
-    A.diagonal().array() += mu + rel * A.diagonal().maxCoeff();
-    V6 g;
-    g.noalias() = Jf.transpose() * Eigen::Map<const V6>(r.data());
-    Eigen::Map<V6>(dq.data()) = A.llt().solve(g);
-    return;
+namespace {
+
+// dq = (J^T J + s I)^-1 J^T r = J^T (J J^T + s I)^-1 r, from the smaller of the two systems: K x K
+// with K = min(rows, joints) <= 6 (fixed when 6: unrolled), solved by ldlt_in_place (linalg.hpp); when it
+// is not positive definite (J rank-deficient and s ~ 0), the system's least-squares solution.
+template <int K, class JM>
+void normal_step(const JM& J, const Vector& r, double s, Vector& dq) {
+  using Small = Eigen::Matrix<double, K, K, 0, 6, 6>;
+  using SmallVector = Eigen::Matrix<double, K, 1, 0, 6, 1>;
+  const bool wide = J.cols() > J.rows();
+  Small A;
+  SmallVector y;
+  if (wide) {
+    A.noalias() = J * J.transpose();
+    y = r;
+  } else {
+    A.noalias() = J.transpose() * J;
+    y.noalias() = J.transpose() * r;
   }
-  An_.noalias() = J.transpose() * J;
-  An_.diagonal().array() += mu + rel * An_.diagonal().maxCoeff();
-  g_.noalias() = J.transpose() * r;
-  llt_n_.compute(An_);
-  dq = llt_n_.solve(g_);
+  A.diagonal().array() += s;
+  const Small A0 = A;
+  double dmin, dmax;
+  if (ldlt_in_place(A, dmin, dmax)) ldlt_solve_in_place(A, y);
+  else y = Eigen::MatrixXd(A0).completeOrthogonalDecomposition().solve(Eigen::VectorXd(y));
+  if (wide) dq.noalias() = J.transpose() * y;
+  else dq = y;
+}
+
+}  // namespace
+
+// dq = (J^T J + (mu + rel max diag(J^T J)) I)^-1 J^T r, the damped normal equations (max diag(J^T J)
+// is the largest squared column norm of J).
+void IkSolver::normal_solve(const Eigen::MatrixXd& J, const Vector& r, double mu, double rel, Vector& dq) {
+  const double s = mu + (rel > 0 ? rel * J.colwise().squaredNorm().maxCoeff() : 0.0);
+  if (m_ == 6 && n_ == 6) return normal_step<6>(Eigen::Map<const Eigen::Matrix<double, 6, 6>>(J.data()), r, s, dq);
+  if (m_ == 6 && n_ > 6)
+    return normal_step<6>(Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(J.data(), 6, n_), r, s, dq);
+  normal_step<Eigen::Dynamic>(J, r, s, dq);
 }
 
 // dq = J^T (J J^T + lambda^2 I)^-1 r = (J^T J + lambda^2 I)^-1 J^T r, the damped least-squares
@@ -427,22 +445,24 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
     if (!fit(i, q(i))) q(i) = clamp(i, q(i));
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
-  std::mt19937_64 rng(seed);
+  std::optional<std::mt19937_64> rng;  // seeded at the first restart (seeding costs ~2 % of a solve)
   for (int k = 0; k <= restarts_; ++k) {
     if (k > 0) {
       if (clock.spent()) break;
-      random_q(rng, q);
+      if (!rng) rng.emplace(seed);
+      random_q(*rng, q);
     }
     ++r.attempts;
     report(progress, k, restarts_ + 1);
     PartProgress this_attempt(progress, k, restarts_ + 1);
-    const bool ok = attempt(target, q, r.iterations, opt_.max_iter, clock, k < restarts_,
-                            progress ? &this_attempt : nullptr);
+    if (attempt(target, q, r.iterations, opt_.max_iter, clock, k < restarts_, progress ? &this_attempt : nullptr)) {
+      best = q;
+      break;
+    }
     double ep, er;
     errors(target, q.data(), ep, er);
     const double c = ep * ep + er * er;
-    if (ok || c < best_cost) best = q, best_cost = c;
-    if (ok) break;
+    if (c < best_cost) best = q, best_cost = c;
   }
   r.q = best;
   finalise(target, r);

@@ -13,46 +13,67 @@
 
 namespace robokin {
 
+// A = L D L^T in place for a symmetric A (L unit lower triangular, D diagonal): L's strict lower part
+// in A's, 1 / D on A's diagonal (one division a column, no square root: the factorisation is a
+// chain of dependent columns, and these are its longest latencies); the upper half is not read.
+// Written out for A's size (fixed: unrolled, no calls; dynamic up to 6 rows: no allocation). False
+// when a pivot is not positive (A not positive definite); dmin and dmax are the smallest and largest
+// pivots (D's entries, the squares of a Cholesky factor's diagonal).
+template <class Mat>
+bool ldlt_in_place(Mat& A, double& dmin, double& dmax) {
+  constexpr int kMax = Mat::MaxRowsAtCompileTime;
+  static_assert(kMax != Eigen::Dynamic, "ldlt_in_place: a matrix of bounded size");
+  const int n = static_cast<int>(A.rows());
+  double d[kMax], v[kMax];
+  dmin = std::numeric_limits<double>::infinity();
+  dmax = 0.0;
+  for (int j = 0; j < n; ++j) {
+    double dj = A(j, j);
+    for (int k = 0; k < j; ++k) {
+      v[k] = A(j, k) * d[k];  // L(j, k) D(k)
+      dj -= A(j, k) * v[k];
+    }
+    if (!(dj > 0.0)) return false;  // also NaN
+    d[j] = dj;
+    dmin = std::min(dmin, dj);
+    dmax = std::max(dmax, dj);
+    const double inv = 1.0 / dj;
+    A(j, j) = inv;
+    for (int i = j + 1; i < n; ++i) {
+      double x = A(i, j);
+      for (int k = 0; k < j; ++k) x -= A(i, k) * v[k];
+      A(i, j) = x * inv;
+    }
+  }
+  return true;
+}
+
+// y <- (L D L^T)^-1 y for ldlt_in_place's factors: two unit triangular solves and the diagonal.
+template <class Mat, class Vec>
+void ldlt_solve_in_place(const Mat& L, Vec& y) {
+  const int n = static_cast<int>(L.rows());
+  for (int i = 0; i < n; ++i)  // L z = y
+    for (int k = 0; k < i; ++k) y(i) -= L(i, k) * y(k);
+  for (int i = n - 1; i >= 0; --i) {  // D L^T x = z
+    y(i) *= L(i, i);
+    for (int k = i + 1; k < n; ++k) y(i) -= L(k, i) * y(k);
+  }
+}
+
 // out <- J^T (J J^T + lambda^2 I)^-1 rhs, the minimum-norm (damped) solution of J out = rhs; the
 // least-squares minimum-norm solution when J J^T is singular and lambda = 0. M task rows: the
-// M x M system is solved by a Cholesky factorisation written out for fixed M (no calls, no
-// pivoting: J J^T is symmetric positive semi-definite), and handed to a complete orthogonal
-// decomposition of J when it is (nearly) singular, as before.
+// M x M system is solved by ldlt_in_place (no pivoting: J J^T is symmetric positive semi-definite),
+// and handed to a complete orthogonal decomposition of J when it is (nearly) singular: a Cholesky
+// factor's smallest diagonal entry below 1e-9 times its largest (the pivots' square roots).
 template <int M, class JMap, class Out>
 void min_norm_solve(const JMap& J, const Eigen::Matrix<double, M, 1>& rhs, double damping, Out& out) {
   Eigen::Matrix<double, M, M> A;
   A.noalias() = J * J.transpose();
   A.diagonal().array() += damping * damping;
-  // A = L L^T, L lower triangular (stored in the lower half of A).
-  bool ok = true;
-  double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
-  for (int j = 0; j < M && ok; ++j) {
-    double d = A(j, j);
-    for (int k = 0; k < j; ++k) d -= A(j, k) * A(j, k);
-    if (!(d > 0.0)) {
-      ok = false;
-      break;
-    }
-    d = std::sqrt(d);
-    A(j, j) = d;
-    dmin = std::min(dmin, d);
-    dmax = std::max(dmax, d);
-    for (int i = j + 1; i < M; ++i) {
-      double x = A(i, j);
-      for (int k = 0; k < j; ++k) x -= A(i, k) * A(j, k);
-      A(i, j) = x / d;
-    }
-  }
-  if (ok && dmin > 1e-9 * std::max(1.0, dmax)) {
+  double dmin, dmax;
+  if (ldlt_in_place(A, dmin, dmax) && std::sqrt(dmin) > 1e-9 * std::max(1.0, std::sqrt(dmax))) {
     Eigen::Matrix<double, M, 1> y = rhs;
-    for (int i = 0; i < M; ++i) {  // L z = rhs
-      for (int k = 0; k < i; ++k) y(i) -= A(i, k) * y(k);
-      y(i) /= A(i, i);
-    }
-    for (int i = M - 1; i >= 0; --i) {  // L^T y = z
-      for (int k = i + 1; k < M; ++k) y(i) -= A(k, i) * y(k);
-      y(i) /= A(i, i);
-    }
+    ldlt_solve_in_place(A, y);
     out.noalias() = J.transpose() * y;
   } else {
     out = Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(rhs));

@@ -148,11 +148,10 @@ class IkSolver {
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
   Matrix6X J6_, HA_;
-  Eigen::MatrixXd J_, Jt_, Jw_, M_, An_;
-  Vector e_, et_, r_, dq_, a_, g_, qt_, qb_;
+  Eigen::MatrixXd J_, Jt_, Jw_, M_;
+  Vector e_, et_, r_, dq_, a_, qt_, qb_;
   std::vector<bool> frozen_;
   Rigid T_;
-  Eigen::LLT<Eigen::MatrixXd> llt_n_;
 };
 
 // What ik_batch found, one row per target.
