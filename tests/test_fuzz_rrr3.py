@@ -228,7 +228,8 @@ def test_ik_newton_with_any_arguments(robot, pose, guess, max_iter, tol):
     assert alpha.shape == beta.shape == (3,)
     assert_finite(alpha, beta, res.error)
     assert isinstance(res.converged, bool) and 0 <= res.iterations <= max_iter
-    assert repr(res).startswith(f"RRR3Newton(converged={res.converged}")
+    assert repr(res) == (f"RRR3Newton(alpha={res.alpha!r}, beta={res.beta!r}, converged={res.converged}, "
+                         f"iterations={res.iterations}, error={res.error!r})")
     check_newton(robot, as_pose(pose), res, tol)
 
 
@@ -240,7 +241,8 @@ def test_fk_with_any_arguments(robot, alpha, guess, max_iter, tol):
         assert res.pose.shape == (3,)
         assert_finite(res.pose, res.error)
         assert isinstance(res.converged, bool) and 0 <= res.iterations <= max_iter
-        assert repr(res).startswith(f"RRR3Fk(converged={res.converged}")
+        assert repr(res) == (f"RRR3Fk(pose={res.pose!r}, converged={res.converged}, iterations={res.iterations}, "
+                             f"error={res.error!r})")
         check_fk(robot, np.asarray(alpha, float), res, tol)
     poses = run(lambda: robot.fk_all(alpha), "alpha")
     if poses is not None:
@@ -302,7 +304,8 @@ def test_plan_loop_with_any_arguments(robot, points, sign, nominals, mode, avoid
     if loop is None:
         return
     tried = rk.RRR3LoopOptions().nominals if nominals is None else tuple(np.asarray(nominals, float))
-    assert isinstance(loop.found, bool) and repr(loop).startswith(f"RRR3Loop(found={loop.found}")
+    assert isinstance(loop.found, bool)
+    assert repr(loop) == f"RRR3Loop(plan={loop.plan!r}, nominal={loop.nominal!r}, found={loop.found}, reason={loop.reason!r})"
     if not loop.found:
         assert loop.reason in ("start", "plan") and loop.nominal is None and loop.plan.poses.shape == (0, 3)
         return
@@ -655,7 +658,9 @@ def check_plan(robot, points, plan, phi, mode, avoid, max_step, margin, serial_m
     assert plan.det_a_norm.shape == plan.det_b_norm.shape == plan.distance.shape == (k,)
     assert_finite(plan.poses)
     np.testing.assert_array_equal(plan.poses[:, :2], points)
-    assert plan.sign in (-1, 0, 1) and repr(plan) == f"RRR3Plan(points={k}, feasible={plan.feasible})"
+    assert plan.sign in (-1, 0, 1)
+    assert repr(plan).startswith("RRR3Plan(poses=" + (f"<array ({k}, 3) float64>" if 3 * k > 8 else repr(plan.poses)))
+    assert repr(plan).endswith(f", sign={plan.sign}, feasible={plan.feasible})")
     if not avoid:
         assert np.all(plan.poses[:, 2] == phi)
     else:

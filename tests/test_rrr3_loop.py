@@ -92,7 +92,8 @@ def test_loop_result_pickles_and_reprs(robot, paths):
     copy = pickle.loads(pickle.dumps(loop))
     assert (copy.found, copy.nominal, copy.reason) == (loop.found, loop.nominal, loop.reason)
     np.testing.assert_array_equal(copy.plan.poses, loop.plan.poses)
-    assert repr(loop) == repr(copy) == "RRR3Loop(found=True, nominal=0.0, reason=None)"
+    assert repr(loop) == repr(copy) == f"RRR3Loop(plan={loop.plan!r}, nominal=0.0, found=True, reason=None)"
+    assert repr(loop.plan).startswith(f"RRR3Plan(poses=<array ({len(loop.plan.poses)}, 3) float64>")
     o = rk.RRR3LoopOptions(sign=-1, nominals=[0.1, -0.2])
     assert pickle.loads(pickle.dumps(o)) == o and o.nominals == (0.1, -0.2)
 

@@ -19,12 +19,6 @@
 namespace robokin::bind {
 namespace {
 
-double length_arg(double v, const char* name, bool positive) {
-  if (!std::isfinite(v)) fail(std::string(name) + ": must be finite");
-  if (positive && !(v > 0)) fail(std::string(name) + ": must be positive");
-  return v;
-}
-
 ClosedFormSolutions planar_rp(ArrayLike target, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
@@ -32,7 +26,7 @@ ClosedFormSolutions planar_rp(ArrayLike target, py::handle limits) {
 
 ClosedFormSolutions planar_2r(ArrayLike target, double a1, double a2, py::handle limits) {
   const Vector p = as_vector(target, "target", 2);
-  return ik_planar_2r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), p(0), p(1), limits_arg(limits, 2));
+  return ik_planar_2r(a1, a2, p(0), p(1), limits_arg(limits, 2));
 }
 
 ClosedFormSolutions planar_3r(ArrayLike target, double a1, double a2, double a3, const std::string& method,
@@ -40,18 +34,13 @@ ClosedFormSolutions planar_3r(ArrayLike target, double a1, double a2, double a3,
   const Vector p = as_vector(target, "target", 3);
   if (method != "algebraic" && method != "geometric")
     fail("method: expected 'algebraic' or 'geometric', got '" + method + "'");
-  return ik_planar_3r(length_arg(a1, "a1", true), length_arg(a2, "a2", true), length_arg(a3, "a3", false), p(0),
-                      p(1), p(2), method == "geometric", limits_arg(limits, 3));
+  return ik_planar_3r(a1, a2, a3, p(0), p(1), p(2), method == "geometric", limits_arg(limits, 3));
 }
 
+// The arm's lengths, checked by the core (ArmGeometry::validate).
 ArmGeometry arm_arg(double d1, double a2, double a3, double d3, double d4) {
-  ArmGeometry g;
-  g.d1 = length_arg(d1, "d1", false);
-  g.a2 = length_arg(a2, "a2", true);
-  g.a3 = length_arg(a3, "a3", false);
-  g.d3 = length_arg(d3, "d3", false);
-  g.d4 = length_arg(d4, "d4", false);
-  if (std::hypot(g.a3, g.d4) <= 0) fail("a3, d4: the forearm needs a length (a3 or d4 non-zero)");
+  const ArmGeometry g{d1, a2, a3, d3, d4};
+  g.validate();
   return g;
 }
 
@@ -63,7 +52,7 @@ ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, doub
 ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
                                     double d6, py::handle limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), T, limits_arg(limits, 6));
+  return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
 }
 
 py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
@@ -79,7 +68,6 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
     targets.push_back(Rigid::from_matrix(as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets")));
   const Vector q0 = as_vector(q0_obj, "q0", 6);
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
-  const double tool = length_arg(d6, "d6", false);
   const JointLimits lim = limits_arg(limits, 6);
   py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{6}});
   py::array_t<bool> ok(static_cast<py::ssize_t>(count));
@@ -88,7 +76,7 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   PythonProgress progress("spherical wrist path");
   {
     py::gil_scoped_release release;
-    ik_spherical_wrist_path(g, tool, targets.data(), count, q0.data(), lim, qd, okd, &progress);
+    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, &progress);
   }
   return py::make_tuple(q, ok);
 }
@@ -247,7 +235,8 @@ void bind_ik_closed(py::module_& m) {
       .def("__repr__", &repr);
   py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
       .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, py::handle limits) {
-             return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), length_arg(d6, "d6", false), limits_arg(limits, 6)};
+             check_length(d6, "d6");
+             return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), d6, limits_arg(limits, 6)};
            }),
            py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
            py::arg("limits") = py::none())

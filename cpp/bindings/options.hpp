@@ -6,6 +6,8 @@
 // TypeError naming the keyword. Results get a generic `__repr__` from their field names.
 #pragma once
 
+#include "arrays.hpp"
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -37,6 +39,25 @@ template <class V>
 struct FieldKind<std::optional<V>> {
   static constexpr bool integer = FieldKind<V>::integer;
   static std::string name() { return "None or " + FieldKind<V>::name(); }
+};
+
+// A field of a type Python sees as another (a list of numbers as a tuple; the 3-RRR's working mode
+// as a tuple of signs, specialised beside its bindings): kind() says what it takes in words,
+// to_python(v) gives the Python value, from_python(obj, name) converts and checks it, a ValueError
+// naming the field when it does not fit.
+template <class V>
+struct FieldCodec {
+  static constexpr bool defined = false;
+};
+template <>
+struct FieldCodec<std::vector<double>> {
+  static constexpr bool defined = true;
+  static std::string kind() { return "sequence of float"; }
+  static py::tuple to_python(const std::vector<double>& v) { return py::tuple(py::cast(v)); }
+  static std::vector<double> from_python(py::handle obj, const char* name) {
+    const Eigen::VectorXd a = as_vector(obj, name);
+    return {a.data(), a.data() + a.size()};
+  }
 };
 
 struct FieldInfo {
@@ -149,13 +170,17 @@ class OptionsClass {
   }
 
   // One field: read-write as its C++ type, an enum by its name (the core's name_of / parse
-  // overloads beside the enum).
+  // overloads beside the enum), a type with a FieldCodec as its codec says.
   template <class V>
   OptionsClass& field(const char* name, V T::*member, const char* doc) {
     if constexpr (std::is_enum_v<V>) {
       return field_as<std::string>(
           name, [member](const T& o) { return std::string(name_of(o.*member)); },
           [member](T& o, const std::string& v) { parse(v, o.*member); }, doc);
+    } else if constexpr (FieldCodec<V>::defined) {
+      return field_as(
+          name, FieldCodec<V>::kind(), [member](const T& o) { return FieldCodec<V>::to_python(o.*member); },
+          [member, name](T& o, py::handle v) { o.*member = FieldCodec<V>::from_python(v, name); }, doc);
     } else {
       cls_.def_readwrite(name, member, doc);
       fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});

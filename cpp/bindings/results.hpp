@@ -1,5 +1,5 @@
-// Result structs of the core, bound mechanically: each field once (a scalar read-only, an Eigen
-// member as a numpy array), and from that list a generic __repr__, a versioned pickle
+// Result structs of the core, bound mechanically: each field once (a scalar, string or bound class
+// read-only, an Eigen member as a numpy array, or as Python computes it from the struct), and from that list a generic __repr__, a versioned pickle
 // (kStateVersion, field values in order) and, for a batch result, __len__.
 #pragma once
 
@@ -24,13 +24,24 @@ class ResultClass {
   ResultClass(py::module_& m, const char* name, const char* doc, bool batch)
       : cls_(m, name, doc), name_(name), batch_(batch) {}
 
-  // A scalar field (bool, int, double), read-only.
+  // A field bound as it is, read-only: a scalar, a string, or a class bound before (a result inside
+  // a result).
   template <class V>
   ResultClass& value(const char* name, V T::*member, const char* doc) {
-    static_assert(std::is_arithmetic_v<V>, "value(): a scalar member");
     cls_.def_readonly(name, member, doc);
     names_.push_back(name);
     restore_.push_back([member](T& r, py::handle v, const char*, long) { r.*member = v.cast<V>(); });
+    return *this;
+  }
+
+  // A field shown as Python computes it from the struct: get(const T&) -> Python value, and its
+  // inverse for unpickling, set(T&, py::handle) (which checks what it reads; the fields before it
+  // are already restored).
+  template <class Get, class Set>
+  ResultClass& value_as(const char* name, Get get, Set set, const char* doc) {
+    cls_.def_property_readonly(name, get, doc);
+    names_.push_back(name);
+    restore_.push_back([set](T& r, py::handle v, const char*, long) { set(r, v); });
     return *this;
   }
 
@@ -54,7 +65,10 @@ class ResultClass {
     restore_.push_back([member](T& r, py::handle v, const char* field, long rows) {
       const auto a = aligned_array<Scalar>(v);
       constexpr int ndim = M::ColsAtCompileTime == 1 ? 1 : 2;
-      if (!a || a.ndim() != ndim || (rows >= 0 && a.shape(0) != rows))
+      constexpr int fixed_rows = M::RowsAtCompileTime, fixed_cols = M::ColsAtCompileTime;
+      if (!a || a.ndim() != ndim || (rows >= 0 && a.shape(0) != rows) ||
+          (fixed_rows != Eigen::Dynamic && a.shape(0) != fixed_rows) ||
+          (ndim == 2 && fixed_cols != Eigen::Dynamic && a.shape(1) != fixed_cols))
         fail(std::string("state: ") + field + " is not an array of the result's shape");
       const Eigen::Index n = a.shape(0), cols = ndim == 2 ? a.shape(1) : 1;
       r.*member = Eigen::Map<const M>(a.data(), n, cols);

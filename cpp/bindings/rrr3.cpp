@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "results.hpp"
 
 #include "robokin/rrr3.hpp"
 #include "robokin/rrr3_connect.hpp"
@@ -14,7 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <optional>
 
 namespace robokin::bind {
 namespace {
@@ -33,6 +34,19 @@ Mode as_mode(py::handle obj) {
   return m;
 }
 
+}  // namespace
+
+// The working mode as an options field: a tuple of signs in Python.
+template <>
+struct FieldCodec<Mode> {
+  static constexpr bool defined = true;
+  static std::string kind() { return "(m_0, m_1, m_2) of +-1"; }
+  static py::tuple to_python(const Mode& m) { return py::make_tuple(m[0], m[1], m[2]); }
+  static Mode from_python(py::handle obj, const char*) { return as_mode(obj); }
+};
+
+namespace {
+
 // A finite pose (x, y, phi) with |x|, |y| <= 1e100 m: squared distances to it stay finite, so the
 // closure errors of ik_newton and fk do (ik_batch gives NaN rows for any farther pose).
 Pose as_pose(py::handle obj, const char* name = "pose") {
@@ -47,20 +61,9 @@ void check_max_iter(int max_iter) {
   if (max_iter < 0 || max_iter > 100000) fail("max_iter: must be in [0, 100000], got " + std::to_string(max_iter));
 }
 
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-
 // Python's repr of a float: the shortest text that reads back as the same number.
 std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
 
-py::array_t<double> vec3(const Eigen::Vector3d& v) {
-  py::array_t<double> out(3);
-  std::copy(v.data(), v.data() + 3, out.mutable_data());
-  return out;
-}
 
 py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
 
@@ -211,9 +214,6 @@ RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, c
   return connect(r, start, goal, o, &progress);
 }
 
-// The working mode as an options field: a tuple in Python.
-py::tuple mode_tuple(const Mode& m) { return py::make_tuple(m[0], m[1], m[2]); }
-
 // "plan(points, *, phi=0.0, mode=(1, 1, 1), ...)": the options with their defaults, for a docstring.
 template <class T>
 std::string keyword_list(const std::string& head) {
@@ -284,247 +284,112 @@ void register_errors() {
   });
 }
 
-// RRR3Newton: ik_newton's answer.
-void bind_newton(py::module_& m) {
-  py::class_<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).")
-      .def_property_readonly("alpha", [](const RRR3Newton& r) { return vec3(r.alpha); })
-      .def_property_readonly("beta", [](const RRR3Newton& r) { return vec3(r.beta); })
-      .def_readonly("converged", &RRR3Newton::converged)
-      .def_readonly("iterations", &RRR3Newton::iterations)
-      .def_readonly("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
-      .def(py::pickle(  // (version, alpha, beta, converged, iterations, error)
-          [](const RRR3Newton& r) {
-            return py::make_tuple(kStateVersion, vec3(r.alpha), vec3(r.beta), r.converged, r.iterations, r.error);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 6, "RRR3Newton");
-            RRR3Newton r;
-            r.alpha = as_vector(t[1], "alpha", 3, false);
-            r.beta = as_vector(t[2], "beta", 3, false);
-            r.converged = t[3].cast<bool>();
-            r.iterations = t[4].cast<int>();
-            r.error = t[5].cast<double>();
-            return r;
-          }))
-      .def("__iter__", [](const RRR3Newton& r) { return py::iter(py::make_tuple(vec3(r.alpha), vec3(r.beta))); })
-      .def("__repr__", [](const RRR3Newton& r) {
-        return "RRR3Newton(converged=" + std::string(r.converged ? "True" : "False") +
-               ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
-               ", alpha=" + py::repr(vec3(r.alpha)).cast<std::string>() + ")";
+// The answers of ik_newton, fk and singularity.
+void bind_kinematics_results(py::module_& m) {
+  ResultClass<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).", false)
+      .array("alpha", &RRR3Newton::alpha, "Actuated angles (3,) (rad).")
+      .array("beta", &RRR3Newton::beta, "Elbow angles (3,) (rad), link 1 to link 2.")
+      .value("converged", &RRR3Newton::converged, "The residual fell below tol.")
+      .value("iterations", &RRR3Newton::iterations, "Newton steps taken.")
+      .value("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
+      .done_with([](py::class_<RRR3Newton>& cls) {
+        cls.def("__iter__", [](py::handle self) { return py::iter(py::make_tuple(self.attr("alpha"), self.attr("beta"))); });
       });
+  ResultClass<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.", false)
+      .array("pose", &RRR3Fk::pose, "The pose (x, y, phi) found.")
+      .value("converged", &RRR3Fk::converged, "The residual fell below tol.")
+      .value("iterations", &RRR3Fk::iterations, "Newton steps taken.")
+      .value("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
+      .done();
+  ResultClass<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.", false)
+      .value("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
+      .value("det_a", &RRR3Singularity::det_a, "det A.")
+      .value("det_b", &RRR3Singularity::det_b, "det B.")
+      .value("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.")
+      .value("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.")
+      .value("distance", &RRR3Singularity::distance,
+             "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.")
+      .value_as("leg", [](const RRR3Singularity& s) { return s.leg < 0 ? std::nullopt : std::optional<int>(s.leg); },
+                [](RRR3Singularity& s, py::handle v) { s.leg = v.is_none() ? -1 : v.cast<int>(); },
+                "The stretched or folded leg of a serial singularity, else None.")
+      .value_as("lines", [](const RRR3Singularity& s) { return s.lines.empty() ? std::nullopt : std::optional<std::string>(s.lines); },
+                [](RRR3Singularity& s, py::handle v) { s.lines = v.is_none() ? "" : v.cast<std::string>(); },
+                "For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.")
+      .done();
 }
 
-// RRR3Fk: fk's answer.
-void bind_fk(py::module_& m) {
-  py::class_<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.")
-      .def_property_readonly("pose", [](const RRR3Fk& r) { return vec3(r.pose); })
-      .def_readonly("converged", &RRR3Fk::converged)
-      .def_readonly("iterations", &RRR3Fk::iterations)
-      .def_readonly("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
-      .def(py::pickle(  // (version, pose, converged, iterations, error)
-          [](const RRR3Fk& r) { return py::make_tuple(kStateVersion, vec3(r.pose), r.converged, r.iterations, r.error); },
-          [](const py::tuple& t) {
-            check_state(t, 5, "RRR3Fk");
-            RRR3Fk r;
-            r.pose = as_vector(t[1], "pose", 3, false);
-            r.converged = t[2].cast<bool>();
-            r.iterations = t[3].cast<int>();
-            r.error = t[4].cast<double>();
-            return r;
-          }))
-      .def("__repr__", [](const RRR3Fk& r) {
-        return "RRR3Fk(converged=" + std::string(r.converged ? "True" : "False") +
-               ", iterations=" + std::to_string(r.iterations) + ", error=" + short_number(r.error) +
-               ", pose=" + py::repr(vec3(r.pose)).cast<std::string>() + ")";
-      });
+// The answers of plan, connect and plan_loop.
+void bind_plan_results(py::module_& m) {
+  ResultClass<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan and RRR3.connect: the poses to follow and what they give.", false)
+      .array("poses", &RRR3Plan::poses, "(K, 3) poses (x, y, phi).")
+      .array("alpha", &RRR3Plan::alpha, "(K, 3) actuated angles, NaN rows where unreachable.")
+      .array("det_a_norm", &RRR3Plan::det_a_norm, "det A / platform_radius along the path.")
+      .array("det_b_norm", &RRR3Plan::det_b_norm, "det B / l1^3 along the path.")
+      .array("distance", &RRR3Plan::distance,
+             "Distance to parallel singularities (inverse condition number of A) along the path.")
+      .value("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
+      .value("feasible", &RRR3Plan::feasible,
+             "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
+      .done();
+  ResultClass<RRR3Loop>(m, "RRR3Loop", "Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.", false)
+      .value("plan", &RRR3Loop::plan, "The closed RRR3Plan about nominal (no poses when none was found).")
+      .value_as("nominal", [](const RRR3Loop& l) { return l.found ? std::optional<double>(l.nominal) : std::nullopt; },
+                [](RRR3Loop& l, py::handle v) { l.nominal = v.is_none() ? std::nan("") : v.cast<double>(); },
+                "The nominal orientation used (rad), None when none was found.")
+      .value("found", &RRR3Loop::found, "A nominal orientation suited.")
+      .value_as("reason", [](const RRR3Loop& l) { return l.found ? std::nullopt : std::optional<std::string>(l.reason); },
+                [](RRR3Loop& l, py::handle v) { l.reason = v.is_none() ? "" : v.cast<std::string>(); },
+                "Why none was found: 'start' (no nominal puts the first point on the side) or 'plan'; None when found.")
+      .done();
 }
 
-// RRR3Singularity: singularity's answer.
-void bind_singularity(py::module_& m) {
-  py::class_<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.")
-      .def_readonly("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
-      .def_readonly("det_a", &RRR3Singularity::det_a)
-      .def_readonly("det_b", &RRR3Singularity::det_b)
-      .def_readonly("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.")
-      .def_readonly("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.")
-      .def_readonly("distance", &RRR3Singularity::distance,
-                    "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.")
-      .def_property_readonly("leg", [](const RRR3Singularity& s) -> py::object {
-        return s.leg < 0 ? py::object(py::none()) : py::object(py::int_(s.leg));
-      }, "The stretched or folded leg of a serial singularity, else None.")
-      .def_property_readonly("lines", [](const RRR3Singularity& s) -> py::object {
-        return s.lines.empty() ? py::object(py::none()) : py::object(py::str(s.lines));
-      }, "For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.")
-      .def(py::pickle(  // (version, kind, det_a, det_b, det_a_norm, det_b_norm, distance, leg, lines)
-          [](const RRR3Singularity& s) {
-            return py::make_tuple(kStateVersion, s.kind, s.det_a, s.det_b, s.det_a_norm, s.det_b_norm, s.distance, s.leg, s.lines);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 9, "RRR3Singularity");
-            return RRR3Singularity{t[1].cast<std::string>(), t[2].cast<double>(), t[3].cast<double>(),
-                                   t[4].cast<double>(),      t[5].cast<double>(), t[6].cast<double>(),
-                                   t[7].cast<int>(),         t[8].cast<std::string>()};
-          }))
-      .def("__repr__", [](const RRR3Singularity& s) {
-        return "RRR3Singularity(kind='" + s.kind + "', det_a_norm=" + std::to_string(s.det_a_norm) +
-               ", det_b_norm=" + std::to_string(s.det_b_norm) + ", distance=" + std::to_string(s.distance) + ")";
-      });
+// The cells of a workspace map as (n, n) codes; unpickled from the array, or from the bytes of
+// an earlier state.
+py::array_t<std::uint8_t> workspace_cells(const RRR3Workspace& w) {
+  py::array_t<std::uint8_t> out({w.n, w.n});
+  std::copy(w.cells.begin(), w.cells.end(), out.mutable_data());
+  return out;
 }
 
-// RRR3Plan: the answer of plan and connect.
-void bind_plan_result(py::module_& m) {
-  py::class_<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan: the poses to follow and what they give.")
-      .def_property_readonly("poses", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.poses)); },
-                             "(K, 3) poses (x, y, phi).")
-      .def_property_readonly("alpha", [](const RRR3Plan& p) { return to_numpy(Eigen::MatrixXd(p.alpha)); },
-                             "(K, 3) actuated angles, NaN rows where unreachable.")
-      .def_property_readonly("det_a_norm", [](const RRR3Plan& p) { return to_numpy(p.det_a_norm); },
-                             "det A / platform_radius along the path.")
-      .def_property_readonly("det_b_norm", [](const RRR3Plan& p) { return to_numpy(p.det_b_norm); },
-                             "det B / l1^3 along the path.")
-      .def_property_readonly("distance", [](const RRR3Plan& p) { return to_numpy(p.distance); },
-                             "Distance to parallel singularities (inverse condition number of A) along the path.")
-      .def_readonly("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
-      .def(py::pickle(  // (version, poses, alpha, det_a_norm, det_b_norm, distance, sign, feasible)
-          [](const RRR3Plan& p) {
-            return py::make_tuple(kStateVersion, to_numpy(Eigen::MatrixXd(p.poses)), to_numpy(Eigen::MatrixXd(p.alpha)),
-                                  to_numpy(p.det_a_norm), to_numpy(p.det_b_norm), to_numpy(p.distance), p.sign,
-                                  p.feasible);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 8, "RRR3Plan");
-            RRR3Plan p;
-            const Array poses = as_array(t[1], "poses"), alpha = as_array(t[2], "alpha");
-            if (poses.ndim() != 2 || poses.shape(1) != 3 || alpha.ndim() != 2 || alpha.shape(1) != 3)
-              fail("RRR3Plan state: poses and alpha must be (K, 3)");
-            p.poses = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(poses.data(), poses.shape(0), 3);
-            p.alpha = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(alpha.data(), alpha.shape(0), 3);
-            p.det_a_norm = as_vector(t[3], "det_a_norm", -1, false);
-            p.det_b_norm = as_vector(t[4], "det_b_norm", -1, false);
-            p.distance = as_vector(t[5], "distance", -1, false);
-            p.sign = t[6].cast<int>();
-            p.feasible = t[7].cast<bool>();
-            return p;
-          }))
-      .def_readonly("feasible", &RRR3Plan::feasible,
-                    "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
-      .def("__repr__", [](const RRR3Plan& p) {
-        return "RRR3Plan(points=" + std::to_string(p.poses.rows()) + ", feasible=" + (p.feasible ? "True" : "False") + ")";
-      });
-}
-
-// RRR3Loop: plan_loop's answer.
-void bind_loop_result(py::module_& m) {
-  py::class_<RRR3Loop>(m, "RRR3Loop", "Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.")
-      .def_readonly("plan", &RRR3Loop::plan, "The closed RRR3Plan about nominal (no poses when none was found).")
-      .def_property_readonly("nominal", [](const RRR3Loop& l) -> py::object {
-        return l.found ? py::object(py::float_(l.nominal)) : py::object(py::none());
-      }, "The nominal orientation used (rad), None when none was found.")
-      .def_readonly("found", &RRR3Loop::found)
-      .def_property_readonly("reason", [](const RRR3Loop& l) -> py::object {
-        return l.found ? py::object(py::none()) : py::object(py::str(l.reason));
-      }, "Why none was found: 'start' (no nominal puts the first point on the side) or 'plan'; None when found.")
-      .def(py::pickle(  // (version, plan, nominal, found, reason)
-          [](const RRR3Loop& l) { return py::make_tuple(kStateVersion, l.plan, l.nominal, l.found, l.reason); },
-          [](const py::tuple& t) {
-            check_state(t, 5, "RRR3Loop");
-            RRR3Loop l;
-            l.plan = t[1].cast<RRR3Plan>();
-            l.nominal = t[2].cast<double>();
-            l.found = t[3].cast<bool>();
-            l.reason = t[4].cast<std::string>();
-            return l;
-          }))
-      .def("__repr__", [](py::handle self) { return repr_fields(self, {"found", "nominal", "reason"}); });
+void restore_cells(RRR3Workspace& w, py::handle v) {
+  std::vector<std::uint8_t> cells;
+  if (py::isinstance<py::bytes>(v)) {
+    const std::string s = v.cast<std::string>();
+    cells.assign(s.begin(), s.end());
+  } else if (const auto a = aligned_array<std::uint8_t>(v)) {
+    cells.assign(a.data(), a.data() + a.size());
+  }
+  if (w.n < 0 || cells.size() != static_cast<size_t>(w.n * w.n)) fail("state: cells: n * n cell codes expected");
+  w.cells = std::move(cells);
 }
 
 // RRR3Workspace: workspace's answer.
 void bind_workspace_result(py::module_& m) {
-  py::class_<RRR3Workspace>(m, "RRR3Workspace", "Answer of RRR3.workspace: a constant-orientation map.")
-      .def_property_readonly("cells", [](const RRR3Workspace& w) {
-        py::array_t<std::uint8_t> out({w.n, w.n});
-        std::copy(w.cells.begin(), w.cells.end(), out.mutable_data());
-        return out;
-      }, "(n, n) codes, row j at y[j], column i at x[i]: 0 unreachable, 1 regular, 2 parallel, 3 serial.")
-      .def_property_readonly("x", [](const RRR3Workspace& w) {
-        return to_numpy(Eigen::VectorXd(w.x0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
-      }, "Cell centres along x (n,).")
-      .def_property_readonly("y", [](const RRR3Workspace& w) {
-        return to_numpy(Eigen::VectorXd(w.y0 + (Eigen::VectorXd::LinSpaced(w.n, 0, w.n - 1).array() + 0.5) * w.h));
-      }, "Cell centres along y (n,).")
-      .def_property_readonly("extent", [](const RRR3Workspace& w) {
-        return py::make_tuple(w.x0, w.x0 + w.n * w.h, w.y0, w.y0 + w.n * w.h);
-      }, "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.")
-      .def_readonly("cell_size", &RRR3Workspace::h)
-      .def(py::pickle(  // (version, n, x0, y0, h, cells (bytes), reachable_area, regular_area, region_area)
-          [](const RRR3Workspace& w) {
-            return py::make_tuple(kStateVersion, w.n, w.x0, w.y0, w.h,
-                                  py::bytes(reinterpret_cast<const char*>(w.cells.data()), w.cells.size()),
-                                  w.reachable_area, w.regular_area, w.region_area);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 9, "RRR3Workspace");
-            RRR3Workspace w;
-            w.n = t[1].cast<long>();
-            w.x0 = t[2].cast<double>();
-            w.y0 = t[3].cast<double>();
-            w.h = t[4].cast<double>();
-            const std::string cells = t[5].cast<std::string>();
-            if (w.n < 0 || cells.size() != static_cast<size_t>(w.n * w.n)) fail("RRR3Workspace state: n * n cells expected");
-            w.cells.assign(cells.begin(), cells.end());
-            w.reachable_area = t[6].cast<double>();
-            w.regular_area = t[7].cast<double>();
-            w.region_area = t[8].cast<double>();
-            return w;
-          }))
-      .def_readonly("reachable_area", &RRR3Workspace::reachable_area, "Area of the reachable cells (m^2).")
-      .def_readonly("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
-      .def_readonly("area", &RRR3Workspace::region_area,
-                    "Area of the largest singularity-free 4-connected region (m^2).")
-      .def("__repr__", [](const RRR3Workspace& w) {
-        return "RRR3Workspace(n=" + std::to_string(w.n) + ", area=" + std::to_string(w.region_area) + ")";
+  ResultClass<RRR3Workspace>(m, "RRR3Workspace", "Answer of RRR3.workspace: a constant-orientation map.", false)
+      .value("n", &RRR3Workspace::n, "n x n cells.")
+      .value("x0", &RRR3Workspace::x0, "x of the grid's lower-left corner (m).")
+      .value("y0", &RRR3Workspace::y0, "y of the grid's lower-left corner (m).")
+      .value("cell_size", &RRR3Workspace::h, "The cells' side (m).")
+      .value_as("cells", &workspace_cells, &restore_cells,
+                "(n, n) codes, row j at y[j], column i at x[i]: 0 unreachable, 1 regular, 2 parallel, 3 serial.")
+      .value("reachable_area", &RRR3Workspace::reachable_area, "Area of the reachable cells (m^2).")
+      .value("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
+      .value("area", &RRR3Workspace::region_area, "Area of the largest singularity-free 4-connected region (m^2).")
+      .done_with([](py::class_<RRR3Workspace>& cls) {
+        cls.def_property_readonly("x", [](const RRR3Workspace& w) { return to_numpy(w.x()); }, "Cell centres along x (n,).")
+            .def_property_readonly("y", [](const RRR3Workspace& w) { return to_numpy(w.y()); }, "Cell centres along y (n,).")
+            .def_property_readonly("extent", [](const RRR3Workspace& w) { return py::tuple(py::cast(w.extent())); },
+                                   "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.");
       });
 }
 
-// The options structs of plan, connect and plan_loop.
+// The options structs of plan, workspace, connect and plan_loop, from their headers' field lists.
 void bind_options(py::module_& m) {
-  PlanOptionsClass(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.")
-      .field("phi", &RRR3PlanOptions::phi, "Nominal orientation (rad).")
-      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3PlanOptions& o) { return mode_tuple(o.mode); },
-                [](RRR3PlanOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode used along the whole path.")
-      .field("avoid", &RRR3PlanOptions::avoid, "False: every pose at the nominal orientation.")
-      .field("max_step", &RRR3PlanOptions::max_step, "Largest orientation change between consecutive points (rad).")
-      .field("margin", &RRR3PlanOptions::margin, "Wanted distance to parallel singularities (RRR3Singularity.distance).")
-      .field("serial_margin", &RRR3PlanOptions::serial_margin, "Smallest |det B| / l1^3 allowed.")
-      .field("span", &RRR3PlanOptions::span, "Largest departure from the nominal orientation (rad), in [0, pi].")
-      .field("resolution", &RRR3PlanOptions::resolution, "Orientation grid step (rad), at most max_step.")
-      .field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.")
-      .field("closed", &RRR3PlanOptions::closed,
-             "The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).");
-  WorkspaceOptionsClass(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).")
-      .field("phi", &RRR3WorkspaceOptions::phi, "The platform's orientation (rad).")
-      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3WorkspaceOptions& o) { return mode_tuple(o.mode); },
-                [](RRR3WorkspaceOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode.")
-      .field("n", &RRR3WorkspaceOptions::n, "n x n cells, n in [2, 5000].")
-      .field("tol", &RRR3WorkspaceOptions::tol, "Singular cell: |det B| / l1^3 or |det A| / R_e below tol.");
-  ConnectOptionsClass(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).")
-      .field_as("mode", "(m_0, m_1, m_2) of +-1", [](const RRR3ConnectOptions& o) { return mode_tuple(o.mode); },
-                [](RRR3ConnectOptions& o, py::handle v) { o.mode = as_mode(v); }, "The working mode, kept along the path.")
-      .field("clearance", &RRR3ConnectOptions::clearance, "Smallest distance to parallel singularities, in [0, 1).")
-      .field("serial_margin", &RRR3ConnectOptions::serial_margin, "Smallest |det B| / l1^3, in [0, 1).")
-      .field("max_step", &RRR3ConnectOptions::max_step, "Largest move of E between consecutive poses (m).")
-      .field("max_turn", &RRR3ConnectOptions::max_turn, "Largest rotation between consecutive poses (rad).")
-      .field("resolution", &RRR3ConnectOptions::resolution, "Grid step in x and y (m), max_step to 1000 max_step.")
-      .field("span", &RRR3ConnectOptions::span, "Orientations searched beyond the ends' (rad), in [0, pi].");
+  PlanOptionsClass(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.").fields();
+  WorkspaceOptionsClass(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).").fields();
+  ConnectOptionsClass(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).").fields();
   LoopOptionsClass(m, "RRR3LoopOptions", "The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'.")
-      .field("sign", &RRR3LoopOptions::sign, "The sign det A keeps all along (+1 or -1): the side of the parallel singularities.")
-      .field_as("nominals", "sequence of float",
-                [](const RRR3LoopOptions& o) { return py::tuple(py::cast(o.nominals)); },
-                [](RRR3LoopOptions& o, py::handle v) {
-                  const Eigen::VectorXd a = as_vector(v, "nominals");
-                  o.nominals.assign(a.data(), a.data() + a.size());
-                },
-                "Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.");
+      .fields();
 }
 
 // RRR3_DEFAULTS: the seed's robot and the shared thresholds, read-only.
@@ -579,7 +444,7 @@ void def_geometry(py::class_<RRR3>& cls) {
 // RRR3's inverse and forward models, drawing points, Jacobians and singularities.
 void def_kinematics(py::class_<RRR3>& cls) {
   cls.def("ik", [](const RRR3& r, ArrayLike pose, py::handle mode) {
-        return vec3(r.ik_or_throw(as_pose(pose), as_mode(mode)));
+        return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
       }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
       .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
@@ -624,7 +489,7 @@ void def_planning(py::class_<RRR3>& cls) {
       "along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or\n"
       "why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).";
   cls.def("workspace", &workspace_map, py::arg("phi") = RRR3WorkspaceOptions{}.phi,
-          py::arg("mode") = mode_tuple(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
+          py::arg("mode") = FieldCodec<Mode>::to_python(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
           py::arg("tol") = RRR3WorkspaceOptions{}.tol,
            "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
@@ -660,11 +525,8 @@ void def_value(py::class_<RRR3>& cls) {
 
 void bind_rrr3(py::module_& m) {
   register_errors();
-  bind_newton(m);
-  bind_fk(m);
-  bind_singularity(m);
-  bind_plan_result(m);
-  bind_loop_result(m);
+  bind_kinematics_results(m);
+  bind_plan_results(m);
   bind_workspace_result(m);
   bind_options(m);
   bind_defaults(m);

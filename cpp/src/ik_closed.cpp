@@ -16,14 +16,8 @@ namespace robokin {
 namespace {
 
 constexpr double kPi = M_PI;
-// |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
-constexpr double kCosEps = 1e-12;
-
-// Every solution is checked against the forward model before it is returned: the closed forms
-// clamp cosines within kCosEps of +-1 and fix a free joint at a singularity, so a pose a hair out of
-// reach, or lost to rounding, must not pass as a solution. Position error at most kTolP times the
-// arm's size (the sum of its lengths), orientation error (any rotation-matrix entry) at most kTolR.
-constexpr double kTolP = 1e-9, kTolR = 1e-8;
+constexpr double kCosEps = kClosedCosEps;
+constexpr double kTolP = kClosedTolP, kTolR = kClosedTolR;
 
 // Adds q when it fits the limits and `reaches(q)` (the forward model puts the tool on the target).
 template <class Reaches>
@@ -235,7 +229,22 @@ Rigid arm_fk(const ArmGeometry& g, const double* q) {
   return F;
 }
 
+
 }  // namespace
+
+void check_length(double v, const char* name, bool positive) {
+  if (!std::isfinite(v)) throw std::invalid_argument(std::string(name) + ": must be finite");
+  if (positive && !(v > 0)) throw std::invalid_argument(std::string(name) + ": must be positive");
+}
+
+void ArmGeometry::validate() const {
+  check_length(d1, "d1", false);
+  check_length(a2, "a2", true);
+  check_length(a3, "a3", false);
+  check_length(d3, "d3", false);
+  check_length(d4, "d4", false);
+  if (a3 == 0 && d4 == 0) throw std::invalid_argument("a3, d4: the forearm needs a length (a3 or d4 non-zero)");
+}
 
 ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits) {
   ClosedFormSolutions out;
@@ -261,6 +270,8 @@ ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits
 }
 
 ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, const JointLimits& limits) {
+  check_length(a1, "a1", true);
+  check_length(a2, "a2", true);
   ClosedFormSolutions out;
   out.dof = 2;
   double th[2][2];
@@ -273,6 +284,9 @@ ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, con
 
 ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, double py, double phi,
                                  bool geometric, const JointLimits& limits) {
+  check_length(a1, "a1", true);
+  check_length(a2, "a2", true);
+  check_length(a3, "a3", false);
   ClosedFormSolutions out;
   out.dof = 3;
   // phi as the forward model sees it, through its cosine and sine: for a huge phi (1e300),
@@ -329,6 +343,7 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
 
 ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vector3d& p,
                                        const JointLimits& limits) {
+  arm.validate();
   ClosedFormSolutions out;
   out.dof = 3;
   const auto reaches = [&](const double* q) {
@@ -342,6 +357,8 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 
 ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits) {
+  arm.validate();
+  check_length(d6, "d6", false);
   ClosedFormSolutions out;
   out.dof = 6;
   out.q.reserve(48);
@@ -414,6 +431,8 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
                              Progress* progress) {
+  arm.validate();
+  check_length(d6, "d6", false);
   // Angles are shifted at most to |v| <= 2^20 rad (~167,000 turns): there a double holds them to
   // 1.2e-10 rad (and the double 2 pi's error, times the turns, stays below that), so the shifted
   // joints still reach the target within the verified tolerance. Near 1e17 the rounding of

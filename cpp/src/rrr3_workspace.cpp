@@ -30,6 +30,18 @@ void RRR3WorkspaceOptions::validate() const {
   if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
 }
 
+Eigen::VectorXd RRR3Workspace::x() const {
+  return (x0 + (Eigen::VectorXd::LinSpaced(n, 0, static_cast<double>(n - 1)).array() + 0.5) * h).matrix();
+}
+
+Eigen::VectorXd RRR3Workspace::y() const {
+  return (y0 + (Eigen::VectorXd::LinSpaced(n, 0, static_cast<double>(n - 1)).array() + 0.5) * h).matrix();
+}
+
+std::array<double, 4> RRR3Workspace::extent() const {
+  return {x0, x0 + static_cast<double>(n) * h, y0, y0 + static_cast<double>(n) * h};
+}
+
 RRR3Workspace workspace(const RRR3& robot, const RRR3WorkspaceOptions& options, Progress* progress) {
   options.validate();
   const double phi = options.phi, tol = options.tol;

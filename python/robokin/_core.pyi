@@ -227,7 +227,7 @@ class RRR3Newton:
     """
     Answer of RRR3.ik_newton; unpacks as (alpha, beta).
     """
-    def __getstate__(self) -> tuple[int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], bool, int, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __iter__(self) -> collections.abc.Iterator:
         ...
@@ -237,13 +237,19 @@ class RRR3Newton:
         ...
     @property
     def alpha(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        Actuated angles (3,) (rad).
+        """
     @property
     def beta(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        Elbow angles (3,) (rad), link 1 to link 2.
+        """
     @property
     def converged(self) -> bool:
-        ...
+        """
+        The residual fell below tol.
+        """
     @property
     def error(self) -> float:
         """
@@ -251,12 +257,14 @@ class RRR3Newton:
         """
     @property
     def iterations(self) -> int:
-        ...
+        """
+        Newton steps taken.
+        """
 class RRR3Fk:
     """
     Answer of RRR3.fk.
     """
-    def __getstate__(self) -> tuple[int, numpy.typing.NDArray[numpy.float64], bool, int, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -264,7 +272,9 @@ class RRR3Fk:
         ...
     @property
     def converged(self) -> bool:
-        ...
+        """
+        The residual fell below tol.
+        """
     @property
     def error(self) -> float:
         """
@@ -272,15 +282,19 @@ class RRR3Fk:
         """
     @property
     def iterations(self) -> int:
-        ...
+        """
+        Newton steps taken.
+        """
     @property
     def pose(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+        """
+        The pose (x, y, phi) found.
+        """
 class RRR3Singularity:
     """
     Answer of RRR3.singularity.
     """
-    def __getstate__(self) -> tuple[int, str, float, float, float, float, float, int, str]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -288,7 +302,9 @@ class RRR3Singularity:
         ...
     @property
     def det_a(self) -> float:
-        ...
+        """
+        det A.
+        """
     @property
     def det_a_norm(self) -> float:
         """
@@ -296,7 +312,9 @@ class RRR3Singularity:
         """
     @property
     def det_b(self) -> float:
-        ...
+        """
+        det B.
+        """
     @property
     def det_b_norm(self) -> float:
         """
@@ -313,20 +331,20 @@ class RRR3Singularity:
         'none', 'parallel' or 'serial'.
         """
     @property
-    def leg(self) -> typing.Any:
+    def leg(self) -> int | None:
         """
         The stretched or folded leg of a serial singularity, else None.
         """
     @property
-    def lines(self) -> typing.Any:
+    def lines(self) -> str | None:
         """
         For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.
         """
 class RRR3Plan:
     """
-    Answer of RRR3.plan: the poses to follow and what they give.
+    Answer of RRR3.plan and RRR3.connect: the poses to follow and what they give.
     """
-    def __getstate__(self) -> tuple[int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], int, bool]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -371,7 +389,7 @@ class RRR3Loop:
     """
     Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.
     """
-    def __getstate__(self) -> tuple[int, RRR3Plan, float, bool, str]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -379,9 +397,11 @@ class RRR3Loop:
         ...
     @property
     def found(self) -> bool:
-        ...
+        """
+        A nominal orientation suited.
+        """
     @property
-    def nominal(self) -> typing.Any:
+    def nominal(self) -> float | None:
         """
         The nominal orientation used (rad), None when none was found.
         """
@@ -391,7 +411,7 @@ class RRR3Loop:
         The closed RRR3Plan about nominal (no poses when none was found).
         """
     @property
-    def reason(self) -> typing.Any:
+    def reason(self) -> str | None:
         """
         Why none was found: 'start' (no nominal puts the first point on the side) or 'plan'; None when found.
         """
@@ -399,7 +419,7 @@ class RRR3Workspace:
     """
     Answer of RRR3.workspace: a constant-orientation map.
     """
-    def __getstate__(self) -> tuple[int, int, float, float, float, bytes, float, float, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -412,16 +432,23 @@ class RRR3Workspace:
         """
     @property
     def cell_size(self) -> float:
-        ...
+        """
+        The cells' side (m).
+        """
     @property
     def cells(self) -> numpy.typing.NDArray[numpy.uint8]:
         """
         (n, n) codes, row j at y[j], column i at x[i]: 0 unreachable, 1 regular, 2 parallel, 3 serial.
         """
     @property
-    def extent(self) -> tuple[float, float, float, float]:
+    def extent(self) -> tuple:
         """
         (x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.
+        """
+    @property
+    def n(self) -> int:
+        """
+        n x n cells.
         """
     @property
     def reachable_area(self) -> float:
@@ -439,9 +466,19 @@ class RRR3Workspace:
         Cell centres along x (n,).
         """
     @property
+    def x0(self) -> float:
+        """
+        x of the grid's lower-left corner (m).
+        """
+    @property
     def y(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         Cell centres along y (n,).
+        """
+    @property
+    def y0(self) -> float:
+        """
+        y of the grid's lower-left corner (m).
         """
 class RRR3PlanOptions:
     """

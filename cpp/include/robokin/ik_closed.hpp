@@ -1,5 +1,6 @@
 // Closed-form inverse kinematics (seed 003): every solution of a pose, each labelled by its
-// posture, filtered by the joint limits. An empty set (never an exception) when out of reach.
+// posture, filtered by the joint limits. An empty set (never an exception) when out of reach;
+// std::invalid_argument naming a length that is not finite (a1, a2, a2 of an arm: not positive).
 #pragma once
 
 #include "robokin/chain.hpp"
@@ -9,6 +10,19 @@
 #include <vector>
 
 namespace robokin {
+
+// |c| beyond 1 by more than this: out of reach; within it of 1: the singular (coinciding) case.
+constexpr double kClosedCosEps = 1e-12;
+// Every solution is checked against the forward model before it is returned: the closed forms
+// clamp cosines within kClosedCosEps of +-1 and fix a free joint at a singularity, so a pose a hair
+// out of reach, or lost to rounding, must not pass as a solution. Position error at most
+// kClosedTolP times the arm's size (the sum of its lengths), orientation error (any rotation-matrix
+// entry) at most kClosedTolR.
+constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
+
+// Throws std::invalid_argument("name: must be finite" or "name: must be positive") for a length
+// of a closed form's arm that is not.
+void check_length(double value, const char* name, bool positive = false);
 
 // A set of solutions: row k of q is one joint vector, postures[k] its label.
 struct ClosedFormSolutions {
@@ -43,6 +57,10 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
 // anthropomorphic arm (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0) of the course.
 struct ArmGeometry {
   double d1 = 0, a2 = 0, a3 = 0, d3 = 0, d4 = 0;
+
+  // Throws std::invalid_argument("name: ...") unless every length is finite, a2 positive and the
+  // forearm has a length (a3 or d4 non-zero).
+  void validate() const;
 };
 
 // The anthropomorphic arm: tip position p; 4 postures (shoulder right / left x elbow up / down).

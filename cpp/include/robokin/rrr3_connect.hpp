@@ -19,6 +19,18 @@ struct RRR3ConnectOptions {
   double resolution = 0.005;  // grid step in x and y (m); in phi it is resolution * max_turn / max_step
   double span = 1.5;          // phi is searched within [min(phi_start, phi_goal) - span, max(...) + span]
 
+  // Every option, its Python keyword and its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("mode", &RRR3ConnectOptions::mode, "The working mode, kept along the path.");
+    field("clearance", &RRR3ConnectOptions::clearance, "Smallest distance to parallel singularities, in [0, 1).");
+    field("serial_margin", &RRR3ConnectOptions::serial_margin, "Smallest |det B| / l1^3, in [0, 1).");
+    field("max_step", &RRR3ConnectOptions::max_step, "Largest move of E between consecutive poses (m).");
+    field("max_turn", &RRR3ConnectOptions::max_turn, "Largest rotation between consecutive poses (rad).");
+    field("resolution", &RRR3ConnectOptions::resolution, "Grid step in x and y (m), max_step to 1000 max_step.");
+    field("span", &RRR3ConnectOptions::span, "Orientations searched beyond the ends' (rad), in [0, pi].");
+  }
+
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
 };

@@ -19,6 +19,13 @@ struct RRR3LoopOptions {
   int sign = 1;  // the side of the parallel singularities: the sign det A keeps all along (+1 or -1)
   std::vector<double> nominals = default_nominals();  // nominal orientations tried, in order (rad)
 
+  // Every option, its Python keyword and its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("sign", &RRR3LoopOptions::sign, "The sign det A keeps all along (+1 or -1): the side of the parallel singularities.");
+    field("nominals", &RRR3LoopOptions::nominals, "Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.");
+  }
+
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
 };

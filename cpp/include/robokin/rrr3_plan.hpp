@@ -18,6 +18,22 @@ struct RRR3PlanOptions {
   double smoothing = 10.0;   // weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2
   bool closed = false;       // the path is a loop (its last point joins its first): the plan joins up too
 
+  // Every option, its Python keyword and its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("phi", &RRR3PlanOptions::phi, "Nominal orientation (rad).");
+    field("mode", &RRR3PlanOptions::mode, "The working mode used along the whole path.");
+    field("avoid", &RRR3PlanOptions::avoid, "False: every pose at the nominal orientation.");
+    field("max_step", &RRR3PlanOptions::max_step, "Largest orientation change between consecutive points (rad).");
+    field("margin", &RRR3PlanOptions::margin, "Wanted distance to parallel singularities (RRR3Singularity.distance).");
+    field("serial_margin", &RRR3PlanOptions::serial_margin, "Smallest |det B| / l1^3 allowed.");
+    field("span", &RRR3PlanOptions::span, "Largest departure from the nominal orientation (rad), in [0, pi].");
+    field("resolution", &RRR3PlanOptions::resolution, "Orientation grid step (rad), at most max_step.");
+    field("smoothing", &RRR3PlanOptions::smoothing, "Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.");
+    field("closed", &RRR3PlanOptions::closed,
+          "The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).");
+  }
+
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
 };

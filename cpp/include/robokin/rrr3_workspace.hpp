@@ -3,6 +3,7 @@
 
 #include "robokin/rrr3.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,10 @@ struct RRR3Workspace {
   double regular_area = 0;      // reachable cells that are not singular
   double region_area = 0;       // the largest 4-connected set of regular cells: what the robot can
                                 // sweep at this orientation without crossing a singularity
+
+  Eigen::VectorXd x() const;      // cell centres along x (n)
+  Eigen::VectorXd y() const;      // cell centres along y (n)
+  std::array<double, 4> extent() const;  // (x_min, x_max, y_min, y_max) of the grid
 };
 
 // What a workspace map is made of.
@@ -26,6 +31,15 @@ struct RRR3WorkspaceOptions {
   Mode mode{1, 1, 1};         // the working mode
   long n = 200;               // n x n cells, n in [2, 5000]
   double tol = kSingularTol;  // singular cell: |det B| / l1^3 or |det A| / R_e below tol
+
+  // Every option, its Python keyword and its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("phi", &RRR3WorkspaceOptions::phi, "The platform's orientation (rad).");
+    field("mode", &RRR3WorkspaceOptions::mode, "The working mode.");
+    field("n", &RRR3WorkspaceOptions::n, "n x n cells, n in [2, 5000].");
+    field("tol", &RRR3WorkspaceOptions::tol, "Singular cell: |det B| / l1^3 or |det A| / R_e below tol.");
+  }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
   void validate() const;
