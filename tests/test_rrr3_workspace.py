@@ -1,5 +1,7 @@
 """3-RRR workspace maps and the design study, against reachability and determinants computed here."""
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -173,3 +175,23 @@ def test_plot_design_titles_follow_the_curve(tmp_path):
                                       design.best_l2([0.1], [0.1], n=30))
     assert "R_b = 15 cm, l1 = l2 = 10 cm" in ax1.get_title()
     plt.close("all")
+
+
+def test_map_grid_and_pickle(robot, ws):
+    """x, y and extent (computed in the core) describe the same grid as x0, y0, cell_size; a pickled
+    map comes back equal, and so does a state written with the cells as bytes (the earlier layout)."""
+    h = ws.cell_size
+    np.testing.assert_allclose(ws.x, ws.x0 + (np.arange(ws.n) + 0.5) * h, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(ws.y, ws.y0 + (np.arange(ws.n) + 0.5) * h, rtol=0, atol=1e-15)
+    assert ws.extent == pytest.approx((ws.x0, ws.x0 + ws.n * h, ws.y0, ws.y0 + ws.n * h), abs=1e-15)
+    assert ws.cells.shape == (ws.n, ws.n) and ws.cells.dtype == np.uint8
+    copy = pickle.loads(pickle.dumps(ws))
+    assert repr(copy) == repr(ws) and np.array_equal(copy.cells, ws.cells)
+    cls, state = type(ws), list(ws.__getstate__())
+    state[5] = ws.cells.tobytes()
+    old = cls.__new__(cls)
+    old.__setstate__(tuple(state))
+    assert repr(old) == repr(ws) and np.array_equal(old.cells, ws.cells)
+    state[5] = ws.cells.tobytes()[:-1]
+    with pytest.raises(ValueError, match="cells: n \\* n cell codes expected"):
+        cls.__new__(cls).__setstate__(tuple(state))
