@@ -1,7 +1,8 @@
-// Linear algebra written once for the core: the damped least-squares (minimum-norm) step with its
-// singular fallback, shared by the Reach loop (reach.cpp), resolved-rate control
-// (resolved_rate.cpp) and the numerical IK's Newton steps (ik_numeric.cpp); seed 000's homogeneous
-// term; the overflow-safe norm of an error.
+// Linear algebra written once for the core: the L D L^T factorisation of a small symmetric matrix
+// (the damped steps below, the numerical IK's normal equations, Yoshikawa's measure in
+// manipulability.cpp); the damped least-squares (minimum-norm) step with its singular fallback,
+// shared by the Reach loop (reach.cpp), resolved-rate control (resolved_rate.cpp) and the numerical
+// IK's Newton steps (ik_numeric.cpp); seed 000's homogeneous term; the overflow-safe norm of an error.
 #pragma once
 
 #include <Eigen/Dense>

@@ -1,6 +1,8 @@
 #include "robokin/manipulability.hpp"
 #include "robokin/parallel.hpp"
 
+#include "linalg.hpp"
+
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -51,29 +53,24 @@ bool yoshikawa_by_cholesky(const M& J, double& value) {
   if (J.rows() <= J.cols()) G.noalias() = J * J.transpose();
   else G.noalias() = J.transpose() * J;
   const double trace = G.trace();
+  // G = L_u D L_u^T (ldlt_in_place: L_u unit lower triangular, 1 / D on G's diagonal); the Cholesky
+  // factor is L = L_u D^(1/2): its diagonal's product is prod sqrt(D_j), and L^-1 = D^(-1/2) L_u^-1.
+  double dmin, dmax;
+  if (!ldlt_in_place(G, dmin, dmax)) return false;
   double product = 1.0;
-  for (long j = 0; j < k; ++j) {  // Cholesky, in place in the lower half of G
-    double d = G(j, j);
-    for (long i = 0; i < j; ++i) d -= G(j, i) * G(j, i);
-    if (!(d > 0)) return false;
-    d = std::sqrt(d);
-    G(j, j) = d;
-    product *= d;
-    for (long r = j + 1; r < k; ++r) {
-      double x = G(r, j);
-      for (long i = 0; i < j; ++i) x -= G(r, i) * G(j, i);
-      G(r, j) = x / d;
-    }
-  }
-  // |L^-1|_F^2, column by column of L^-1 (forward substitution on the identity).
+  for (long j = 0; j < k; ++j) product /= std::sqrt(G(j, j));
+  // |L^-1|_F^2 = sum_r (1 / D_r) sum_c (L_u^-1)_rc^2, column by column of L_u^-1 (forward
+  // substitution on the identity).
   double inverse_norm2 = 0.0;
   double x[6];
   for (long c = 0; c < k; ++c) {
-    for (long r = c; r < k; ++r) {
-      double v = r == c ? 1.0 : 0.0;
+    x[c] = 1.0;
+    inverse_norm2 += G(c, c);
+    for (long r = c + 1; r < k; ++r) {
+      double v = 0.0;
       for (long i = c; i < r; ++i) v -= G(r, i) * x[i];
-      x[r] = v / G(r, r);
-      inverse_norm2 += x[r] * x[r];
+      x[r] = v;
+      inverse_norm2 += G(r, r) * v * v;
     }
   }
   if (!(std::isfinite(product) && trace * inverse_norm2 <= 1e5)) return false;
