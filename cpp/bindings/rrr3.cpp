@@ -55,23 +55,11 @@ Pose as_pose(py::handle obj, const char* name = "pose") {
   return p;
 }
 
-// Newton's iteration bound: a run that has not converged in 1e5 steps will not, and a larger
-// bound only makes an unreachable target hang.
-void check_max_iter(int max_iter) {
-  if (max_iter < 0 || max_iter > 100000) fail("max_iter: must be in [0, 100000], got " + std::to_string(max_iter));
-}
-
 // Python's repr of a float: the shortest text that reads back as the same number.
 std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
 
 
 py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
-
-double positive_tol(double tol) {
-  // (the default, kSingularTol, is the seed's 1e-3)
-  if (!(std::isfinite(tol) && tol > 0)) fail("tol: must be a positive finite number");
-  return tol;
-}
 
 py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, py::handle mode_obj) {
   const Mode mode = as_mode(mode_obj);
@@ -106,8 +94,6 @@ RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, int
   if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
     fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
   require_finite(g.data(), 6, "guess");
-  check_max_iter(max_iter);
-  positive_tol(tol);
   return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
                      max_iter, tol);
 }
@@ -115,8 +101,6 @@ RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, int
 RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, int max_iter, double tol) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
-  check_max_iter(max_iter);
-  positive_tol(tol);
   return r.fk(alpha, guess, max_iter, tol);
 }
 
@@ -408,7 +392,7 @@ void bind_defaults(py::module_& m) {
 // rrr3_region_areas: the design study's areas (robokin.rrr3_design).
 void bind_design_study(py::module_& m) {
   m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
-        py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("n") = 150, py::arg("tol") = kSingularTol,
+        py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode), py::arg("n") = 150, py::arg("tol") = kSingularTol,
         "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
 }
 
@@ -445,14 +429,14 @@ void def_geometry(py::class_<RRR3>& cls) {
 void def_kinematics(py::class_<RRR3>& cls) {
   cls.def("ik", [](const RRR3& r, ArrayLike pose, py::handle mode) {
         return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
-      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+      }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
       .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
-      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = py::make_tuple(1, 1, 1),
+      .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
-      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = 50,
-           py::arg("tol") = 1e-12, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
-      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = 50, py::arg("tol") = 1e-12,
+      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = kNewtonMaxIter,
+           py::arg("tol") = kNewtonTol, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
+      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = kNewtonMaxIter, py::arg("tol") = kNewtonTol,
            "One assembly mode by Newton from a guess pose.")
       .def("fk_all", &fk_all, py::arg("alpha"),
            "(k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel\n"
@@ -460,13 +444,13 @@ void def_kinematics(py::class_<RRR3>& cls) {
            "size, as one). Where the elbows form a triangle congruent to the platform's (e.g. equal\n"
            "alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi\n"
            "fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.")
-      .def("points", &points, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+      .def("points", &points, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
-      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1),
+      .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
       .def("singularity", [](const RRR3& r, ArrayLike pose, py::handle mode, double tol) {
-        return r.singularity(as_pose(pose), as_mode(mode), positive_tol(tol));
-      }, py::arg("pose"), py::arg("mode") = py::make_tuple(1, 1, 1), py::arg("tol") = kSingularTol,
+        return r.singularity(as_pose(pose), as_mode(mode), tol);
+      }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode), py::arg("tol") = kSingularTol,
            "Classification with tol on the normalised determinants.");
 }
 

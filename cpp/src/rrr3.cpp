@@ -98,8 +98,21 @@ Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
   return alpha;
 }
 
+namespace {
+
+// Newton's bounds (ik_newton, fk): std::invalid_argument naming the one out of range.
+void check_newton(int max_iter, double tol) {
+  if (max_iter < 0 || max_iter > kMaxNewtonIterations)
+    throw std::invalid_argument("max_iter: must be in [0, " + std::to_string(kMaxNewtonIterations) + "], got " +
+                                std::to_string(max_iter));
+  if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
+}
+
+}  // namespace
+
 RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
                            int max_iter, double tol) const {
+  check_newton(max_iter, tol);
   RRR3Newton res;
   res.alpha = alpha0;
   res.beta = beta0;
@@ -154,6 +167,7 @@ double RRR3::loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::V
 }
 
 RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const {
+  check_newton(max_iter, tol);
   const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
   RRR3Fk res;
   Pose x = guess;
@@ -224,6 +238,7 @@ double RRR3::distance(const Eigen::Matrix3d& A) const {
 }
 
 RRR3Singularity RRR3::singularity(const Pose& pose, const Mode& mode, double tol) const {
+  if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
   Eigen::Matrix3d A, B;
   jacobians(pose, mode, A, B);
   RRR3Singularity s;

@@ -20,6 +20,7 @@ namespace robokin {
 
 using Pose = Eigen::Vector3d;  // (x, y, phi)
 using Mode = std::array<int, 3>;
+constexpr Mode kDefaultMode{1, 1, 1};  // the working mode of every call that is not given one
 
 // The seed's robot (R_b, R_e, l1, l2 in metres), the default of every RRR3.
 constexpr double kDefaultBaseRadius = 0.13, kDefaultPlatformRadius = 0.07, kDefaultL1 = 0.12, kDefaultL2 = 0.12;
@@ -30,6 +31,11 @@ constexpr double kSingularTol = 1e-3;
 constexpr double kNearDistance = 0.05;
 // The smallest |det B| / l1^3 planning allows (never near a serial singularity).
 constexpr double kSerialMargin = 0.02;
+// Newton's defaults (ik_newton, fk): at most kNewtonMaxIter steps, to a residual below kNewtonTol
+// (m). max_iter is accepted in [0, kMaxNewtonIterations]: a run that has not converged in 1e5 steps
+// will not, and a larger bound only makes an unreachable target hang.
+constexpr int kNewtonMaxIter = 50, kMaxNewtonIterations = 100000;
+constexpr double kNewtonTol = 1e-12;
 
 // Throws std::invalid_argument unless every m_i is +1 or -1.
 inline void check_mode(const Mode& mode) {

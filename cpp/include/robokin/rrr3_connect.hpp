@@ -11,7 +11,7 @@
 namespace robokin {
 
 struct RRR3ConnectOptions {
-  Mode mode{1, 1, 1};         // the working mode, kept along the whole path
+  Mode mode = kDefaultMode;     // the working mode, kept along the whole path
   double clearance = kNearDistance;  // smallest distance to parallel singularities (RRR3::distance)
   double serial_margin = kSerialMargin;  // smallest |det B| / l1^3 (never near a serial singularity)
   double max_step = 0.001;    // largest move of E between consecutive poses (m)

@@ -8,7 +8,7 @@ namespace robokin {
 
 struct RRR3PlanOptions {
   double phi = 0;            // nominal orientation (rad)
-  Mode mode{1, 1, 1};        // the one working mode used along the whole path
+  Mode mode = kDefaultMode;    // the one working mode used along the whole path
   bool avoid = true;         // false: every pose at the nominal orientation
   double max_step = 0.01;    // largest orientation change between consecutive path points (rad)
   double margin = kNearDistance;  // wanted distance to parallel singularities (RRR3::distance)

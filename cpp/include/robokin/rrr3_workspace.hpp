@@ -28,7 +28,7 @@ struct RRR3Workspace {
 // What a workspace map is made of.
 struct RRR3WorkspaceOptions {
   double phi = 0;             // the platform's orientation (rad)
-  Mode mode{1, 1, 1};         // the working mode
+  Mode mode = kDefaultMode;     // the working mode
   long n = 200;               // n x n cells, n in [2, 5000]
   double tol = kSingularTol;  // singular cell: |det B| / l1^3 or |det A| / R_e below tol
 
