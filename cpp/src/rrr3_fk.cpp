@@ -242,17 +242,11 @@ __attribute__((target_clones("avx2", "default"))) void quiet_intervals(const dou
   }
 }
 
-}  // namespace
-
-std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
-  const Tables& t = tables();
-  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
-  const Elimination elim{A, b_.data(), l2_};
-
-  // Exact coefficients of F from kFit samples.
+// F's exact coefficients from kFit samples, divided by the largest; false when F vanishes or
+// overflows (no assembly mode is found then).
+bool fit_trig_poly(const Elimination& elim, const Tables& t, TrigPoly& p) {
   double samples[kFit];
   for (int j = 0; j < kFit; ++j) samples[j] = elim.F(t.fit_c[j], t.fit_s[j]);
-  TrigPoly p;
   double scale = 0;
   for (int k = 0; k <= kDegree; ++k) {
     double sa = 0, sb = 0;
@@ -261,10 +255,13 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     p.b[k] = k == 0 ? 0.0 : 2.0 * sb / kFit;
     scale = std::max({scale, std::abs(p.a[k]), std::abs(p.b[k])});
   }
-  std::vector<Pose> out;
-  if (!(scale > 0) || !std::isfinite(scale)) return out;
+  if (!(scale > 0) || !std::isfinite(scale)) return false;
   for (int k = 0; k <= kDegree; ++k) p.a[k] /= scale, p.b[k] /= scale;
+  return true;
+}
 
+// Every root phi of F in [-pi, pi), two roots closer than a scan step included.
+std::vector<double> roots_of(const TrigPoly& p, const Tables& t) {
   double f[kScan + 1];
   scan(p, t, f);
 
@@ -295,6 +292,47 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
       search(p, curvature, jerk, lo, hi, f[j], f[next], 8, roots);
     }
   }
+  return roots;
+}
+
+}  // namespace
+
+// Two poses (within 1e-3) are one assembly mode when the loops close between them as well as at
+// the worse end, up to rounding: between two distinct modes d apart they open by ~ k d^2 / 4 (the
+// equations are quadratic), while at a double root (det A = 0), where the loops close to 1e-13 m
+// anywhere within some sqrt(1e-13 m / k) and Newton stops there, they stay closed. No fixed
+// distance tells the two cases apart. "Between" is the midpoint moved onto the valley of
+// near-solutions (it curves: a chord of 1e-5 leaves it by more than the error) by a Newton step
+// without its least-determined direction (phi scaled by R_e, its lever).
+bool RRR3::same_mode(const Eigen::Matrix<double, 3, 2>& A, const Pose& p, double ep, const Pose& q, double eq) const {
+  const double size = rb_ + re_ + l1_ + l2_;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double dphi = wrap_angle(q(2) - p(2));
+  if ((p.head<2>() - q.head<2>()).norm() > 1e-3 * size || std::abs(dphi) > 1e-3) return false;
+  Pose mid(0.5 * (p(0) + q(0)), 0.5 * (p(1) + q(1)), p(2) + 0.5 * dphi);
+  Eigen::Vector3d f;
+  Eigen::Matrix3d J;
+  loops(A, mid, f, J);
+  J.col(2) /= re_;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Vector3d step = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const double sv = svd.singularValues()(k);
+    if (sv > 0) step += svd.matrixV().col(k) * (svd.matrixU().col(k).dot(f) / sv);
+  }
+  step(2) /= re_;
+  mid -= step;
+  return loops(A, mid, f, J) <= std::max(ep, eq) + 2 * eps * size;
+}
+
+std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
+  const Tables& t = tables();
+  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
+  const Elimination elim{A, b_.data(), l2_};
+  TrigPoly p;
+  std::vector<Pose> out;
+  if (!fit_trig_poly(elim, t, p)) return out;
+  const std::vector<double> roots = roots_of(p, t);
 
   // Each root phi gives E = N / D. Where D = det M is (nearly) zero, c_0, c_1, c_2 are (nearly)
   // collinear: M E = r only fixes a line, which leg 0's circle cuts in two points, possibly two
@@ -304,31 +342,6 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   // 1e-10 m, relative for robots larger than 1 m (rounding alone reaches some 1e-16 of the size).
   const double close = 1e-10 * std::max(1.0, size);
   const double eps = std::numeric_limits<double>::epsilon();
-  // Two poses (within 1e-3) are one assembly mode when the loops close between them as well as at
-  // the worse end, up to rounding: between two distinct modes d apart they open by ~ k d^2 / 4 (the
-  // equations are quadratic), while at a double root (det A = 0), where the loops close to 1e-13 m
-  // anywhere within some sqrt(1e-13 m / k) and Newton stops there, they stay closed. No fixed
-  // distance tells the two cases apart. "Between" is the midpoint moved onto the valley of
-  // near-solutions (it curves: a chord of 1e-5 leaves it by more than the error) by a Newton step
-  // without its least-determined direction (phi scaled by R_e, its lever).
-  auto same = [&](const Pose& p, double ep, const Pose& q, double eq) {
-    const double dphi = wrap_angle(q(2) - p(2));
-    if ((p.head<2>() - q.head<2>()).norm() > 1e-3 * size || std::abs(dphi) > 1e-3) return false;
-    Pose mid(0.5 * (p(0) + q(0)), 0.5 * (p(1) + q(1)), p(2) + 0.5 * dphi);
-    Eigen::Vector3d f;
-    Eigen::Matrix3d J;
-    loops(A, mid, f, J);
-    J.col(2) /= re_;
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Vector3d step = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 2; ++k) {
-      const double sv = svd.singularValues()(k);
-      if (sv > 0) step += svd.matrixV().col(k) * (svd.matrixU().col(k).dot(f) / sv);
-    }
-    step(2) /= re_;
-    mid -= step;
-    return loops(A, mid, f, J) <= std::max(ep, eq) + 2 * eps * size;
-  };
   out.reserve(2 * kDegree);
   std::vector<double> error;  // closure error of each pose in out
   error.reserve(2 * kDegree);
@@ -338,9 +351,10 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     if (!(polished.error < close)) return;
     // Closed to rounding where Newton gets there and stays on the same root (at a double root it
     // converges only linearly and may jump once at rounding level): two distinct modes close
-    // together then close much better than the loops between them, which same() needs to see.
+    // together then close much better than the loops between them, which same_mode needs to see.
     const RRR3Fk finer = fk(alpha, polished.pose, 8, 4 * eps * size);
-    if (finer.error < polished.error && same(polished.pose, polished.error, finer.pose, finer.error)) polished = finer;
+    if (finer.error < polished.error && same_mode(A, polished.pose, polished.error, finer.pose, finer.error))
+      polished = finer;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two
     // assembly modes may lie some 1e-5 rad on either side of the phi found.
     if (std::abs(wrap_angle(polished.pose(2) - phi)) > 1e-3) return;
@@ -348,7 +362,7 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     q(2) = wrap_angle(q(2));
     if (q(2) >= M_PI) q(2) -= 2 * M_PI;
     for (std::size_t k = 0; k < out.size(); ++k)
-      if (same(out[k], error[k], q, polished.error)) {  // found again: keep the copy closing best
+      if (same_mode(A, out[k], error[k], q, polished.error)) {  // found again: keep the copy closing best
         if (polished.error < error[k]) out[k] = q, error[k] = polished.error;
         return;
       }
