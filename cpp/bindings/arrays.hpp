@@ -26,12 +26,63 @@ class ArrayLike : public py::object {
   static bool check_(py::handle) { return true; }
 };
 
+// A parameter of several accepted forms, taken as any object and converted by the bindings'
+// helpers (errors naming it), shown in the stubs as Tag::name says.
+template <class Tag>
+class Typed : public py::object {
+ public:
+  using py::object::object;
+  static bool check_(py::handle) { return true; }
+};
+
+struct LimitsTag {  // limits_arg
+  static constexpr auto name = py::detail::const_name("tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None");
+};
+struct ChainLimitsTag {  // limits_or_default
+  static constexpr auto name =
+      py::detail::const_name("typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None");
+};
+struct ModeTag {  // the 3-RRR's working mode
+  static constexpr auto name = py::detail::const_name("tuple[int, int, int]");
+};
+struct SeedTag {
+  static constexpr auto name = py::detail::const_name("int | None");
+};
+struct TaskTag {  // task_of
+  static constexpr auto name = py::detail::const_name("typing.Literal['pose', 'position', 'xy', 'xyphi']");
+};
+struct FrameOrPositionTag {
+  static constexpr auto name = py::detail::const_name("typing.Literal['frame', 'position']");
+};
+struct MeasureTag {
+  static constexpr auto name = py::detail::const_name("typing.Literal['yoshikawa', 'condition', 'min_singular']");
+};
+struct NullspaceTag {
+  static constexpr auto name = py::detail::const_name("typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None");
+};
+struct OptionalArrayTag {
+  static constexpr auto name = py::detail::const_name("numpy.typing.ArrayLike | None");
+};
+using LimitsLike = Typed<LimitsTag>;
+using ChainLimitsLike = Typed<ChainLimitsTag>;
+using ModeLike = Typed<ModeTag>;
+using SeedLike = Typed<SeedTag>;
+using TaskName = Typed<TaskTag>;
+using FkOut = Typed<FrameOrPositionTag>;
+using MeasureName = Typed<MeasureTag>;
+using NullspaceLike = Typed<NullspaceTag>;
+using OptionalArrayLike = Typed<OptionalArrayTag>;
+
 }  // namespace robokin::bind
 
 namespace pybind11::detail {
 template <>
 struct handle_type_name<robokin::bind::ArrayLike> {
   static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <class Tag>
+struct handle_type_name<robokin::bind::Typed<Tag>> {
+  static constexpr auto name = Tag::name;
 };
 }  // namespace pybind11::detail
 

@@ -56,7 +56,7 @@ Matrix4 optional_tool(py::handle tool) {
   return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
 }
 
-Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::handle limits) {
+Chain chain_from_dh(py::handle rows_obj, bool modified, OptionalArrayLike tool, LimitsLike limits) {
   py::sequence rows = as_rows(rows_obj, "rows");
   std::vector<DHRow> parsed;
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -74,7 +74,7 @@ Chain chain_from_dh(py::handle rows_obj, bool modified, py::handle tool, py::han
   return Chain::from_dh(parsed, modified, optional_tool(tool), lim.lower, lim.upper);
 }
 
-Chain chain_from_segments(py::handle segments_obj, py::handle tool, py::handle limits) {
+Chain chain_from_segments(py::handle segments_obj, OptionalArrayLike tool, LimitsLike limits) {
   py::sequence segments = as_rows(segments_obj, "segments");
   std::vector<SegmentSpec> parsed;
   for (size_t i = 0; i < segments.size(); ++i) {
@@ -117,7 +117,7 @@ FkOutput fk_output_of(py::handle obj) {
   fail("out: expected 'frame' or 'position', got '" + s + "'");
 }
 
-py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
+py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
   const FkOutput what = fk_output_of(out_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
@@ -147,7 +147,7 @@ py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
   return out;
 }
 
-py::array jacobian(const Chain& c, ArrayLike q_obj, py::handle task_obj) {
+py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj) {
   const Task task = task_of(task_obj);
   Array holder;
   const Float64View q = q_view(q_obj, holder);

@@ -67,7 +67,7 @@ IkOptions options_arg(const py::kwargs& kwargs) {
   return o;
 }
 
-IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, py::handle seed, const py::kwargs& kwargs) {
+IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, SeedLike seed, const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const Target t = one_target(o.task, target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
@@ -86,7 +86,7 @@ IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, py::handle s
   return checked(r);
 }
 
-IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, py::handle seed, bool path,
+IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, SeedLike seed, bool path,
                           const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const int n = chain.dof();
@@ -199,7 +199,7 @@ void bind_ik(py::module_& m) {
                           "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
                           "thread for parallel solves (ik_batch is the parallel route).")
-      .def(py::init([](const Chain& chain, py::handle seed, const py::kwargs& kwargs) {
+      .def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
              return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
                                                   options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),

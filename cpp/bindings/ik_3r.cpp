@@ -26,7 +26,7 @@ Arm3R arm_arg(const Chain& chain) {
 void bind_ik_3r(py::module_& m) {
   m.def(
       "ik_3r",
-      [](ArrayLike target, const Chain& chain, py::handle limits) {
+      [](ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
         const Arm3R arm = arm_arg(chain);
         return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3));

@@ -19,18 +19,18 @@
 namespace robokin::bind {
 namespace {
 
-ClosedFormSolutions planar_rp(ArrayLike target, py::handle limits) {
+ClosedFormSolutions planar_rp(ArrayLike target, LimitsLike limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
 }
 
-ClosedFormSolutions planar_2r(ArrayLike target, double a1, double a2, py::handle limits) {
+ClosedFormSolutions planar_2r(ArrayLike target, double a1, double a2, LimitsLike limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_2r(a1, a2, p(0), p(1), limits_arg(limits, 2));
 }
 
 ClosedFormSolutions planar_3r(ArrayLike target, double a1, double a2, double a3, const std::string& method,
-                              py::handle limits) {
+                              LimitsLike limits) {
   const Vector p = as_vector(target, "target", 3);
   if (method != "algebraic" && method != "geometric")
     fail("method: expected 'algebraic' or 'geometric', got '" + method + "'");
@@ -44,19 +44,19 @@ ArmGeometry arm_arg(double d1, double a2, double a3, double d3, double d4) {
   return g;
 }
 
-ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, double d1, py::handle limits) {
+ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, double d1, LimitsLike limits) {
   const Vector p = as_vector(target, "target", 3);
   return ik_anthropomorphic(arm_arg(d1, a2, a3, 0, 0), p, limits_arg(limits, 3));
 }
 
 ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
-                                    double d6, py::handle limits) {
+                                    double d6, LimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
 }
 
 py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
-                               double d6, ArrayLike q0_obj, py::handle limits) {
+                               double d6, ArrayLike q0_obj, LimitsLike limits) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
@@ -102,14 +102,14 @@ URArm ur_arm_arg(const Chain& chain) {
 }
 
 // limits: "default" (the chain's), None, or a pair.
-ClosedFormSolutions ur(ArrayLike target, const Chain& chain, py::handle limits) {
+ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
 
-py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, py::handle limits) {
+py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
   const URArm arm = ur_arm_arg(chain);
   const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
@@ -234,7 +234,7 @@ void bind_ik_closed(py::module_& m) {
           py::arg("q"), "Index of the solution nearest to q (Euclidean in joint space); None when empty.")
       .def("__repr__", &repr);
   py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
-      .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, py::handle limits) {
+      .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, LimitsLike limits) {
              check_length(d6, "d6");
              return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), d6, limits_arg(limits, 6)};
            }),
@@ -252,7 +252,7 @@ void bind_ik_closed(py::module_& m) {
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
-      .def(py::init([](const Chain& chain, py::handle limits) {
+      .def(py::init([](const Chain& chain, ChainLimitsLike limits) {
              return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())

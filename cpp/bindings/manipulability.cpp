@@ -21,7 +21,7 @@ Measure measure_of(py::handle obj) {
   return parse_measure(std::string(s, static_cast<size_t>(len)));  // std::invalid_argument -> ValueError
 }
 
-py::object manipulability(const Chain& c, ArrayLike q_obj, py::handle measure_obj, py::handle task_obj) {
+py::object manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj) {
   const Measure measure = measure_of(measure_obj);
   const Task task = task_of(task_obj);
   Array holder;

@@ -42,9 +42,9 @@ struct FieldKind<std::optional<V>> {
 };
 
 // A field of a type Python sees as another (a list of numbers as a tuple; the 3-RRR's working mode
-// as a tuple of signs, specialised beside its bindings): kind() says what it takes in words,
-// to_python(v) gives the Python value, from_python(obj, name) converts and checks it, a ValueError
-// naming the field when it does not fit.
+// as a tuple of signs, specialised beside its bindings): kind() says what it takes in words, Arg
+// what the stubs show, to_python(v) gives the Python value, from_python(obj, name) converts and
+// checks it, a ValueError naming the field when it does not fit.
 template <class V>
 struct FieldCodec {
   static constexpr bool defined = false;
@@ -52,6 +52,7 @@ struct FieldCodec {
 template <>
 struct FieldCodec<std::vector<double>> {
   static constexpr bool defined = true;
+  using Arg = ArrayLike;  // what the stubs show
   static std::string kind() { return "sequence of float"; }
   static py::tuple to_python(const std::vector<double>& v) { return py::tuple(py::cast(v)); }
   static std::vector<double> from_python(py::handle obj, const char* name) {
@@ -178,9 +179,12 @@ class OptionsClass {
           name, [member](const T& o) { return std::string(name_of(o.*member)); },
           [member](T& o, const std::string& v) { parse(v, o.*member); }, doc);
     } else if constexpr (FieldCodec<V>::defined) {
-      return field_as(
-          name, FieldCodec<V>::kind(), [member](const T& o) { return FieldCodec<V>::to_python(o.*member); },
-          [member, name](T& o, py::handle v) { o.*member = FieldCodec<V>::from_python(v, name); }, doc);
+      using Codec = FieldCodec<V>;
+      cls_.def_property(name, [member](const T& o) { return Codec::to_python(o.*member); },
+                        [member, name](T& o, typename Codec::Arg v) { o.*member = Codec::from_python(v, name); }, doc);
+      fields_of<T>().push_back({name, Codec::kind(), false});
+      setters_of<T>().push_back([member, name](T& o, py::handle v) { o.*member = Codec::from_python(v, name); });
+      return *this;
     } else {
       cls_.def_readwrite(name, member, doc);
       fields_of<T>().push_back({name, FieldKind<V>::name(), FieldKind<V>::integer});
@@ -201,15 +205,6 @@ class OptionsClass {
     cls_.def_property(name, get, set, doc);
     fields_of<T>().push_back({name, FieldKind<V>::name(), false});
     setters_of<T>().push_back([set](T& o, py::handle v) { set(o, v.cast<V>()); });
-    return *this;
-  }
-
-  // The same with what the field takes said in words: set(T&, py::handle) converts and checks.
-  template <class Get, class Set>
-  OptionsClass& field_as(const char* name, const std::string& kind, Get get, Set set, const char* doc) {
-    cls_.def_property(name, get, set, doc);
-    fields_of<T>().push_back({name, kind, false});
-    setters_of<T>().push_back(set);
     return *this;
   }
 

@@ -124,7 +124,7 @@ void bind_pose(py::module_& m) {
   m.def("pose_from_rpy", [](ArrayLike rpy) {
     return frames_from(rpy, "rpy", 3, [](const double* v) { return Rigid{rpy_to_matrix(v[0], v[1], v[2]), Eigen::Vector3d::Zero()}; });
   }, py::arg("rpy"), "Frames of rotations Rz(yaw) Ry(pitch) Rx(roll). Use robokin.pose.from_rpy.");
-  m.def("pose_rpy", [](py::handle T) {
+  m.def("pose_rpy", [](ArrayLike T) {
     return vectors_from(T, "T", true, 3, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector3d> out(o); out = matrix_to_rpy(T.R); });
   }, py::arg("T"), "(roll, pitch, yaw) of rotations. Use robokin.pose.rpy.");
   m.def("pose_from_quaternion", [](ArrayLike q) {
@@ -135,19 +135,19 @@ void bind_pose(py::module_& m) {
       return Rigid{quaternion_to_matrix(q), Eigen::Vector3d::Zero()};
     });
   }, py::arg("quaternion"), "Frames of quaternions (w, x, y, z). Use robokin.pose.from_quaternion.");
-  m.def("pose_quaternion", [](py::handle T) {
+  m.def("pose_quaternion", [](ArrayLike T) {
     return vectors_from(T, "T", true, 4, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector4d> out(o); out = matrix_to_quaternion(T.R); });
   }, py::arg("T"), "Unit quaternions (w, x, y, z), w >= 0. Use robokin.pose.quaternion.");
   m.def("pose_from_rotation_vector", [](ArrayLike w) {
     return frames_from(w, "rotation_vector", 3, [](const double* v) { return Rigid{rotation_exp(Eigen::Vector3d(v[0], v[1], v[2])), Eigen::Vector3d::Zero()}; });
   }, py::arg("rotation_vector"), "Frames of rotation vectors (angle * axis). Use robokin.pose.from_axis_angle.");
-  m.def("pose_rotation_vector", [](py::handle T) {
+  m.def("pose_rotation_vector", [](ArrayLike T) {
     return vectors_from(T, "T", true, 3, [](const Rigid& T, double* o) { Eigen::Map<Eigen::Vector3d> out(o); out = rotation_vector(T.R); });
   }, py::arg("T"), "Rotation vectors (angle in [0, pi] times the unit axis). Use robokin.pose.axis_angle.");
   m.def("pose_exp", [](ArrayLike xi) {
     return frames_from(xi, "xi", 6, [](const double* v) { return se3_exp(Eigen::Map<const Vector6>(v)); });
   }, py::arg("xi"), "SE(3) exponential of twists (v, w). Use robokin.pose.exp.");
-  m.def("pose_log", [](py::handle T) {
+  m.def("pose_log", [](ArrayLike T) {
     return vectors_from(T, "T", false, 6, [](const Rigid& F, double* o) { Eigen::Map<Vector6> out(o); out = se3_log(F); });
   }, py::arg("T"), "SE(3) logarithm (v, w) of frames. Use robokin.pose.log.");
   m.def("pose_error", &pose_error_of, py::arg("target"), py::arg("current"),

@@ -33,7 +33,7 @@ ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::hand
 }
 
 ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const std::string& task_str,
-                  py::handle nullspace, const py::kwargs& kwargs) {
+                  NullspaceLike nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const Target t = one_target(task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
@@ -45,7 +45,7 @@ ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const s
 }
 
 TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, const std::string& task_str,
-                  py::handle nullspace, const py::kwargs& kwargs) {
+                  NullspaceLike nullspace, const py::kwargs& kwargs) {
   const Task task = parse_task(task_str);
   const std::vector<Target> targets = many_targets(task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());

@@ -13,7 +13,7 @@
 namespace robokin::bind {
 namespace {
 
-Vector nullspace_weights(const Chain& chain, py::handle nullspace) {
+Vector nullspace_weights(const Chain& chain, NullspaceLike nullspace) {
   if (nullspace.is_none()) return Vector();
   if (py::isinstance<py::str>(nullspace)) {
     if (py::cast<std::string>(nullspace) != "joint_limits")
@@ -24,7 +24,7 @@ Vector nullspace_weights(const Chain& chain, py::handle nullspace) {
   return as_vector(nullspace, "nullspace", chain.dof());
 }
 
-RateOptions rate_options(const Chain& chain, py::handle task, double damping, py::handle nullspace) {
+RateOptions rate_options(const Chain& chain, TaskName task, double damping, NullspaceLike nullspace) {
   RateOptions o;
   o.task = task_of(task);
   o.damping = damping;
@@ -34,7 +34,7 @@ RateOptions rate_options(const Chain& chain, py::handle task, double damping, py
 }
 
 py::array_t<double> resolved_rate(const Chain& chain, ArrayLike q_obj, ArrayLike twist_obj, double damping,
-                                  py::handle nullspace, py::handle task) {
+                                  NullspaceLike nullspace, TaskName task) {
   const RateOptions o = rate_options(chain, task, damping, nullspace);
   const Vector q = as_vector(q_obj, "q", chain.dof());
   const Vector twist = as_vector(twist_obj, "twist", task_rows(o.task));
@@ -46,7 +46,7 @@ py::array_t<double> resolved_rate(const Chain& chain, ArrayLike q_obj, ArrayLike
 }
 
 py::tuple servo(const Chain& chain, ArrayLike poses, ArrayLike q0_obj, double dt, double gain, double damping,
-                py::handle nullspace, py::handle task, bool saturate) {
+                NullspaceLike nullspace, TaskName task, bool saturate) {
   ServoOptions o;
   o.rate = rate_options(chain, task, damping, nullspace);
   o.dt = dt;

@@ -40,6 +40,7 @@ Mode as_mode(py::handle obj) {
 template <>
 struct FieldCodec<Mode> {
   static constexpr bool defined = true;
+  using Arg = ModeLike;
   static std::string kind() { return "(m_0, m_1, m_2) of +-1"; }
   static py::tuple to_python(const Mode& m) { return py::make_tuple(m[0], m[1], m[2]); }
   static Mode from_python(py::handle obj, const char*) { return as_mode(obj); }
@@ -61,7 +62,7 @@ std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::st
 
 py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
 
-py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, py::handle mode_obj) {
+py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj) {
   const Mode mode = as_mode(mode_obj);
   Array poses = as_array(poses_obj, "poses");
   if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
@@ -116,7 +117,7 @@ py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {
   return out;
 }
 
-py::dict points(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
+py::dict points(const RRR3& r, ArrayLike pose_obj, ModeLike mode_obj) {
   const Pose pose = as_pose(pose_obj);
   const Elbows A = r.elbows(r.ik_or_throw(pose, as_mode(mode_obj)));
   Elbows O, B;
@@ -131,7 +132,7 @@ py::dict points(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
   return d;
 }
 
-py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, py::handle mode_obj) {
+py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, ModeLike mode_obj) {
   Eigen::Matrix3d A, B;
   r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
   return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
@@ -210,21 +211,21 @@ std::string keyword_list(const std::string& head) {
 using WorkspaceOptionsClass = OptionsClass<RRR3WorkspaceOptions>;
 
 // The options of one map from the call's arguments (the same keywords as before, positional too).
-RRR3WorkspaceOptions workspace_options(double phi, py::handle mode_obj, long n, double tol) {
+RRR3WorkspaceOptions workspace_options(double phi, ModeLike mode_obj, long n, double tol) {
   RRR3WorkspaceOptions o;
   o.phi = phi, o.mode = as_mode(mode_obj), o.n = n, o.tol = tol;
   o.validate();
   return o;
 }
 
-RRR3Workspace workspace_map(const RRR3& r, double phi, py::handle mode_obj, long n, double tol) {
+RRR3Workspace workspace_map(const RRR3& r, double phi, ModeLike mode_obj, long n, double tol) {
   const RRR3WorkspaceOptions o = workspace_options(phi, mode_obj, n, tol);
   PythonProgress progress("RRR3.workspace");
   py::gil_scoped_release release;
   return workspace(r, o, &progress);
 }
 
-py::array_t<double> study_areas(py::handle robots_obj, double phi, py::handle mode_obj, long n, double tol) {
+py::array_t<double> study_areas(ArrayLike robots_obj, double phi, ModeLike mode_obj, long n, double tol) {
   Array g = as_array(robots_obj, "robots");
   if (g.ndim() != 2 || g.shape(1) != 4)
     fail("robots: expected shape (K, 4) rows (base_radius, platform_radius, l1, l2), got " + shape_of(g));
@@ -427,7 +428,7 @@ void def_geometry(py::class_<RRR3>& cls) {
 
 // RRR3's inverse and forward models, drawing points, Jacobians and singularities.
 void def_kinematics(py::class_<RRR3>& cls) {
-  cls.def("ik", [](const RRR3& r, ArrayLike pose, py::handle mode) {
+  cls.def("ik", [](const RRR3& r, ArrayLike pose, ModeLike mode) {
         return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
@@ -448,7 +449,7 @@ void def_kinematics(py::class_<RRR3>& cls) {
            "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
       .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
-      .def("singularity", [](const RRR3& r, ArrayLike pose, py::handle mode, double tol) {
+      .def("singularity", [](const RRR3& r, ArrayLike pose, ModeLike mode, double tol) {
         return r.singularity(as_pose(pose), as_mode(mode), tol);
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode), py::arg("tol") = kSingularTol,
            "Classification with tol on the normalised determinants.");

@@ -123,7 +123,7 @@ py::tuple via_points(ArrayLike points_obj, ArrayLike vmax_obj, ArrayLike amax_ob
   return py::make_tuple(r[0], r[1], r[2], r[3], to_numpy(law.via_times()));
 }
 
-py::tuple cartesian(py::handle T0_obj, py::handle T1_obj, const std::string& law_name, ArrayLike t_obj,
+py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_name, ArrayLike t_obj,
                     ArrayLike vmax_obj, ArrayLike amax_obj, double dt) {
   const Rigid T0 = Rigid::from_matrix(as_transform(T0_obj, "T0")), T1 = Rigid::from_matrix(as_transform(T1_obj, "T1"));
   const CartesianLine line(T0, T1);

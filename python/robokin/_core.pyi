@@ -14,12 +14,12 @@ class Chain:
     A serial kinematic chain (an Orocos KDL chain with joint limits).
     """
     @staticmethod
-    def from_dh(rows: typing.Any, modified: bool = False, tool: typing.Any = None, limits: typing.Any = None) -> Chain:
+    def from_dh(rows: typing.Any, modified: bool = False, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
         Builds a chain from Denavit-Hartenberg rows (a, alpha, d, theta, 'R'|'P').
         """
     @staticmethod
-    def from_segments(segments: typing.Any, tool: typing.Any = None, limits: typing.Any = None) -> Chain:
+    def from_segments(segments: typing.Any, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
         Builds a chain from KDL-style segments (joint type 'R'|'P'|'F', axis, tip frame).
         """
@@ -55,7 +55,7 @@ class Chain:
         Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed
         frame), lengths (3,) the singular values in decreasing order (0 for missing directions).
         """
-    def fk(self, q: numpy.typing.ArrayLike, out: typing.Any = 'frame') -> numpy.ndarray:
+    def fk(self, q: numpy.typing.ArrayLike, out: typing.Literal['frame', 'position'] = 'frame') -> numpy.ndarray:
         """
         Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool
         point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).
@@ -64,11 +64,11 @@ class Chain:
         """
         Frames (dof + 1, 4, 4): base, then the frame after each joint.
         """
-    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Any = 'pose') -> numpy.ndarray:
+    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.ndarray:
         """
         Geometric Jacobian at the tool point in the base frame, rows of the task.
         """
-    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Any = 'yoshikawa', task: typing.Any = 'pose') -> typing.Any:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> typing.Any:
         """
         Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
         product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
@@ -541,7 +541,7 @@ class RRR3PlanOptions:
         The working mode used along the whole path.
         """
     @mode.setter
-    def mode(self, arg1: typing.Any) -> None:
+    def mode(self, arg1: tuple[int, int, int]) -> None:
         ...
     @property
     def phi(self) -> float:
@@ -612,7 +612,7 @@ class RRR3WorkspaceOptions:
         The working mode.
         """
     @mode.setter
-    def mode(self, arg1: typing.Any) -> None:
+    def mode(self, arg1: tuple[int, int, int]) -> None:
         ...
     @property
     def n(self) -> int:
@@ -691,7 +691,7 @@ class RRR3ConnectOptions:
         The working mode, kept along the path.
         """
     @mode.setter
-    def mode(self, arg1: typing.Any) -> None:
+    def mode(self, arg1: tuple[int, int, int]) -> None:
         ...
     @property
     def resolution(self) -> float:
@@ -746,7 +746,7 @@ class RRR3LoopOptions:
         Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.
         """
     @nominals.setter
-    def nominals(self, arg1: typing.Any) -> None:
+    def nominals(self, arg1: numpy.typing.ArrayLike) -> None:
         ...
     @property
     def sign(self) -> int:
@@ -794,7 +794,7 @@ class RRR3:
         alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi
         fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.
         """
-    def ik(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+    def ik(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
         Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.
         """
@@ -802,7 +802,7 @@ class RRR3:
         """
         (8, 3): row k for mode k of RRR3.modes, NaN where unreachable.
         """
-    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
         (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
         """
@@ -810,7 +810,7 @@ class RRR3:
         """
         Newton-Raphson on the 6 loop equations from guess (alpha, beta).
         """
-    def jacobians(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> tuple:
+    def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
         """
         The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.
         """
@@ -829,15 +829,15 @@ class RRR3:
         along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
         why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
         """
-    def points(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1)) -> dict:
+    def points(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> dict:
         """
         Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
         """
-    def singularity(self, pose: numpy.typing.ArrayLike, mode: typing.Any = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
+    def singularity(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
         """
         Classification with tol on the normalised determinants.
         """
-    def workspace(self, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: typing.Any = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 200, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Workspace:
+    def workspace(self, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: tuple[int, int, int] = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 200, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Workspace:
         """
         Constant-orientation workspace on an n x n grid with singular cells (both cores).
         """
@@ -896,7 +896,7 @@ class _SphericalWrist6R:
     """
     A 6R spherical-wrist closed form with its geometry bound.
     """
-    def __init__(self, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> None:
+    def __init__(self, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> None:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
@@ -904,7 +904,7 @@ class _URSolver:
     """
     The UR closed form with its chain's arm and limits read once.
     """
-    def __init__(self, chain: Chain, limits: typing.Any = 'default') -> None:
+    def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> None:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
@@ -1099,7 +1099,7 @@ class IKSolver:
     """
     def __getstate__(self) -> tuple[int, typing.Any, IKOptions, bool, int, int]:
         ...
-    def __init__(self, chain: Chain, *, seed: typing.Any = None, **kwargs) -> None:
+    def __init__(self, chain: Chain, *, seed: int | None = None, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -1124,31 +1124,31 @@ def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIn
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: typing.Any = None, **kwargs) -> IKResult:
+def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """
-def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
+def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> IKSolutions:
     ...
-def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
+def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
     ...
-def ik_batch(chain: Chain, targets: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: typing.Any = None, path: bool = False, **kwargs) -> IKBatchResult:
+def ik_batch(chain: Chain, targets: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, path: bool = False, **kwargs) -> IKBatchResult:
     """
     Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.
     """
-def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: typing.Any = None) -> IKSolutions:
+def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
     ...
-def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str = 'algebraic', limits: typing.Any = None) -> IKSolutions:
+def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str = 'algebraic', limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
     ...
-def ik_planar_rp(target: numpy.typing.ArrayLike, limits: typing.Any = None) -> IKSolutions:
+def ik_planar_rp(target: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
     ...
-def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: typing.Any = None) -> IKSolutions:
+def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
     ...
-def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: typing.Any = None) -> tuple:
+def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> tuple:
     ...
-def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> IKSolutions:
+def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> IKSolutions:
     ...
-def ik_ur_batch(targets: numpy.typing.ArrayLike, chain: Chain, limits: typing.Any = 'default') -> tuple:
+def ik_ur_batch(targets: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> tuple:
     ...
 def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     """
@@ -1175,27 +1175,27 @@ def pose_from_rpy(rpy: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Frames of rotations Rz(yaw) Ry(pitch) Rx(roll). Use robokin.pose.from_rpy.
     """
-def pose_log(T: typing.Any) -> numpy.ndarray:
+def pose_log(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     SE(3) logarithm (v, w) of frames. Use robokin.pose.log.
     """
-def pose_quaternion(T: typing.Any) -> numpy.ndarray:
+def pose_quaternion(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Unit quaternions (w, x, y, z), w >= 0. Use robokin.pose.quaternion.
     """
-def pose_rotation_vector(T: typing.Any) -> numpy.ndarray:
+def pose_rotation_vector(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     Rotation vectors (angle in [0, pi] times the unit axis). Use robokin.pose.axis_angle.
     """
-def pose_rpy(T: typing.Any) -> numpy.ndarray:
+def pose_rpy(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     (roll, pitch, yaw) of rotations. Use robokin.pose.rpy.
     """
-def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> ReachResult:
+def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
     """
     One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
     """
-def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose') -> numpy.typing.NDArray[numpy.float64]:
+def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.typing.NDArray[numpy.float64]:
     """
     Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.
     """
@@ -1203,19 +1203,19 @@ def rpr_self_motion(point: numpy.typing.ArrayLike, t1: numpy.typing.ArrayLike, l
     """
     Self-motion set of the RPR tip point: (2, K, 3) joints per t1 sample and branch, NaN where none.
     """
-def rrr3_region_areas(robots: typing.Any, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: typing.Any = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 150, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> numpy.typing.NDArray[numpy.float64]:
+def rrr3_region_areas(robots: numpy.typing.ArrayLike, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: tuple[int, int, int] = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 150, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> numpy.typing.NDArray[numpy.float64]:
     """
     RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.
     """
-def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Any = None, task: typing.Any = 'pose', saturate: bool = True) -> tuple:
+def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose', saturate: bool = True) -> tuple:
     """
     Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.
     """
-def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Any = None, **kwargs) -> TrackResult:
+def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
     """
-def traj_cartesian(T0: typing.Any, T1: typing.Any, law: str, t: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+def traj_cartesian(T0: numpy.typing.ArrayLike, T1: numpy.typing.ArrayLike, law: str, t: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """
     Cartesian straight line: (t, poses, velocity, acceleration). Use robokin.traj.cartesian.
     """
