@@ -122,8 +122,10 @@ py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
   const Float64View q = q_view(q_obj, holder);
-  const long count = check_q(c, q);
+  // A batch's joint values are checked by the core as it reads them (Chain::fk_batch).
+  const long count = check_q(c, q, "q", false);
   if (count < 0) {
+    require_finite(q.data, q.size, "q");
     Rigid T;
     c.fk(q.data, T);
     const py::ssize_t frame_shape[2] = {4, 4}, position_shape[1] = {3};
@@ -143,7 +145,10 @@ py::array fk(const Chain& c, ArrayLike q_obj, py::handle out_obj) {
     py::gil_scoped_release release;
     finite = c.fk_batch(q.data, count, dst, what, &progress);
   }
-  if (!finite) require_finite_result(dst, width * count);
+  if (!finite) {  // the same errors, in the same order, as when q was checked first
+    require_finite(q.data, q.size, "q");
+    require_finite_result(dst, width * count);
+  }
   return out;
 }
 
