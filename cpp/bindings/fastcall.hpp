@@ -65,6 +65,7 @@ inline PyObject* interned(const char* text) {
   return s;
 }
 
+
 [[noreturn]] inline void missing(const char* fname, const char* name) {
   throw py::type_error(std::string(fname) + "() missing required argument '" + name + "'");
 }
@@ -86,8 +87,20 @@ PyObject* guarded(Body&& body) noexcept {
 
 // The C++ object of a bound instance (the method descriptor has checked its type already).
 template <class T>
-const T& self_of(PyObject* self) {
-  return py::handle(self).cast<const T&>();
+T& self_of(PyObject* self) {
+  return py::handle(self).cast<T&>();
+}
+
+// A positional-or-keyword argument that must be an instance of the bound class T: TypeError
+// naming it otherwise (pybind11 said "incompatible function arguments").
+template <class T>
+const T& instance_arg(const char* fname, const char* name, PyObject* obj) {
+  if (!obj) missing(fname, name);
+  if (!py::isinstance<T>(obj))
+    throw py::type_error(std::string(fname) + "(): " + name + ": expected " +
+                         py::str(py::type::of<T>().attr("__name__")).cast<std::string>() + ", got " +
+                         py::str(py::type::handle_of(obj).attr("__name__")).cast<std::string>());
+  return py::handle(obj).cast<const T&>();
 }
 
 // Installs `def` (static storage) as a method of the bound class `cls`, replacing what is there.
