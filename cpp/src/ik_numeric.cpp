@@ -233,13 +233,18 @@ void normal_step(const JM& J, const Vector& r, double s, Vector& dq) {
   using Small = Eigen::Matrix<double, K, K, 0, 6, 6>;
   using SmallVector = Eigen::Matrix<double, K, 1, 0, 6, 1>;
   const bool wide = J.cols() > J.rows();
-  Small A;
+  const int k = wide ? static_cast<int>(J.rows()) : static_cast<int>(J.cols());
+  Small A(k, k);
   SmallVector y;
+  // The lower half only (ldlt_in_place reads no more): the dot products of J's rows (J J^T) or
+  // columns (J^T J), 21 of 36 for a 6 x 6 system.
   if (wide) {
-    A.noalias() = J * J.transpose();
+    for (int j = 0; j < k; ++j)
+      for (int i = j; i < k; ++i) A(i, j) = J.row(i).dot(J.row(j));
     y = r;
   } else {
-    A.noalias() = J.transpose() * J;
+    for (int j = 0; j < k; ++j)
+      for (int i = j; i < k; ++i) A(i, j) = J.col(i).dot(J.col(j));
     y.noalias() = J.transpose() * r;
   }
   A.diagonal().array() += s;
