@@ -216,3 +216,51 @@ def test_results_unpickled_from_unaligned_state_arrays():
     np.testing.assert_array_equal(moved.q, res.q)
     np.testing.assert_array_equal(moved.error_p, res.error_p)
     assert pickle.loads(pickle.dumps(res, protocol=5)).q.tobytes() == res.q.tobytes()
+
+
+# Chain.fk, Chain.jacobian, _core.ik and IKSolver.solve are bound without pybind11's dispatcher
+# (cpp/bindings/fastcall.hpp): the argument handling Python users expect, written out there.
+UR5 = rk.robots.ur5()
+Q5 = np.zeros(6)
+FAST_CALL_ERRORS = [
+    (lambda: UR5.fk(), TypeError, "fk() missing required argument 'q'"),
+    (lambda: UR5.fk(Q5, "frame", 3), TypeError, "fk() takes at most 2 positional arguments (3 given)"),
+    (lambda: UR5.fk(Q5, bogus=1), TypeError, "fk() got an unexpected keyword argument 'bogus'"),
+    (lambda: UR5.fk(Q5, "frame", out="frame"), TypeError, "fk() got multiple values for argument 'out'"),
+    (lambda: UR5.fk(Q5, out="nope"), ValueError, "out: expected 'frame' or 'position', got 'nope'"),
+    (lambda: UR5.jacobian(q=Q5, task="nope"), ValueError, "task"),
+    (lambda: UR5.jacobian(Q5, 3), TypeError, "task: expected a string"),
+    (lambda: rk._core.Chain.fk(1, Q5), TypeError, "doesn't apply to a 'int' object"),
+    (lambda: rk._core.ik(1, np.eye(4), Q5), TypeError, "ik(): chain: expected Chain, got int"),
+    (lambda: rk._core.ik(UR5, np.eye(4)), TypeError, "ik() missing required argument 'q0'"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, 5), TypeError, "ik() takes at most 3 positional arguments (4 given)"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, chain=UR5), TypeError, "ik() got multiple values for argument 'chain'"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, seed="x"), ValueError, "seed: expected None or an int"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, tol_p=-1.0), ValueError, "tol_p: must be a positive number"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, bogus=1), TypeError, "bogus"),
+    (lambda: rk.IKSolver(UR5).solve(np.eye(4)), TypeError, "solve() missing required argument 'q0'"),
+    (lambda: rk.IKSolver(UR5).solve(np.eye(4), Q5, Q5), TypeError, "solve() takes at most 2 positional arguments"),
+]
+
+
+@pytest.mark.parametrize("call, error, message", FAST_CALL_ERRORS)
+def test_fast_calls_report_argument_mistakes_like_python(call, error, message):
+    with pytest.raises(error) as info:
+        call()
+    assert message in str(info.value)
+
+
+def test_fast_calls_take_keywords_positions_and_defaults_alike():
+    q = np.array([0.1, -0.8, 1.1, 0.2, 0.5, -0.3])
+    T = UR5.fk(q)
+    assert np.array_equal(UR5.fk(q=q), T) and np.array_equal(UR5.fk(q, "frame"), T)
+    assert np.array_equal(UR5.fk(q, out="position"), T[:3, 3])
+    J = UR5.jacobian(q)
+    assert np.array_equal(UR5.jacobian(q, "pose"), J) and np.array_equal(UR5.jacobian(task="position", q=q), J[:3])
+    by_position = rk._core.ik(UR5, T, q + 0.05, seed=1, tol_p=1e-10)
+    by_keyword = rk._core.ik(q0=q + 0.05, target=T, chain=UR5, tol_p=1e-10, seed=1)
+    assert by_position.success and np.array_equal(by_position.q, by_keyword.q)
+    solver = rk.IKSolver(UR5, seed=1)
+    assert np.array_equal(solver.solve(T, q + 0.05).q, rk.IKSolver(UR5, seed=1).solve(q0=q + 0.05, target=T).q)
+    for f in (UR5.fk, UR5.jacobian, rk._core.ik, solver.solve):  # the signature line help() and the stubs read
+        assert f.__doc__.startswith(f.__name__ + "(")

@@ -2,6 +2,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
+#include "fastcall.hpp"
 #include "progress.hpp"
 
 #include "robokin/chain.hpp"
@@ -122,8 +123,10 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
   const Float64View q = q_view(q_obj, holder);
-  const long count = check_q(c, q);
+  // A batch's joint values are checked by the core as it reads them (Chain::fk_batch).
+  const long count = check_q(c, q, "q", false);
   if (count < 0) {
+    require_finite(q.data, q.size, "q");
     Rigid T;
     c.fk(q.data, T);
     const py::ssize_t frame_shape[2] = {4, 4}, position_shape[1] = {3};
@@ -143,7 +146,10 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
     py::gil_scoped_release release;
     finite = c.fk_batch(q.data, count, dst, what, &progress);
   }
-  if (!finite) require_finite_result(dst, width * count);
+  if (!finite) {  // the same errors, in the same order, as when q was checked first
+    require_finite(q.data, q.size, "q");
+    require_finite_result(dst, width * count);
+  }
   return out;
 }
 
@@ -194,6 +200,43 @@ py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike po
   return to_numpy(out);
 }
 
+// Chain.fk(q, out='frame') and Chain.jacobian(q, task='pose') through fastcall.hpp.
+template <class Second, py::array (*F)(const Chain&, ArrayLike, Second)>
+PyObject* fast_method(const char* fname, const char* second, PyObject* fallback, PyObject* self,
+                      PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  return guarded([&]() -> py::object {
+    const char* const names[] = {"q", second};
+    PyObject* a[2];
+    parse_args(fname, args, nargs, kwnames, names, 2, 2, a);
+    if (!a[0]) missing(fname, "q");
+    return F(self_of<Chain>(self), py::reinterpret_borrow<ArrayLike>(a[0]),
+             py::reinterpret_borrow<Second>(a[1] ? a[1] : fallback));
+  });
+}
+
+PyObject* fk_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  static PyObject* const frame = interned("frame");  // kept for the process
+  return fast_method<FkOut, &fk>("fk", "out", frame, self, args, nargs, kwnames);
+}
+
+PyObject* jacobian_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  static PyObject* const pose = interned("pose");  // kept for the process
+  return fast_method<TaskName, &jacobian>("jacobian", "task", pose, self, args, nargs, kwnames);
+}
+
+PyMethodDef fk_def = {
+    "fk", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&fk_fast)), METH_FASTCALL | METH_KEYWORDS,
+    "fk(self: robokin._core.Chain, q: numpy.typing.ArrayLike, out: typing.Literal['frame', 'position'] = 'frame') -> "
+    "numpy.ndarray\n\n"
+    "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
+    "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"};
+PyMethodDef jacobian_def = {
+    "jacobian", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&jacobian_fast)),
+    METH_FASTCALL | METH_KEYWORDS,
+    "jacobian(self: robokin._core.Chain, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', "
+    "'xy', 'xyphi'] = 'pose') -> numpy.ndarray\n\n"
+    "Geometric Jacobian at the tool point in the base frame, rows of the task.\n"};
+
 std::string joint_types(const Chain& c) {
   std::string s;
   for (int i = 0; i < c.dof(); ++i) s += c.prismatic(i) ? 'P' : 'R';
@@ -203,7 +246,8 @@ std::string joint_types(const Chain& c) {
 }  // namespace
 
 void bind_chain(py::module_& m) {
-  py::class_<Chain>(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).")
+  py::class_<Chain> chain(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).");
+  chain
       .def_static("from_dh", &chain_from_dh, py::arg("rows"), py::arg("modified") = false,
                   py::arg("tool") = py::none(), py::arg("limits") = py::none(),
                   "Builds a chain from Denavit-Hartenberg rows (a, alpha, d, theta, 'R'|'P').")
@@ -215,11 +259,6 @@ void bind_chain(py::module_& m) {
       .def_property_readonly(
           "limits", [](const Chain& c) { return py::make_tuple(to_numpy(c.lower()), to_numpy(c.upper())); },
           "(lower, upper) joint limits; +-inf where a joint is unlimited.")
-      .def("fk", &fk, py::arg("q"), py::arg("out") = "frame",
-           "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
-           "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).")
-      .def("jacobian", &jacobian, py::arg("q"), py::arg("task") = "pose",
-           "Geometric Jacobian at the tool point in the base frame, rows of the task.")
       .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
       .def("point_in_frame", &point_in_frame, py::arg("q"), py::arg("point"), py::arg("frame"),
            py::arg("in_frame") = 0, "Expresses a point given in frame `frame` in frame `in_frame`.")
@@ -227,6 +266,9 @@ void bind_chain(py::module_& m) {
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
       .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
+  // The two hottest methods without pybind11's dispatcher (fastcall.hpp).
+  add_fast_method(chain, &fk_def);
+  add_fast_method(chain, &jacobian_def);
   // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }
 

@@ -1,6 +1,7 @@
 // Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "fastcall.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "results.hpp"
@@ -148,6 +149,44 @@ struct BoundSolver {
   }
 };
 
+// ik(chain, target, q0, *, seed=None, **kwargs) and IKSolver.solve(target, q0) through fastcall.hpp.
+PyObject* ik_fast(PyObject*, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  return guarded([&]() -> py::object {
+    static const char* const names[] = {"chain", "target", "q0", "seed"};
+    PyObject* a[4];
+    py::dict options;  // the keywords that name no parameter: IkOptions' fields
+    auto option = [&](PyObject* name, PyObject* value) { PyDict_SetItem(options.ptr(), name, value); };
+    parse_args("ik", args, nargs, kwnames, names, 4, 3, a, &option);
+    const Chain& chain = instance_arg<Chain>("ik", "chain", a[0]);
+    if (!a[1]) missing("ik", "target");
+    if (!a[2]) missing("ik", "q0");
+    return py::cast(ik(chain, py::reinterpret_borrow<ArrayLike>(a[1]), py::reinterpret_borrow<ArrayLike>(a[2]),
+                       py::reinterpret_borrow<SeedLike>(a[3] ? a[3] : Py_None), py::reinterpret_borrow<py::kwargs>(options)));
+  });
+}
+
+PyMethodDef ik_def = {
+    "ik", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&ik_fast)), METH_FASTCALL | METH_KEYWORDS,
+    "ik(chain: robokin._core.Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None "
+    "= None, **kwargs) -> robokin._core.IKResult\n\nNumerical IK; options as keywords (IKOptions). Use robokin.ik.\n"};
+
+PyObject* solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  return guarded([&]() -> py::object {
+    static const char* const names[] = {"target", "q0"};
+    PyObject* a[2];
+    parse_args("solve", args, nargs, kwnames, names, 2, 2, a);
+    if (!a[0]) missing("solve", "target");
+    if (!a[1]) missing("solve", "q0");
+    return py::cast(self_of<BoundSolver>(self).solve(py::reinterpret_borrow<ArrayLike>(a[0]),
+                                                     py::reinterpret_borrow<ArrayLike>(a[1])));
+  });
+}
+
+PyMethodDef solve_def = {
+    "solve", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_fast)), METH_FASTCALL | METH_KEYWORDS,
+    "solve(self: robokin._core.IKSolver, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike) -> "
+    "robokin._core.IKResult\n\nSolves one target from q0 -> IKResult.\n"};
+
 // Pickling: a versioned state tuple (check_state, arrays.hpp).
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
   check_state(t, 6, "IKSolver");  // (version, chain, options, seeded, seed, calls)
@@ -188,23 +227,21 @@ void bind_ik(py::module_& m) {
   defaults["timeout"] = d.budget();
   defaults.attr("pop")("damping");  // None: the method's (default_damping)
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
-  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::kw_only(), py::arg("seed") = py::none(),
-        "Numerical IK; options as keywords (IKOptions). Use robokin.ik.");
+  add_fast_function(m, &ik_def);  // robokin.ik's core, without pybind11's dispatcher (fastcall.hpp)
   m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
         py::arg("seed") = py::none(), py::arg("path") = false,
         "Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.");
-  py::class_<BoundSolver>(m, "IKSolver",
+  py::class_<BoundSolver> solver(m, "IKSolver",
                           "A numerical IK solver bound to a chain and options (robokin.ik's arguments):\n"
                           "solve(target, q0) costs only the solve. Call k of a seeded solver uses seed + k.\n"
                           "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
-                          "thread for parallel solves (ik_batch is the parallel route).")
-      .def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
+                          "thread for parallel solves (ik_batch is the parallel route).");
+  solver.def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
              return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
                                                   options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
-      .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return name_of(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
       .def_property_readonly("options", [](const BoundSolver& b) { return b.options; }, "The solver's IKOptions (a copy).")
@@ -217,6 +254,7 @@ void bind_ik(py::module_& m) {
         const std::string options = py::repr(self.attr("options")).cast<std::string>();
         return "IKSolver" + options.substr(options.find('('));
       });
+  add_fast_method(solver, &solve_def);  // without pybind11's dispatcher (fastcall.hpp)
 }
 
 }  // namespace robokin::bind

@@ -162,8 +162,12 @@ void IkSolver::errors(const Target& target, const double* q, double& ep, double&
 // FK (+ Jacobian rows of the task) and the error at q, into (J, e, ep, er); returns the cost |e|^2.
 double IkSolver::evaluate(const Target& target, const Vector& q, Eigen::MatrixXd& J, Vector& e, double& ep,
                           double& er) {
-  chain_->fk_jacobian(q.data(), T_, J6_.data());
-  select_rows(J6_, J);
+  if (m_ == 6) {  // every row: the Jacobian is written where it is used (J is 6 x n, column-major)
+    chain_->fk_jacobian(q.data(), T_, J.data());
+  } else {
+    chain_->fk_jacobian(q.data(), T_, J6_.data());
+    select_rows(J6_, J);
+  }
   errors_of(target, T_, e.data(), ep, er);
   return e.squaredNorm();
 }
@@ -185,10 +189,12 @@ bool IkSolver::met(double ep, double er) const { return ep < opt_.tol_p && er < 
 template <class Solve>
 void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const Vector& e, Solve solve) {
   std::fill(frozen_.begin(), frozen_.end(), false);
-  Jw_ = J;
-  r_ = e;
+  // The step is solved from J and e themselves until a joint is frozen; from then on from the
+  // copies Jw_ and r_ that freezing changes.
+  const Eigen::MatrixXd* Jp = &J;
+  const Vector* rp = &e;
   for (int pass = 0; pass <= n_; ++pass) {
-    solve(Jw_, r_, dq_);
+    solve(*Jp, *rp, dq_);
     bool changed = false;
     for (int i = 0; i < n_; ++i) {
       if (frozen_[i]) continue;
@@ -199,6 +205,12 @@ void IkSolver::constrained_step(const Vector& q, const Eigen::MatrixXd& J, const
         continue;
       }
       const double lim = clamp(i, v);
+      if (Jp == &J) {
+        Jw_ = J;
+        r_ = e;
+        Jp = &Jw_;
+        rp = &r_;
+      }
       frozen_[i] = true;
       qt_(i) = lim;
       r_ -= J.col(i) * (lim - q(i));
@@ -221,20 +233,31 @@ void normal_step(const JM& J, const Vector& r, double s, Vector& dq) {
   using Small = Eigen::Matrix<double, K, K, 0, 6, 6>;
   using SmallVector = Eigen::Matrix<double, K, 1, 0, 6, 1>;
   const bool wide = J.cols() > J.rows();
-  Small A;
+  const int k = wide ? static_cast<int>(J.rows()) : static_cast<int>(J.cols());
+  Small A(k, k);
   SmallVector y;
+  // The lower half only (ldlt_in_place reads no more): the dot products of J's rows (J J^T) or
+  // columns (J^T J), 21 of 36 for a 6 x 6 system.
   if (wide) {
-    A.noalias() = J * J.transpose();
+    for (int j = 0; j < k; ++j)
+      for (int i = j; i < k; ++i) A(i, j) = J.row(i).dot(J.row(j));
     y = r;
   } else {
-    A.noalias() = J.transpose() * J;
+    for (int j = 0; j < k; ++j)
+      for (int i = j; i < k; ++i) A(i, j) = J.col(i).dot(J.col(j));
     y.noalias() = J.transpose() * r;
   }
   A.diagonal().array() += s;
-  const Small A0 = A;
   double dmin, dmax;
-  if (ldlt_in_place(A, dmin, dmax)) ldlt_solve_in_place(A, y);
-  else y = Eigen::MatrixXd(A0).completeOrthogonalDecomposition().solve(Eigen::VectorXd(y));
+  if (ldlt_in_place(A, dmin, dmax)) {
+    ldlt_solve_in_place(A, y);
+  } else {  // rare: the system formed again (the factorisation overwrote it), solved by a COD
+    Small A0;
+    if (wide) A0.noalias() = J * J.transpose();
+    else A0.noalias() = J.transpose() * J;
+    A0.diagonal().array() += s;
+    y = Eigen::MatrixXd(A0).completeOrthogonalDecomposition().solve(Eigen::VectorXd(y));
+  }
   if (wide) dq.noalias() = J.transpose() * y;
   else dq = y;
 }
@@ -379,6 +402,7 @@ IkSolver::Step IkSolver::newton_step(const Target& target, Vector& q, Attempt& a
   bool newton = true;
   if (opt_.method == IkMethod::Halley) {
     damped_pinv(J_, e_, a_);
+    if (m_ == 6) J6_ = J_;  // evaluate wrote the 6 rows into J_ alone
     hessian_times(*chain_, J6_, a_, HA_);  // J6_ is the Jacobian at q: the last evaluation was there
     select_rows(HA_, M_);
     M_ = J_ + 0.5 * M_;

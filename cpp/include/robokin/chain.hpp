@@ -111,7 +111,8 @@ class Chain {
   static constexpr int kFkFew = 8;
   void fk_few(const double* q, int count, Rigid* out) const;
   // count configurations (count x dof, row-major) -> count frames (16 values each) or points (3);
-  // false when some result is not finite (joint values or lengths near overflow).
+  // false when some joint value or some result is not finite (lengths near overflow): the joint
+  // values are checked here, in the pass that reads them.
   bool fk_batch(const double* q, long count, double* out, FkOutput what = FkOutput::Frame,
                 Progress* progress = nullptr) const;
 
@@ -146,10 +147,10 @@ class Chain {
   template <int N>
   void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
   // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
-  bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
-  bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
-  bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
-  bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool stream) const;
+  bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
+  bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
+  bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
+  bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
