@@ -238,6 +238,10 @@ FAST_CALL_ERRORS = [
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, seed="x"), ValueError, "seed: expected None or an int"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, tol_p=-1.0), ValueError, "tol_p: must be a positive number"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, bogus=1), TypeError, "bogus"),
+    (lambda: UR5.manipulability(), TypeError, "manipulability() missing required argument 'q'"),
+    (lambda: UR5.manipulability(Q5, "yoshikawa", "pose", 1), TypeError, "takes at most 3 positional arguments"),
+    (lambda: UR5.manipulability(Q5, measure="nope"), ValueError, "measure"),
+    (lambda: UR5.manipulability(Q5, task=1), TypeError, "task: expected a string"),
     (lambda: rk.IKSolver(UR5).solve(np.eye(4)), TypeError, "solve() missing required argument 'q0'"),
     (lambda: rk.IKSolver(UR5).solve(np.eye(4), Q5, Q5), TypeError, "solve() takes at most 2 positional arguments"),
 ]
@@ -260,7 +264,11 @@ def test_fast_calls_take_keywords_positions_and_defaults_alike():
     by_position = rk._core.ik(UR5, T, q + 0.05, seed=1, tol_p=1e-10)
     by_keyword = rk._core.ik(q0=q + 0.05, target=T, chain=UR5, tol_p=1e-10, seed=1)
     assert by_position.success and np.array_equal(by_position.q, by_keyword.q)
+    w = UR5.manipulability(q)
+    assert w == UR5.manipulability(q, "yoshikawa", "pose") == UR5.manipulability(task="pose", q=q)
+    assert UR5.manipulability(q, task="position") == UR5.manipulability(q, "yoshikawa", task="position")
+    assert UR5.manipulability(np.stack([q, q])).tolist() == [w, w]
     solver = rk.IKSolver(UR5, seed=1)
     assert np.array_equal(solver.solve(T, q + 0.05).q, rk.IKSolver(UR5, seed=1).solve(q0=q + 0.05, target=T).q)
-    for f in (UR5.fk, UR5.jacobian, rk._core.ik, solver.solve):  # the signature line help() and the stubs read
+    for f in (UR5.fk, UR5.jacobian, UR5.manipulability, rk._core.ik, solver.solve):  # the signature line help() and the stubs read
         assert f.__doc__.startswith(f.__name__ + "(")

@@ -68,7 +68,7 @@ class Chain:
         """
         Geometric Jacobian at the tool point in the base frame, rows of the task.
         """
-    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> typing.Any:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> float | numpy.typing.NDArray[numpy.float64]:
         """
         Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
         product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
