@@ -76,12 +76,16 @@ def problem(chain, count, seed):
 
 
 def run_ours(chain, targets, q0, tol):
-    ok, times = np.zeros(len(targets), bool), np.zeros(len(targets))
+    """rk.ik per target, timed back to back; verified after the loop, as run_kdl does (a
+    verification between the timed calls left each call's caches cold: +4 us a call on the UR5)."""
+    results, times = [], np.zeros(len(targets))
     for k, T in enumerate(targets):
         t = time.perf_counter()
         r = rk.ik(chain, T, q0, tol_p=tol, tol_r=tol, seed=k)
         times[k] = time.perf_counter() - t
-        ok[k] = verify(chain, r.q, T, tol)
+        results.append(r)
+    ok = np.array([verify(chain, r.q, T, tol) for r, T in zip(results, targets)])
+    for k, r in enumerate(results):
         assert ok[k] == r.success, f"reported success {r.success} differs from the verification, target {k}"
     return ok, times
 
