@@ -1,5 +1,6 @@
 // Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
 #include "arrays.hpp"
+#include "fastcall.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
 #include "progress.hpp"
@@ -126,6 +127,22 @@ struct URSolver {
   py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
 };
 
+// _URSolver.solve(target) through fastcall.hpp (robokin.closed.ur's call: the dispatcher was a
+// tenth of it).
+PyObject* ur_solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
+  return guarded([&]() -> py::object {
+    static const char* const names[] = {"target"};
+    PyObject* a[1];
+    parse_args("solve", args, nargs, kwnames, names, 1, 1, a);
+    if (!a[0]) missing("solve", "target");
+    return py::cast(self_of<URSolver>(self).solve(py::reinterpret_borrow<ArrayLike>(a[0])));
+  });
+}
+
+PyMethodDef ur_solve_def = {
+    "solve", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&ur_solve_fast)), METH_FASTCALL | METH_KEYWORDS,
+    "solve(self: robokin._core._URSolver, target: numpy.typing.ArrayLike) -> robokin._core.IKSolutions\n"};
+
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
@@ -251,13 +268,14 @@ void bind_ik_closed(py::module_& m) {
         py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
-  py::class_<URSolver>(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.")
+  py::class_<URSolver> ur_solver(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.");
+  ur_solver
       .def(py::init([](const Chain& chain, ChainLimitsLike limits) {
              return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
-      .def("solve", &URSolver::solve, py::arg("target"))
       .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
+  add_fast_method(ur_solver, &ur_solve_def);  // without pybind11's dispatcher (fastcall.hpp)
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ur_geometry", &ur_geometry, py::arg("chain"));
