@@ -68,3 +68,19 @@ def test_chains_and_closed_forms_check_limits_alike(lower, upper, message):
         rk.closed.planar_2r([1.2, 0.8], limits=(lower, upper))
     with pytest.raises(ValueError, match=message):
         rk.closed.general_3r([1.0, 0.5, 0.2], rk.robots.get("planar_3r"), limits=(lower + [0.0], upper + [1.0]))
+
+
+def test_wrap_angle_has_the_bits_of_ieee_remainder_by_two_pi():
+    # angles.hpp's wrap_angle skips std::remainder for |a| < 3 pi: the same bits as math.remainder
+    # (IEEE 754 remainder) everywhere, the signed zeros and the edges at pi, 2 pi, 3 pi included.
+    from robokin import _testing
+
+    rng = np.random.default_rng(7)
+    edges = np.array([k * math.pi for k in range(-4, 5)] + [k * 2 * math.pi for k in (-2, -1, 1, 2)])
+    near = np.concatenate([edges, np.nextafter(edges, np.inf), np.nextafter(edges, -np.inf)])
+    a = np.concatenate([near, [0.0, -0.0, 1e-300, -1e-300, 1e300, -1e300],
+                        rng.uniform(-12, 12, 200_000), rng.normal(0, 1e4, 1000)])
+    got = _testing.wrap_angle(a)
+    want = np.array([math.remainder(x, 2 * math.pi) for x in a])
+    assert np.array_equal(got.view(np.uint64), want.view(np.uint64))  # bit for bit, zeros' signs too
+    assert np.isnan(_testing.wrap_angle(np.array([np.nan, np.inf, -np.inf]))).all()

@@ -84,7 +84,8 @@ int planar_2r_args(double a1, double a2, double x, double y, double yx[2][2][2],
   a1 /= unit, a2 /= unit, x /= unit, y /= unit;
   double c2, sin2;
   singular = false;
-  if (!elbow_angle(a1, a2, std::hypot(x, y), c2, sin2, singular)) return 0;
+  // |(x, y)| without std::hypot: a point within an arm's reach, far from overflow and underflow.
+  if (!elbow_angle(a1, a2, std::sqrt(x * x + y * y), c2, sin2, singular)) return 0;
   const int count = singular ? 1 : 2;
   for (int k = 0; k < count; ++k) {
     const double s2 = k == 0 ? sin2 : -sin2;
@@ -578,7 +579,9 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   // Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist centre in a plane
   // d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions x1 . p = +-h.
   const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
-  const double r = std::hypot(p.x(), p.y()) / unit, d4 = std::abs(arm.d4) / unit;
+  // |p_xy| without std::hypot (glibc's took ~5 % of a call): p is a point within the arm's reach,
+  // its squares far from overflow and underflow.
+  const double r = std::sqrt(p.x() * p.x() + p.y() * p.y()) / unit, d4 = std::abs(arm.d4) / unit;
   const double disc = (r - d4) * (r + d4);
   if (!(disc >= -kCosEps * std::max(1.0, r * r))) return out;
   const double h = std::sqrt(std::max(0.0, disc)) * unit;
@@ -609,7 +612,7 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
     const Eigen::Matrix3d R01 = Rz1 * rot_x(kPi / 2);
     M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
     P[side].noalias() = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
-    wrist_singular[side] = std::hypot(M[side](0, 2), M[side](1, 2)) < 1e-10;
+    wrist_singular[side] = M[side](0, 2) * M[side](0, 2) + M[side](1, 2) * M[side](1, 2) < 1e-20;  // |.| < 1e-10
     if (wrist_singular[side]) out.singular = true;
     yw[side] = -M[side](1, 2), xw[side] = -M[side](0, 2);
   }

@@ -34,8 +34,14 @@ bool fit_limits(double* q, int n, const JointLimits& lim) {
       if (revolute) q[i] = wrap_angle(q[i]);
       continue;
     }
+    const double lo = lim.lower(i), hi = lim.upper(i);
+    if (revolute && lo <= -M_PI && hi >= M_PI) {  // settle_into_limits' first case, always taken
+      if (!std::isfinite(q[i])) return false;
+      q[i] = wrap_angle(q[i]);
+      continue;
+    }
     const double tol = 1e-12 * std::max(1.0, std::abs(q[i]));
-    if (!settle_into_limits(q[i], lim.lower(i), lim.upper(i), revolute, tol)) return false;
+    if (!settle_into_limits(q[i], lo, hi, revolute, tol)) return false;
   }
   return true;
 }

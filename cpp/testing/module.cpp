@@ -16,6 +16,7 @@
 #include "arrays.hpp"
 #include "kdl_ik_reference.hpp"
 #include "progress.hpp"
+#include "robokin/angles.hpp"
 #include "robokin/ik.hpp"
 #include "robokin/parallel.hpp"
 #include "targets.hpp"
@@ -54,6 +55,12 @@ void bind_hooks(pybind11::module_& m) {
     vmath::atan2(y.data(), x.data(), out.mutable_data(), static_cast<long>(x.size()));
     return out;
   }, pybind11::arg("y"), pybind11::arg("x"));
+  // angles.hpp's wrap_angle on a float64 array (tests: the same bits as std::remainder by 2 pi).
+  m.def("wrap_angle", [](const Doubles& a) {
+    pybind11::array_t<double> out(a.size());
+    for (pybind11::ssize_t i = 0; i < a.size(); ++i) out.mutable_data()[i] = wrap_angle(a.data()[i]);
+    return out;
+  }, pybind11::arg("a"));
   m.def("throw", [](const std::string& kind) {
     if (kind == "kdl") throw KDL::Error_Not_Implemented();
     if (kind == "bad_alloc") throw std::bad_alloc();

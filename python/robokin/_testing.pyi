@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import robokin._core
 import typing
-__all__: list[str] = ['KdlIk', 'hessian_times', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos']
+__all__: list[str] = ['KdlIk', 'hessian_times', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
 class KdlIk:
     """
     Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.
@@ -29,4 +29,6 @@ def throw(arg0: str) -> None:
 def vmath_atan2(y: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def vmath_sincos(x: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    ...
+def wrap_angle(a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
     ...
