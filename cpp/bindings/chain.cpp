@@ -214,28 +214,17 @@ PyObject* fast_method(const char* fname, const char* second, PyObject* fallback,
   });
 }
 
+constexpr const char* kFkOut = "frame";  // Chain.fk's default out
+
 PyObject* fk_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  static PyObject* const frame = interned("frame");  // kept for the process
-  return fast_method<FkOut, &fk>("fk", "out", frame, self, args, nargs, kwnames);
+  static PyObject* const out = interned(kFkOut);  // kept for the process
+  return fast_method<FkOut, &fk>("fk", "out", out, self, args, nargs, kwnames);
 }
 
 PyObject* jacobian_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  static PyObject* const pose = interned("pose");  // kept for the process
-  return fast_method<TaskName, &jacobian>("jacobian", "task", pose, self, args, nargs, kwnames);
+  static PyObject* const task = interned(task_name(Task::Pose));  // kept for the process
+  return fast_method<TaskName, &jacobian>("jacobian", "task", task, self, args, nargs, kwnames);
 }
-
-PyMethodDef fk_def = {
-    "fk", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&fk_fast)), METH_FASTCALL | METH_KEYWORDS,
-    "fk(self: robokin._core.Chain, q: numpy.typing.ArrayLike, out: typing.Literal['frame', 'position'] = 'frame') -> "
-    "numpy.ndarray\n\n"
-    "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
-    "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"};
-PyMethodDef jacobian_def = {
-    "jacobian", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&jacobian_fast)),
-    METH_FASTCALL | METH_KEYWORDS,
-    "jacobian(self: robokin._core.Chain, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', "
-    "'xy', 'xyphi'] = 'pose') -> numpy.ndarray\n\n"
-    "Geometric Jacobian at the tool point in the base frame, rows of the task.\n"};
 
 std::string joint_types(const Chain& c) {
   std::string s;
@@ -267,8 +256,15 @@ void bind_chain(py::module_& m) {
       .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
   // The two hottest methods without pybind11's dispatcher (fastcall.hpp).
-  add_fast_method(chain, &fk_def);
-  add_fast_method(chain, &jacobian_def);
+  const std::string q = "(self: robokin._core.Chain, q: " + type_text<ArrayLike>();
+  add_fast_method(chain, fast_def("fk", &fk_fast,
+                                  q + ", out: " + type_text<FkOut>() + " = '" + kFkOut + "') -> numpy.ndarray",
+                                  "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
+                                  "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"));
+  add_fast_method(chain, fast_def("jacobian", &jacobian_fast,
+                                  q + ", task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) +
+                                      "') -> numpy.ndarray",
+                                  "Geometric Jacobian at the tool point in the base frame, rows of the task.\n"));
   // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }
 

@@ -65,7 +65,6 @@ inline PyObject* interned(const char* text) {
   return s;
 }
 
-
 [[noreturn]] inline void missing(const char* fname, const char* name) {
   throw py::type_error(std::string(fname) + "() missing required argument '" + name + "'");
 }
@@ -103,7 +102,25 @@ const T& instance_arg(const char* fname, const char* name, PyObject* obj) {
   return py::handle(obj).cast<const T&>();
 }
 
-// Installs `def` (static storage) as a method of the bound class `cls`, replacing what is there.
+using FastFunction = PyObject* (*)(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames);
+
+// A parameter type's text as pybind11 writes it in signatures (ArrayLike, the Typed<Tag> handles of
+// arrays.hpp): the fast methods' signature lines take the same words the stub has elsewhere.
+template <class T>
+std::string type_text() {
+  return py::detail::handle_type_name<T>::name.text;
+}
+
+// The method table entry of `fn`, kept for the process (as the function it describes). Its docstring
+// is name + `signature` (the parameters and return annotation as pybind11 writes them: help() and
+// the stub generator read that first line), a blank line, then `doc`.
+inline PyMethodDef* fast_def(const char* name, FastFunction fn, const std::string& signature, const char* doc) {
+  const std::string* text = new std::string(name + signature + "\n\n" + doc);
+  return new PyMethodDef{name, reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(fn)),
+                         METH_FASTCALL | METH_KEYWORDS, text->c_str()};
+}
+
+// Installs `def` (kept for the process) as a method of the bound class `cls`, replacing what is there.
 inline void add_fast_method(py::handle cls, PyMethodDef* def) {
   PyObject* descr = PyDescr_NewMethod(reinterpret_cast<PyTypeObject*>(cls.ptr()), def);
   if (!descr) throw py::error_already_set();
@@ -112,7 +129,7 @@ inline void add_fast_method(py::handle cls, PyMethodDef* def) {
   if (status != 0) throw py::error_already_set();
 }
 
-// Installs `def` (static storage) as the function m.<name>.
+// Installs `def` (kept for the process) as the function m.<name>.
 inline void add_fast_function(py::module_& m, PyMethodDef* def) {
   py::object f = py::reinterpret_steal<py::object>(PyCFunction_NewEx(def, nullptr, m.attr("__name__").ptr()));
   if (!f) throw py::error_already_set();

@@ -155,7 +155,9 @@ PyObject* ik_fast(PyObject*, PyObject* const* args, Py_ssize_t nargs, PyObject* 
     static const char* const names[] = {"chain", "target", "q0", "seed"};
     PyObject* a[4];
     py::dict options;  // the keywords that name no parameter: IkOptions' fields
-    auto option = [&](PyObject* name, PyObject* value) { PyDict_SetItem(options.ptr(), name, value); };
+    auto option = [&](PyObject* name, PyObject* value) {
+      if (PyDict_SetItem(options.ptr(), name, value) != 0) throw py::error_already_set();
+    };
     parse_args("ik", args, nargs, kwnames, names, 4, 3, a, &option);
     const Chain& chain = instance_arg<Chain>("ik", "chain", a[0]);
     if (!a[1]) missing("ik", "target");
@@ -164,11 +166,6 @@ PyObject* ik_fast(PyObject*, PyObject* const* args, Py_ssize_t nargs, PyObject* 
                        py::reinterpret_borrow<SeedLike>(a[3] ? a[3] : Py_None), py::reinterpret_borrow<py::kwargs>(options)));
   });
 }
-
-PyMethodDef ik_def = {
-    "ik", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&ik_fast)), METH_FASTCALL | METH_KEYWORDS,
-    "ik(chain: robokin._core.Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None "
-    "= None, **kwargs) -> robokin._core.IKResult\n\nNumerical IK; options as keywords (IKOptions). Use robokin.ik.\n"};
 
 PyObject* solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
   return guarded([&]() -> py::object {
@@ -181,11 +178,6 @@ PyObject* solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, Py
                                                      py::reinterpret_borrow<ArrayLike>(a[1])));
   });
 }
-
-PyMethodDef solve_def = {
-    "solve", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_fast)), METH_FASTCALL | METH_KEYWORDS,
-    "solve(self: robokin._core.IKSolver, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike) -> "
-    "robokin._core.IKResult\n\nSolves one target from q0 -> IKResult.\n"};
 
 // Pickling: a versioned state tuple (check_state, arrays.hpp).
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
@@ -227,7 +219,11 @@ void bind_ik(py::module_& m) {
   defaults["timeout"] = d.budget();
   defaults.attr("pop")("damping");  // None: the method's (default_damping)
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
-  add_fast_function(m, &ik_def);  // robokin.ik's core, without pybind11's dispatcher (fastcall.hpp)
+  add_fast_function(m, fast_def("ik", &ik_fast,  // robokin.ik's core, without pybind11's dispatcher (fastcall.hpp)
+                                "(chain: robokin._core.Chain, target: " + type_text<ArrayLike>() + ", q0: " +
+                                    type_text<ArrayLike>() + ", *, seed: " + type_text<SeedLike>() +
+                                    " = None, **kwargs) -> robokin._core.IKResult",
+                                "Numerical IK; options as keywords (IKOptions). Use robokin.ik.\n"));
   m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
         py::arg("seed") = py::none(), py::arg("path") = false,
         "Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.");
@@ -254,7 +250,10 @@ void bind_ik(py::module_& m) {
         const std::string options = py::repr(self.attr("options")).cast<std::string>();
         return "IKSolver" + options.substr(options.find('('));
       });
-  add_fast_method(solver, &solve_def);  // without pybind11's dispatcher (fastcall.hpp)
+  add_fast_method(solver, fast_def("solve", &solve_fast,  // without pybind11's dispatcher (fastcall.hpp)
+                                   "(self: robokin._core.IKSolver, target: " + type_text<ArrayLike>() +
+                                       ", q0: " + type_text<ArrayLike>() + ") -> robokin._core.IKResult",
+                                   "Solves one target from q0 -> IKResult.\n"));
 }
 
 }  // namespace robokin::bind

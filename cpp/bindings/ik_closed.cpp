@@ -139,10 +139,6 @@ PyObject* ur_solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs,
   });
 }
 
-PyMethodDef ur_solve_def = {
-    "solve", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&ur_solve_fast)), METH_FASTCALL | METH_KEYWORDS,
-    "solve(self: robokin._core._URSolver, target: numpy.typing.ArrayLike) -> robokin._core.IKSolutions\n"};
-
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
@@ -275,7 +271,10 @@ void bind_ik_closed(py::module_& m) {
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
       .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
-  add_fast_method(ur_solver, &ur_solve_def);  // without pybind11's dispatcher (fastcall.hpp)
+  add_fast_method(ur_solver, fast_def("solve", &ur_solve_fast,  // without pybind11's dispatcher (fastcall.hpp)
+                                      "(self: robokin._core._URSolver, target: " + type_text<ArrayLike>() +
+                                          ") -> robokin._core.IKSolutions",
+                                      ""));
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ur_geometry", &ur_geometry, py::arg("chain"));

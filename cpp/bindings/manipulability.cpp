@@ -59,36 +59,36 @@ py::tuple ellipsoid(const Chain& c, ArrayLike q_obj, const std::string& part) {
 
 // Chain.manipulability(q, measure='yoshikawa', task='pose') through fastcall.hpp (a call costs
 // about as much as one Chain.jacobian call, whose dispatch it shares).
+constexpr const char* kMeasure = "yoshikawa";  // Chain.manipulability's default measure
+
 PyObject* manipulability_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
   return guarded([&]() -> py::object {
     static const char* const names[] = {"q", "measure", "task"};
-    static PyObject* const yoshikawa = interned("yoshikawa");  // kept for the process
-    static PyObject* const pose = interned("pose");
+    static PyObject* const measure = interned(kMeasure);  // kept for the process
+    static PyObject* const task = interned(task_name(Task::Pose));
     PyObject* a[3];
     parse_args("manipulability", args, nargs, kwnames, names, 3, 3, a);
     if (!a[0]) missing("manipulability", "q");
     return manipulability(self_of<Chain>(self), py::reinterpret_borrow<ArrayLike>(a[0]),
-                          py::reinterpret_borrow<MeasureName>(a[1] ? a[1] : yoshikawa),
-                          py::reinterpret_borrow<TaskName>(a[2] ? a[2] : pose));
+                          py::reinterpret_borrow<MeasureName>(a[1] ? a[1] : measure),
+                          py::reinterpret_borrow<TaskName>(a[2] ? a[2] : task));
   });
 }
-
-PyMethodDef manipulability_def = {
-    "manipulability", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&manipulability_fast)),
-    METH_FASTCALL | METH_KEYWORDS,
-    "manipulability(self: robokin._core.Chain, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', "
-    "'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') "
-    "-> float | numpy.typing.NDArray[numpy.float64]\n\n"
-    "Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their\n"
-    "product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse\n"
-    "condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),\n"
-    "an array (N,) for a batch (N, dof) (GIL released, every core).\n"};
 
 }  // namespace
 
 void bind_manipulability(py::module_& m) {
   py::object chain_class = m.attr("Chain");
-  add_fast_method(chain_class, &manipulability_def);  // without pybind11's dispatcher (fastcall.hpp)
+  add_fast_method(  // without pybind11's dispatcher (fastcall.hpp)
+      chain_class,
+      fast_def("manipulability", &manipulability_fast,
+               "(self: robokin._core.Chain, q: " + type_text<ArrayLike>() + ", measure: " + type_text<MeasureName>() +
+                   " = '" + kMeasure + "', task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) +
+                   "') -> float | numpy.typing.NDArray[numpy.float64]",
+               "Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their\n"
+               "product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse\n"
+               "condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),\n"
+               "an array (N,) for a batch (N, dof) (GIL released, every core).\n"));
   chain_class.attr("ellipsoid") = py::cpp_function(
       &ellipsoid, py::name("ellipsoid"), py::is_method(chain_class), py::sibling(py::getattr(chain_class, "ellipsoid", py::none())),
       py::arg("q"), py::arg("part") = "translation",
