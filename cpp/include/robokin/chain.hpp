@@ -151,6 +151,10 @@ class Chain {
   bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
   bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
   bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
+  // fk_few's lanes (count <= kFkFew, dof <= 32): the kernel, and its baseline and AVX2 builds.
+  void fk_few_kernel(const double* q, int count, Rigid* out) const;
+  void fk_few_lanes(const double* q, int count, Rigid* out) const;
+  void fk_few_avx2(const double* q, int count, Rigid* out) const;
   void build_fast_path();
 
   KDL::Chain kdl_;
