@@ -229,3 +229,20 @@ def test_every_result_type_pickles_and_copies(result):
         for name in before:
             assert same_value(before[name], after[name]), (type(result).__name__, name)
         assert repr(copied) == repr(result)
+
+
+def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
+    """An IKSolutions holds at most 8 solutions of at most 6 joints (inline, no allocation): a
+    state asking for more is refused with ValueError, not written past the end."""
+    good = rk.closed.ur(rk.robots.ur5().fk(np.full(6, 0.4)), rk.robots.ur5())
+    version, dof, q, postures, singular = good.__getstate__()
+    copied = type(good).__new__(type(good))
+    copied.__setstate__((version, dof, q, postures, singular))
+    assert np.array_equal(copied.q, good.q) and copied.postures == good.postures
+    nine = (version, 6, np.zeros((9, 6)), ("a",) * 9, False)
+    seven_joints = (version, 7, np.zeros((1, 7)), ("a",), False)
+    ragged = (version, 6, np.zeros((2, 5)), ("a", "b"), False)
+    for state in (nine, seven_joints, ragged):
+        with pytest.raises(ValueError, match=r"IKSolutions state: q must have one row of dof \(1 to 6\) values "
+                                             r"per posture, at most 8 rows"):
+            type(good).__new__(type(good)).__setstate__(state)

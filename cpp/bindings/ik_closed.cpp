@@ -175,7 +175,7 @@ py::tuple ur_geometry(const Chain& chain) {
 
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
   py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
-  std::copy(s.q.begin(), s.q.end(), out.mutable_data());
+  std::copy(s.row(0), s.row(s.count()), out.mutable_data());
   return out;
 }
 
@@ -187,7 +187,7 @@ std::string repr(const ClosedFormSolutions& s) {
     out += "\n  " + std::string(s.postures[k]) + ": [";
     for (int i = 0; i < s.dof; ++i) {
       char buf[32];
-      std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.q[k * s.dof + i]);
+      std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.row(k)[i]);
       out += buf;
     }
     out += "]";
@@ -205,7 +205,7 @@ void bind_ik_closed(py::module_& m) {
           "postures",
           [](const ClosedFormSolutions& s) {
             py::list out;
-            for (const char* p : s.postures) out.append(py::str(p));
+            for (int k = 0; k < s.count(); ++k) out.append(py::str(s.postures[k]));
             return out;
           },
           "Posture label of each row of q.")
@@ -215,7 +215,7 @@ void bind_ik_closed(py::module_& m) {
       .def(py::pickle(  // (version, dof, q (k, dof), postures, singular)
           [](const ClosedFormSolutions& s) {
             py::list postures;
-            for (const char* p : s.postures) postures.append(py::str(p));
+            for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k]));
             return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular);
           },
           [](const py::tuple& t) {
@@ -228,8 +228,10 @@ void bind_ik_closed(py::module_& m) {
             s.singular = t[4].cast<bool>();
             const Array q = as_array(t[2], "q");
             const py::sequence postures = t[3].cast<py::sequence>();
-            if (s.dof < 1 || q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof)
-              fail("IKSolutions state: q must have one row of dof values per posture");
+            if (s.dof < 1 || s.dof > ClosedFormSolutions::kMaxDof ||
+                postures.size() > static_cast<size_t>(ClosedFormSolutions::kMaxSolutions) ||
+                q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof)
+              fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture, at most 8 rows");
             std::lock_guard<std::mutex> lock(labels_mutex);
             for (size_t k = 0; k < postures.size(); ++k)
               s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str());

@@ -362,8 +362,6 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   check_length(d6, "d6", false);
   ClosedFormSolutions out;
   out.dof = 6;
-  out.q.reserve(48);
-  out.postures.reserve(8);
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
   // In stages, each stage's sines, cosines and arc tangents for every arm solution or candidate in
   // one vectorised pass (fast_math.hpp): the arm (q1, q2, q3), R03 from cos and sin of q1 and
@@ -449,7 +447,7 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
     // always is).
     for (int r = 0; r < s.count(); ++r)
       for (int i = 0; i < 6; ++i) {
-        double& v = s.q[r * 6 + i];
+        double& v = s.row(r)[i];
         const double lo = std::max(-kMaxShifted, limits.lower.size() ? limits.lower(i) : -INFINITY);
         const double hi = std::min(kMaxShifted, limits.upper.size() ? limits.upper(i) : INFINITY);
         const double fewest = std::min(0.0, std::ceil((lo - v) / (2 * kPi)));
@@ -459,7 +457,7 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
       }
     const int best = nearest_solution(s, prev);
     ok[k] = best >= 0;
-    if (best >= 0) std::copy(s.q.begin() + best * 6, s.q.begin() + best * 6 + 6, prev);
+    if (best >= 0) std::copy(s.row(best), s.row(best) + 6, prev);
     std::copy(prev, prev + 6, q_out + 6 * k);
   }
 }
@@ -470,7 +468,7 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
   for (int k = 0; k < s.count(); ++k) {
     double d = 0;
     for (int i = 0; i < s.dof; ++i) {
-      const double e = s.q[k * s.dof + i] - q[i];
+      const double e = s.row(k)[i] - q[i];
       d += e * e;
     }
     if (best < 0 || d < best_d) best = k, best_d = d;
@@ -569,8 +567,6 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
                           int* slot) {
   ClosedFormSolutions out;
   out.dof = 6;
-  out.q.reserve(48);
-  out.postures.reserve(8);
   // The frame A1 ... A5 Rz(q6) of the bare DH arm: its origin is the wrist centre (frame 5's).
   const Rigid Td = arm.base.inverse() * T * arm.tool.inverse();
   const Eigen::Vector3d p = Td.p;
@@ -663,9 +659,9 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
     for (int i = 2 + 2 * nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
   }
   vmath::atan2(y, x, t, 6 * pairs);
-  double cand[8][6], checked[8 * 6];
+  double cand[8][6];
   const char* posture[8];
-  int cand_slot[8], n = 0;
+  int cand_slot[8], m = 0;
   for (int j = 0; j < pairs; ++j) {
     const int side = pair_side[j], flip = pair_flip[j];
     const double q5 = t[6 * j], q6 = t[6 * j + 1];
@@ -684,17 +680,22 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
         elbow = ((cross > 0) == (X[j] >= 0)) ? 0 : 1;
       }
       const double dh[6] = {q1[side], q2, q3, q234[j] - q2 - q3, q5, q6};
-      double* q = cand[n];
-      for (int i = 0; i < 6; ++i) q[i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-      if (!fit_limits(q, 6, limits)) continue;
-      posture[n] = ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular[side] ? 2 : flip);
-      cand_slot[n] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
-      std::copy(q, q + 6, checked + 6 * n);
-      ++n;
+      for (int i = 0; i < 6; ++i) cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+      posture[m] = ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular[side] ? 2 : flip);
+      cand_slot[m++] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
     }
   }
+  // The candidates within the limits, kept in order, checked by the chain's forward model together.
+  bool fits[8];
+  fit_limits_rows(cand[0], m, 6, limits, fits);
+  int n = 0;
+  for (int k = 0; k < m; ++k) {
+    if (!fits[k]) continue;
+    if (n != k) std::copy(cand[k], cand[k] + 6, cand[n]), posture[n] = posture[k], cand_slot[n] = cand_slot[k];
+    ++n;
+  }
   Rigid F[8];
-  chain.fk_few(checked, n, F);
+  chain.fk_few(cand[0], n, F);
   for (int k = 0; k < n; ++k) {
     if (!((F[k].p - T.p).norm() <= kTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
     if (slot) slot[out.count()] = cand_slot[k];
@@ -713,7 +714,7 @@ void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, lon
           double* row = q_out + 48 * k;
           std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
           const ClosedFormSolutions s = ik_ur(arm, chain, targets[k], limits, slot);
-          for (int i = 0; i < s.count(); ++i) std::copy(s.q.begin() + 6 * i, s.q.begin() + 6 * i + 6, row + 6 * slot[i]);
+          for (int i = 0; i < s.count(); ++i) std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
           singular[k] = s.singular;
         }
       },

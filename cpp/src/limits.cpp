@@ -26,24 +26,50 @@ void validate_limits(int dof, const Eigen::VectorXd& lower, const Eigen::VectorX
   }
 }
 
-bool fit_limits(double* q, int n, const JointLimits& lim) {
+void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok) {
+  std::fill(ok, ok + rows, true);
   const bool limited = lim.lower.size() != 0;
+  // The common case, every joint revolute and free to turn by a whole turn (limits, if any, that
+  // hold [-pi, pi]): each value wrapped, in one pass over all rows.
+  bool wrap_only = true;
+  for (int i = 0; i < n && wrap_only; ++i)
+    wrap_only = (lim.prismatic.empty() || !lim.prismatic[i]) && (!limited || (lim.lower(i) <= -M_PI && lim.upper(i) >= M_PI));
+  if (wrap_only) {
+    for (int k = 0; k < rows * n; ++k) {
+      if (limited && !std::isfinite(q[k])) ok[k / n] = false;
+      q[k] = wrap_angle(q[k]);
+    }
+    return;
+  }
+  // Joint by joint (its case decided once), row by row.
   for (int i = 0; i < n; ++i) {
     const bool revolute = lim.prismatic.empty() || !lim.prismatic[i];
     if (!limited) {
-      if (revolute) q[i] = wrap_angle(q[i]);
+      if (revolute)
+        for (int r = 0; r < rows; ++r) q[r * n + i] = wrap_angle(q[r * n + i]);
       continue;
     }
     const double lo = lim.lower(i), hi = lim.upper(i);
     if (revolute && lo <= -M_PI && hi >= M_PI) {  // settle_into_limits' first case, always taken
-      if (!std::isfinite(q[i])) return false;
-      q[i] = wrap_angle(q[i]);
+      for (int r = 0; r < rows; ++r) {
+        double& v = q[r * n + i];
+        ok[r] = ok[r] && std::isfinite(v);
+        v = wrap_angle(v);
+      }
       continue;
     }
-    const double tol = 1e-12 * std::max(1.0, std::abs(q[i]));
-    if (!settle_into_limits(q[i], lo, hi, revolute, tol)) return false;
+    for (int r = 0; r < rows; ++r) {
+      double& v = q[r * n + i];
+      const double tol = 1e-12 * std::max(1.0, std::abs(v));
+      ok[r] = settle_into_limits(v, lo, hi, revolute, tol) && ok[r];
+    }
   }
-  return true;
+}
+
+bool fit_limits(double* q, int n, const JointLimits& lim) {
+  bool ok;
+  fit_limits_rows(q, 1, n, lim, &ok);
+  return ok;
 }
 
 }  // namespace robokin

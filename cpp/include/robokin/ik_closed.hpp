@@ -6,6 +6,9 @@
 #include "robokin/chain.hpp"
 #include "robokin/limits.hpp"
 
+#include <algorithm>
+#include <array>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,18 +27,27 @@ constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
 // of a closed form's arm that is not.
 void check_length(double value, const char* name, bool positive = false);
 
-// A set of solutions: row k of q is one joint vector, postures[k] its label.
+// A set of solutions: row k of q is one joint vector, postures[k] its label. Held inline (no
+// allocation: a closed form returns at most kMaxSolutions of at most kMaxDof joints).
 struct ClosedFormSolutions {
+  static constexpr int kMaxSolutions = 8, kMaxDof = 6;
   int dof = 0;
-  std::vector<double> q;  // row-major, size() / dof rows
-  std::vector<const char*> postures;  // static strings: no allocation per label
+  std::array<double, kMaxSolutions * kMaxDof> q{};  // row-major: the first count() rows of dof values
+  std::array<const char*, kMaxSolutions> postures{};  // static strings: no allocation per label
   bool singular = false;  // the pose is at a singularity (coinciding or infinitely many solutions)
 
-  int count() const { return static_cast<int>(postures.size()); }
+  int count() const { return n_; }
+  const double* row(int k) const { return q.data() + k * dof; }
+  double* row(int k) { return q.data() + k * dof; }
+  // Appends a solution; throws std::length_error beyond kMaxSolutions rows or kMaxDof joints.
   void add(const double* joints, const char* posture) {
-    q.insert(q.end(), joints, joints + dof);
-    postures.push_back(posture);
+    if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: full");
+    std::copy(joints, joints + dof, row(n_));
+    postures[n_++] = posture;
   }
+
+ private:
+  int n_ = 0;
 };
 
 // Planar RP (seed 003, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the

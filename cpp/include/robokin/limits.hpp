@@ -26,6 +26,9 @@ void validate_limits(int dof, const Eigen::VectorXd& lower, const Eigen::VectorX
 // tolerance (1e-12 relative) so that a solution at a limit is not lost to rounding; false when a
 // joint cannot be brought within its limits. The closed forms' filter.
 bool fit_limits(double* q, int n, const JointLimits& lim);
+// fit_limits on each of `rows` solutions (row-major, n joints each): ok[r] is its result for row r
+// (the values of a row that does not fit are left unspecified).
+void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok);
 
 // Brings v within [lo, hi], as it is when it is within (to tol, then clamped onto the limit), a
 // revolute joint's value otherwise by a multiple of 2 pi: to the nearest value of its class, the
