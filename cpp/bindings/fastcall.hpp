@@ -84,9 +84,16 @@ PyObject* guarded(Body&& body) noexcept {
   return nullptr;
 }
 
-// The C++ object of a bound instance (the method descriptor has checked its type already).
+// The C++ object of a bound instance (the method descriptor has checked its type already). An
+// instance of exactly T is read directly: its one value, without pybind11's lookups of the type
+// (two hash-table searches a call); a subclass's, or one never initialised (an error), through
+// pybind11's cast.
 template <class T>
 T& self_of(PyObject* self) {
+  static PyTypeObject* const exact = reinterpret_cast<PyTypeObject*>(py::type::of<T>().ptr());
+  if (Py_TYPE(self) == exact)
+    if (T* value = reinterpret_cast<py::detail::instance*>(self)->get_value_and_holder().value_ptr<T>())
+      return *value;
   return py::handle(self).cast<T&>();
 }
 
