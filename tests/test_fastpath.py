@@ -46,6 +46,24 @@ def test_batch_fk_equals_kdl_and_single(name):
         np.testing.assert_array_equal(batch[k], chain.fk(Q[k]))
 
 
+@pytest.mark.parametrize("name", sorted(CHAINS))
+def test_fk_few_gives_single_fk_bits(name):
+    """Chain::fk_few (the closed forms' check of up to 8 candidates in one pass of the lane kernel,
+    its AVX2 build here) gives each row the bits fk gives it, for every count of rows."""
+    from robokin import _testing
+
+    chain, rng = CHAINS[name](), np.random.default_rng(7)
+    Q = random_q(chain, rng, 8) * 10.0 ** rng.integers(-2, 3, (8, chain.dof))
+    for count in range(1, 9):
+        few = _testing.fk_few(chain, Q[:count])
+        assert few.shape == (count, 4, 4)
+        for k in range(count):
+            np.testing.assert_array_equal(few[k], chain.fk(Q[k]))
+            np.testing.assert_allclose(few[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-9)
+    with pytest.raises(ValueError, match=r"Q: expected shape \(k, dof\) with k <= 8"):
+        _testing.fk_few(chain, random_q(chain, rng, 9))
+
+
 def test_large_joint_values_equal_kdl():
     chain, rng = rk.robots.ur5(), np.random.default_rng(3)
     for scale in (10.0, 1e3, 1e6):

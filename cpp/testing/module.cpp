@@ -82,6 +82,24 @@ void bind_references(py::module_& m) {
         return to_numpy(out);
       },
       py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  // Chain::fk_few (the closed forms' check: up to 8 configurations in one pass of the lane kernel,
+  // its AVX2 build where the CPU has it) on the rows of Q: (k, 4, 4) frames, for the test that
+  // they are fk's bits.
+  m.def(
+      "fk_few",
+      [](const Chain& chain, py::handle q_obj) {
+        Array a = as_array(q_obj, "Q");
+        if (a.ndim() != 2 || a.shape(1) != chain.dof() || a.shape(0) > Chain::kFkFew)
+          fail("Q: expected shape (k, dof) with k <= 8, got " + shape_of(a));
+        const int count = static_cast<int>(a.shape(0));
+        Rigid F[Chain::kFkFew];
+        chain.fk_few(a.data(), count, F);
+        py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}, py::ssize_t{4}});
+        for (int k = 0; k < count; ++k)
+          Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * k) = F[k].matrix();
+        return out;
+      },
+      py::arg("chain"), py::arg("Q"));
   using testing::KdlIkReference;
   py::class_<KdlIkReference>(m, "KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
       .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {

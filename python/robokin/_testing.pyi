@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import robokin._core
 import typing
-__all__: list[str] = ['KdlIk', 'hessian_times', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
+__all__: list[str] = ['KdlIk', 'fk_few', 'hessian_times', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
 class KdlIk:
     """
     Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.
@@ -18,6 +18,8 @@ class KdlIk:
         """
         (q, KDL error code) for one target.
         """
+def fk_few(chain: robokin._core.Chain, Q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    ...
 def hessian_times(chain: robokin._core.Chain, q: typing.Any, a: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     """
     sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.
