@@ -30,7 +30,7 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
   std::fill(ok, ok + rows, true);
   const bool limited = lim.lower.size() != 0;
   // The common case, every joint revolute and free to turn by a whole turn (limits, if any, that
-  // hold [-pi, pi]): each value wrapped, in one pass over all rows.
+  // hold [-pi, pi]): each value wrapped (settle_into_limits' first case), in one pass over all rows.
   bool wrap_only = true;
   for (int i = 0; i < n && wrap_only; ++i)
     wrap_only = (lim.prismatic.empty() || !lim.prismatic[i]) && (!limited || (lim.lower(i) <= -M_PI && lim.upper(i) >= M_PI));
@@ -41,7 +41,8 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
     }
     return;
   }
-  // Joint by joint (its case decided once), row by row.
+  // Otherwise joint by joint, row by row (a wide revolute joint's wrap is settle_into_limits'
+  // first case, always taken there).
   for (int i = 0; i < n; ++i) {
     const bool revolute = lim.prismatic.empty() || !lim.prismatic[i];
     if (!limited) {
@@ -50,14 +51,6 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
       continue;
     }
     const double lo = lim.lower(i), hi = lim.upper(i);
-    if (revolute && lo <= -M_PI && hi >= M_PI) {  // settle_into_limits' first case, always taken
-      for (int r = 0; r < rows; ++r) {
-        double& v = q[r * n + i];
-        ok[r] = ok[r] && std::isfinite(v);
-        v = wrap_angle(v);
-      }
-      continue;
-    }
     for (int r = 0; r < rows; ++r) {
       double& v = q[r * n + i];
       const double tol = 1e-12 * std::max(1.0, std::abs(v));
