@@ -1,6 +1,6 @@
 // SLEEF behind fast_math.hpp: the SSE2 loops (x86-64's baseline) here, the AVX2 + FMA ones in
-// fast_math_avx2.cpp (both from fast_math_loops.hpp), the choice made once per process from what
-// the CPU has.
+// fast_math_avx2.cpp and the AVX-512 ones in fast_math_avx512.cpp (all from fast_math_loops.hpp),
+// the choice made once per process from what the CPU has.
 #include "fast_math.hpp"
 
 #include <cmath>
@@ -19,6 +19,8 @@ namespace vmath {
 #ifdef ROBOKIN_SLEEF
 void sincos_avx2(const double* x, double* s, double* c, long n);  // fast_math_avx2.cpp
 void atan2_avx2(const double* y, const double* x, double* out, long n);
+void sincos_avx512(const double* x, double* s, double* c, long n);  // fast_math_avx512.cpp
+void atan2_avx512(const double* y, const double* x, double* out, long n);
 
 namespace {
 
@@ -34,23 +36,35 @@ struct Sse2 {
   }
 };
 
-bool avx2() {
-  static const bool yes = [] {
+enum class Isa { Sse2, Avx2, Avx512 };
+
+Isa isa() {
+  static const Isa best = [] {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+      return __builtin_cpu_supports("avx512f") ? Isa::Avx512 : Isa::Avx2;
+    return Isa::Sse2;
   }();
-  return yes;
+  return best;
 }
+
+// Arrays of at least this many values go through AVX-512 where the CPU has it: 1.8 against 2.8 ns
+// per sine and cosine on 1,000 values (Sapphire Rapids); shorter ones, a closed form's or a single
+// call's few, through AVX2 (AVX-512 for every length measured slower there: numerical IK on the
+// UR5 6.2 -> 6.8 us a call, one fk 255 -> 280 ns).
+constexpr long kWide = 64;
 
 }  // namespace
 
 void sincos(const double* x, double* s, double* c, long n) {
-  if (avx2()) return sincos_avx2(x, s, c, n);
+  if (isa() == Isa::Avx512 && n >= kWide) return sincos_avx512(x, s, c, n);
+  if (isa() != Isa::Sse2) return sincos_avx2(x, s, c, n);
   sincos_loop<Sse2>(x, s, c, n);
 }
 
 void atan2(const double* y, const double* x, double* out, long n) {
-  if (avx2()) return atan2_avx2(y, x, out, n);
+  if (isa() == Isa::Avx512 && n >= kWide) return atan2_avx512(y, x, out, n);
+  if (isa() != Isa::Sse2) return atan2_avx2(y, x, out, n);
   atan2_loop<Sse2>(y, x, out, n);
 }
 #else

@@ -1,9 +1,9 @@
 // The array loops behind fast_math.hpp, written once over a vector type V (V::width doubles;
 // V::sincos and V::atan2 on one vector): whole vectors, then the tail through a padded vector, so
 // that every element goes through the same routine (one padded_map for both). Instantiated for
-// SSE2 in fast_math.cpp and for AVX2 + FMA in fast_math_avx2.cpp, which is compiled for that ISA:
-// the templates sit in an unnamed namespace and call no library code, so no copy built for
-// AVX2 can stand in for the other.
+// SSE2 in fast_math.cpp, for AVX2 + FMA in fast_math_avx2.cpp and for AVX-512 in
+// fast_math_avx512.cpp, each compiled for its ISA: the templates sit in an unnamed namespace and
+// call no library code, so no copy built for one ISA can stand in for another.
 #pragma once
 
 namespace robokin {
