@@ -67,9 +67,9 @@ def test_same_bits_alone_and_in_a_batch(n):
 
 
 def test_long_and_short_arrays_give_the_same_bits():
-    """Arrays of 64 values or more take AVX-512 where the CPU has it, shorter ones AVX2 (both
+    """Arrays of 32 values or more take AVX-512 where the CPU has it, shorter ones AVX2 (both
     SLEEF's deterministic routines): 100,000 angles and atan2 arguments of every range, whole
-    against 63 at a time, bit for bit."""
+    against 31 at a time, bit for bit."""
     x = angles(80000, 3)
     s, c = _testing.vmath_sincos(x)
     rng = np.random.default_rng(4)
@@ -77,11 +77,11 @@ def test_long_and_short_arrays_give_the_same_bits():
     x2 = np.concatenate([rng.normal(size=80000), 10.0 ** rng.uniform(-300, 300, 20000) * rng.choice([-1, 1], 20000)])
     a = _testing.vmath_atan2(y2, x2)
     short_s, short_c, short_a = [], [], []
-    for k in range(0, len(x), 63):
-        part = _testing.vmath_sincos(x[k:k + 63])
+    for k in range(0, len(x), 31):
+        part = _testing.vmath_sincos(x[k:k + 31])
         short_s.append(part[0]), short_c.append(part[1])
-    for k in range(0, len(y2), 63):
-        short_a.append(_testing.vmath_atan2(y2[k:k + 63], x2[k:k + 63]))
+    for k in range(0, len(y2), 31):
+        short_a.append(_testing.vmath_atan2(y2[k:k + 31], x2[k:k + 31]))
     for whole, parts in ((s, short_s), (c, short_c), (a, short_a)):
         assert np.array_equal(whole.view(np.int64), np.concatenate(parts).view(np.int64))
 
