@@ -355,7 +355,8 @@ def bench_batch(rng):
         g["note"] = (f"one-thread floor here {floor:.3f} x (the fresh output's page faults and zeroing, reading Q, and "
                      "robokin's computation of the frames with their stores hidden under it, measured in this run)"
                      + ("; above the goal, so it cannot be met on one thread on this machine" if floor > g["limit"]
-                        else "; below the goal: robokin's kernel does not hide its stores under its computation"))
+                        else "; below the goal, so the miss is robokin's: its kernel does not hide all of its stores "
+                             "under its computation"))
         positions = once(lambda: chain.fk(Q, out="position"), repeat=5)
         ref_pos = once(lambda: rpr_position_batch_np(Q), repeat=5)
         line("batch fk RPR positions, 1 thread", positions, "numpy", ref_pos,
