@@ -379,10 +379,16 @@ __attribute__((target("avx2"))) void block_to_4x4_avx2(const Lanes<kBlock>& L, d
     for (int j = 0; j < 4; ++j) _mm256_storeu_pd(m + 16 * j + 12, last);
   }
 }
-const bool kAvx2Stores = [] {
-  __builtin_cpu_init();  // this may run before libgcc's own initialiser
-  return __builtin_cpu_supports("avx2") != 0;
-}();
+// The widest vector ISA of this CPU for the lane kernels, read once: 2 AVX-512, 1 AVX2, 0 the
+// baseline (SSE2).
+int lanes_isa() {
+  static const int isa = [] {
+    __builtin_cpu_init();  // this may run before libgcc's own initialiser
+    return __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
+  }();
+  return isa;
+}
+const bool kAvx2Stores = lanes_isa() >= 1;
 #endif
 
 // The tool points only: (x, y, z) per lane.
@@ -576,8 +582,7 @@ void Chain::fk_few(const double* q, int count, Rigid* out) const {
 #ifdef ROBOKIN_AVX2
   // AVX2 (4 lanes per vector): a UR closed-form call 1.03 us against 1.08-1.11 with the baseline's
   // 2; an AVX-512 build of the same kernel measured 1.09-1.12 (Sapphire Rapids), so none is made.
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return fk_few_avx2(q, count, out);
+  if (lanes_isa() >= 1) return fk_few_avx2(q, count, out);
 #endif
   fk_few_lanes(q, count, out);
 }
@@ -587,7 +592,7 @@ bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Pr
   // A large frame output (beyond the caches) is faulted in chunk by chunk as it is written.
   const bool populate = what == FkOutput::Frame && count >= 32768;
 #ifdef ROBOKIN_AVX2
-  static const int isa = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
+  const int isa = lanes_isa();
 #endif
   std::atomic<bool> finite{true};
   parallel_for(count, 20000, [&](long begin, long end) {
