@@ -295,16 +295,16 @@ def touched(shape) -> None:
     np.empty(shape).reshape(-1)[::512] = 0.0
 
 
-def one_thread_floor(chain, Q, ref_best: float) -> float:
+def one_thread_floor(Q, ref_best: float, positions: float) -> float:
     """What one thread cannot go below for the (N, 4, 4) frames of Q in a fresh array, from figures
     measured in this run (seconds; printed with their ratios to numpy's FK, ref_best):
 
     - the kernel's part: the fresh output's page faults and zeroing (a new array touched once per
       page), which run on the calling thread and overlap nothing;
     - reading Q at the copy bandwidth;
-    - robokin's computation of the frames, taken as the positions-only call (out='position') less
-      its own output's faults and zeroing: the frames take at least the positions' sines, cosines
-      and products.
+    - robokin's computation of the frames, taken as the positions-only call (its best time,
+      `positions`) less its own output's faults and zeroing: the frames take at least the
+      positions' sines, cosines and products.
 
     The 128 bytes of stores per frame are taken as hidden entirely under that computation; a fresh
     array zeroed and then written (numpy's fill) is printed beside it."""
@@ -318,7 +318,6 @@ def one_thread_floor(chain, Q, ref_best: float) -> float:
     zero = once(lambda: touched((n, 4, 4)), repeat=5)[0]
     filled = once(lambda: np.empty((n, 4, 4)).fill(0.0), repeat=5)[0]
     read_q = Q.nbytes / bandwidth
-    positions = once(lambda: chain.fk(Q, out="position"), repeat=5)[0]
     compute = positions - once(lambda: touched((n, 3)), repeat=5)[0]
     floor = zero + read_q + compute
     r = lambda t: f"{t * 1e3:.1f} ms = {t / ref_best:.3f} x"  # noqa: E731
@@ -350,14 +349,15 @@ def bench_batch(rng):
              note=f"per configuration: {fmt(per(ours)[0]).strip()} vs {fmt(per(ref)[0]).strip()}",
              name=f"batch FK of {BATCH:,} RPR configurations, (N, 4, 4) out, 1 thread, vs numpy's vectorised "
                   "closed form (seed 000, eq. 1)")
-        floor = one_thread_floor(chain, Q, ref[0]) / ref[0]
+        positions = once(lambda: chain.fk(Q, out="position"), repeat=5)
+        floor = one_thread_floor(Q, ref[0], positions[0]) / ref[0]
         g = goals[-1]
         g["note"] = (f"one-thread floor here {floor:.3f} x (the fresh output's page faults and zeroing, reading Q, and "
                      "robokin's computation of the frames with their stores hidden under it, measured in this run)"
-                     + ("; above the goal, so it cannot be met on one thread on this machine" if floor > g["limit"]
+                     + ("; above the goal, so it cannot be met on one thread on this machine with this computation"
+                        if floor > g["limit"]
                         else "; below the goal, so the miss is robokin's: its kernel does not hide all of its stores "
                              "under its computation"))
-        positions = once(lambda: chain.fk(Q, out="position"), repeat=5)
         ref_pos = once(lambda: rpr_position_batch_np(Q), repeat=5)
         line("batch fk RPR positions, 1 thread", positions, "numpy", ref_pos,
              note="(information: out='position', (N, 3), vs numpy's closed form of the point)")
