@@ -10,7 +10,6 @@
 #include <array>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 namespace robokin {
 
@@ -41,7 +40,7 @@ struct ClosedFormSolutions {
   double* row(int k) { return q.data() + k * dof; }
   // Appends a solution; throws std::length_error beyond kMaxSolutions rows or kMaxDof joints.
   void add(const double* joints, const char* posture) {
-    if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: full");
+    if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: at most 8 solutions of 1 to 6 joints");
     std::copy(joints, joints + dof, row(n_));
     postures[n_++] = posture;
   }
