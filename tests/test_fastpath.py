@@ -64,6 +64,24 @@ def test_fk_few_gives_single_fk_bits(name):
         _testing.fk_few(chain, random_q(chain, rng, 9))
 
 
+@pytest.mark.parametrize("threads", ["1", "2"])
+@pytest.mark.parametrize("name", ["rpr", "ur5"])
+def test_large_frame_batch_gives_the_bits_of_small_batches(name, threads, monkeypatch):
+    """A batch of frames large enough to be faulted in ahead of its stores (9 MB: several 2 MB
+    pages, prefetched lines, the AVX-512 or AVX2 block stores) gives the bits of the same
+    configurations evaluated in batches too small for that, on one thread or split between two."""
+    chain, rng = CHAINS[name](), np.random.default_rng(8)
+    Q = random_q(chain, rng, 70_001)
+    monkeypatch.setenv("ROBOKIN_NUM_THREADS", threads)
+    large = chain.fk(Q)
+    small = np.concatenate([chain.fk(Q[k:k + 257]) for k in range(0, len(Q), 257)])
+    np.testing.assert_array_equal(large, small)
+    for k in rng.integers(0, len(Q), 20):
+        np.testing.assert_allclose(large[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-12)
+    positions = chain.fk(Q, out="position")
+    np.testing.assert_array_equal(positions, large[:, :3, 3])
+
+
 def test_large_joint_values_equal_kdl():
     chain, rng = rk.robots.ur5(), np.random.default_rng(3)
     for scale in (10.0, 1e3, 1e6):

@@ -267,8 +267,9 @@ Chain::Fixed Chain::make_fixed(const Rigid& F) {
 
 // The chain on N lanes: joint i of lane k is q[k * stride + i]. When axes is given (N = 1), the
 // point and z axis of every joint after its motion are stored there: axes[6 i .. 6 i + 5].
-template <int N>
-ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes) const {
+template <int N, class AfterJoint>
+ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, double* axes,
+                                     AfterJoint after_joint) const {
   double v[N], s[N], c[N];
   // Up to kAtOnce lanes x joints (one configuration of up to 32 joints, fk_few's 8 of up to 32):
   // the sines and cosines of all revolute joints first, in one vectorised pass (they do not depend
@@ -333,6 +334,7 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
         if (link.move >> (3 * i + j) & 1u) move_lanes<N>(L.p[i], L.R[3 * i + j], f.F.p(j));
       if (link.turn >> i & 1u) rotate_lanes<N>(L.R[3 * i], L.R[3 * i + 1], L.R[3 * i + 2], f.F.R);
     }
+    after_joint(joint);
   }
 }
 
@@ -379,6 +381,53 @@ __attribute__((target("avx2"))) void block_to_4x4_avx2(const Lanes<kBlock>& L, d
     for (int j = 0; j < 4; ++j) _mm256_storeu_pd(m + 16 * j + 12, last);
   }
 }
+// Pairs of values (128 bits each) gathered from two vectors of four pairs: x's even pairs, then
+// y's; x's odd pairs, then y's.
+__attribute__((target("avx512f"), always_inline)) inline __m512d even_pairs(__m512d x, __m512d y) {
+  return _mm512_shuffle_f64x2(x, y, 0x88);
+}
+__attribute__((target("avx512f"), always_inline)) inline __m512d odd_pairs(__m512d x, __m512d y) {
+  return _mm512_shuffle_f64x2(x, y, 0xdd);
+}
+// block_to_4x4_avx2 with AVX-512, 8 lanes at a time: lane k's rows 0 and 1 in one 64-byte store,
+// rows 2 and 3 in another (an 8 x 8 transpose of R's rows 0, 1 and p's; a 4 x 8 one completed by
+// the constant row). 1e6 RPR frames on one thread 25.1 -> 24.8 ms (best of 5 interleaved runs).
+// The same bits, moved.
+__attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>& L, double* m) {
+  static_assert(kBlock % 8 == 0, "whole vectors of lanes");
+  const __m512d row3 = _mm512_set_pd(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // (0 0 0 1) unpacked, gathered
+  for (int k = 0; k < kBlock; k += 8, m += 128) {
+    // Rows 0 and 1 as (a b) (c d) pairs: lo[r], lo[2 + r] row r of lanes 0 4 and 2 6; hi[r],
+    // hi[2 + r] of lanes 1 5 and 3 7.
+    __m512d lo[4], hi[4];
+    for (int r = 0; r < 3; ++r) {
+      const __m512d a = _mm512_loadu_pd(L.R[3 * r] + k), b = _mm512_loadu_pd(L.R[3 * r + 1] + k);
+      const __m512d c = _mm512_loadu_pd(L.R[3 * r + 2] + k), d = _mm512_loadu_pd(L.p[r] + k);
+      const __m512d ab_even = _mm512_unpacklo_pd(a, b), ab_odd = _mm512_unpackhi_pd(a, b);
+      const __m512d cd_even = _mm512_unpacklo_pd(c, d), cd_odd = _mm512_unpackhi_pd(c, d);
+      // Row r of lanes 0, 2 | 4, 6 (even pairs) and 1, 3 | 5, 7 (odd).
+      if (r < 2) {
+        lo[r] = even_pairs(ab_even, cd_even), lo[2 + r] = odd_pairs(ab_even, cd_even);
+        hi[r] = even_pairs(ab_odd, cd_odd), hi[2 + r] = odd_pairs(ab_odd, cd_odd);
+        continue;
+      }
+      const __m512d r2[4] = {even_pairs(ab_even, cd_even), odd_pairs(ab_even, cd_even), even_pairs(ab_odd, cd_odd),
+                             odd_pairs(ab_odd, cd_odd)};  // lanes 0 4 | 2 6 | 1 5 | 3 7, rows 2 as pairs
+      const int lane[4] = {0, 2, 1, 3};
+      for (int h = 0; h < 4; ++h) {
+        _mm512_storeu_pd(m + 16 * lane[h] + 8, even_pairs(r2[h], row3));
+        _mm512_storeu_pd(m + 16 * (lane[h] + 4) + 8, odd_pairs(r2[h], row3));
+      }
+    }
+    // Rows 0 and 1: lanes 0 4 (lo[0], lo[1]), 2 6 (lo[2], lo[3]), 1 5 (hi[0], hi[1]), 3 7 (hi[2], hi[3]).
+    const int lane[4] = {0, 2, 1, 3};
+    const __m512d* pairs[4] = {lo, lo + 2, hi, hi + 2};
+    for (int h = 0; h < 4; ++h) {
+      _mm512_storeu_pd(m + 16 * lane[h], even_pairs(pairs[h][0], pairs[h][1]));
+      _mm512_storeu_pd(m + 16 * (lane[h] + 4), odd_pairs(pairs[h][0], pairs[h][1]));
+    }
+  }
+}
 // The widest vector ISA of this CPU for the lane kernels, read once: 2 AVX-512, 1 AVX2, 0 the
 // baseline (SSE2).
 int lanes_isa() {
@@ -388,7 +437,8 @@ int lanes_isa() {
   }();
   return isa;
 }
-const bool kAvx2Stores = lanes_isa() >= 1;
+// The frames of a batch block stored with AVX-512 (2), AVX2 (1) or plain stores (0).
+const int kFrameStores = lanes_isa();
 #endif
 
 // The tool points only: (x, y, z) per lane.
@@ -477,16 +527,27 @@ void populate_for_writing(double* begin, double* end) {
 #endif
 }
 
-// A large frame output is faulted in this many configurations at a time (256 KB of frames), just
-// before they are written: the stores then land in the lines the kernel has just zeroed, still in
-// the cache, and each line goes to memory once. (Faulting in the whole output first, then
-// streaming the frames past the cache, wrote it to memory twice: 17.5 ms against 14.1 ms for
-// 128 MB here.)
-constexpr long kPopulate = 2048;
+// A large frame output is faulted in a 2 MB page at a time (numpy's huge pages, else 512 small
+// ones with one call), one page ahead of the stores, so that they find lines the kernel zeroed
+// shortly before. Faulting in the whole output first, then streaming the frames past the cache,
+// wrote it to memory twice: 17.5 ms against 14.1 ms for 128 MB here. Best of 5 interleaved runs,
+// 1e6 RPR frames on one thread: one page ahead 22.8-23.0 ms; chunks of 256 KB (a new page
+// faulted in whenever a chunk crossed into it) 24.4 ms; each page faulted in only as its first
+// frame is written 24.9 ms; two pages ahead 24.0 ms. Why one page ahead beats just in time was
+// not isolated.
+constexpr std::uintptr_t kFaultAhead = std::uintptr_t{1} << 21;
+
+// The first configuration after `upto` whose frame lies wholly beyond the next 2 MB boundary from
+// the frame of `upto` on (at most `end`): faulting in [.., that) faults in the page after upto's.
+long next_page_end(const double* out, long width, long upto, long end) {
+  const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(out + width * upto);
+  const std::uintptr_t edge = (at + kFaultAhead) & ~(kFaultAhead - 1);
+  return std::min(end, upto + static_cast<long>((edge - at) / (sizeof(double) * width)) + 1);
+}
 }  // namespace
 
 // Configurations [begin, end) of a batch, in blocks of kBlock lanes; false when a joint value or a
-// result is not finite. With `populate`, the output's pages are faulted in a chunk at a time.
+// result is not finite. With `populate`, the output's pages are faulted in ahead of the stores.
 ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what,
                                               bool populate) const {
   const long width = what == FkOutput::Position ? 3 : 16;
@@ -495,7 +556,7 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
   long b = begin, populated = begin;
   auto fault_in = [&](long upto) {
     if (!populate || upto <= populated) return;
-    const long to = std::min(end, std::max(upto, populated + kPopulate));
+    const long to = next_page_end(out, width, upto, end);
     populate_for_writing(out + width * populated, out + width * to);
     populated = to;
   };
@@ -503,21 +564,30 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
     const double* qb = q + b * dof_;
     if (populate) {
       // The next block's output lines fetched while this one is computed: the kernel's zeroing
-      // leaves them out of the caches, and each store waited for its line (1e6 RPR frames on one
-      // thread 32-34 -> 26-28 ms; fetching two blocks ahead measured slower). Written here,
-      // not in a helper: GCC deletes calls to a function whose only effect is a prefetch.
+      // leaves them out of the first-level caches, and each store waited for its line (1e6 RPR
+      // frames on one thread 32-34 -> 26-28 ms). A part is asked for before the chain and a part
+      // after each joint: all at once, the requests beyond the cache's few outstanding misses
+      // stalled the block (25.2 against 25.9 ms); fetching two blocks ahead measured slower.
+      // Written here, not in a helper: GCC deletes calls to a function whose only effect is a prefetch.
       const long next_end = std::min(end, b + 2 * kBlock);
       fault_in(next_end);
-      const char* stop = reinterpret_cast<const char*>(out + width * next_end);
-      for (const char* a = reinterpret_cast<const char*>(out + width * (b + kBlock)); a < stop; a += 64)
-        __builtin_prefetch(a, 1, 3);
+      const char* line = reinterpret_cast<const char*>(out + width * (b + kBlock));
+      const char* const stop = reinterpret_cast<const char*>(out + width * next_end);
+      const long part = ((stop - line) / 64 / (dof_ + 1) + 1) * 64;  // bytes of lines per part
+      auto fetch_part = [&](int) {
+        for (const char* e = std::min(stop, line + part); line < e; line += 64) __builtin_prefetch(line, 1, 3);
+      };
+      fetch_part(-1);
+      run_lanes<kBlock>(L, qb, dof_, nullptr, fetch_part);
+    } else {
+      run_lanes<kBlock>(L, qb, dof_, nullptr);
     }
-    run_lanes<kBlock>(L, qb, dof_, nullptr);
     finite &= values_finite(qb, kBlock * dof_) & lanes_finite(L, kBlock);
     fault_in(b + kBlock);
 #ifdef ROBOKIN_AVX2
-    if (what == FkOutput::Frame && kAvx2Stores) {
-      block_to_4x4_avx2(L, out + width * b);
+    if (what == FkOutput::Frame && kFrameStores > 0) {
+      if (kFrameStores == 2) block_to_4x4_avx512(L, out + width * b);
+      else block_to_4x4_avx2(L, out + width * b);
       continue;
     }
 #endif

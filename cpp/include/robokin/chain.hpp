@@ -144,8 +144,12 @@ class Chain {
   };
   void build_masks();
   static Fixed make_fixed(const Rigid& F);
-  template <int N>
-  void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes) const;
+  struct NoHook {
+    void operator()(int) const {}
+  };
+  // after_joint(i) runs once joint i's products are done (the batch issues its prefetches there).
+  template <int N, class AfterJoint = NoHook>
+  void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes, AfterJoint after_joint = {}) const;
   // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
   bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
   bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
