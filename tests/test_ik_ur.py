@@ -281,3 +281,21 @@ def test_puma560_a_hair_off_the_wrist_singularity_finds_its_source(v):
         assert np.abs(puma.fk(row) - T).max() < 1e-9
     d = np.remainder(s.q - q + np.pi, 2 * np.pi) - np.pi
     assert np.min(np.max(np.abs(d[:, :3]), axis=1)) < 1e-6
+
+
+@pytest.mark.parametrize("q5", [1e-9, -1e-8, 1e-7, 1e-6])
+@pytest.mark.parametrize("q3", [0.0, P])
+@pytest.mark.parametrize("name", ["ur5", "ur10e"])
+def test_elbow_straight_or_folded_near_the_wrist_singularity_finds_its_source(name, q3, q5):
+    """Elbow straight (q3 = 0) or folded (pi) and joint 5 within 1e-6 of 0: q234, from two rotation
+    entries of size |sin q5|, is known only to ~1e-16 / |sin q5|, and the origin 4 it gave fell a
+    hair out of the planar 2R's reach. The pose's own solution was lost (UR5 at
+    q = (0, 2, 0, 0, 1e-6, 0): only the other shoulder's two came back); now q234 is moved onto the
+    reach's edge within that uncertainty, and the solution is checked like every other."""
+    t = UR_TABLES[name]
+    for q in ([0.0, 2.0, q3, 0.0, q5, 0.0], [0.4, -1.1, q3, 0.7, q5, -0.3], [-2.0, 0.5, q3, -1.4, q5, 2.5]):
+        q = np.array(q)
+        T = fk_ref(t, q)
+        s = rk.closed.ur(T, as_dict(t))
+        assert_all_reach(t, s, T, 1e-9)
+        assert np.min(angle_dist(s.q, q)) < 1e-6, (q, s.postures)

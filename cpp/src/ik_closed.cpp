@@ -563,6 +563,34 @@ URArm ur_arm(const Chain& chain) {
   return arm;
 }
 
+namespace {
+// Near the wrist's singularity (joint 5 near 0 or pi) q234 = atan2(-M(1, 2), -M(0, 2)) is known only
+// to ~1e-16 / w, w = |(M(0, 2), M(1, 2))| = |sin q5|. Where the elbow is straight or folded, the
+// origin 4 it gives (P + d5 (-sin q234, cos q234) in frame 1) then falls a hair outside the planar
+// 2R's reach, and the pose's own solutions were lost (UR5 at q = (0, 2, 0, 0, 1e-6, 0)), or a hair
+// inside it, and they came back with the elbow bent by ~1e-4 (q5 = 1e-9). Moves t = q234 to the
+// nearest angle that puts origin 4 on the reach's edge (|a2| + |a3| or ||a2| - |a3|| from axis 2)
+// when the move is within that uncertainty (64 eps / w), the edge's one solution then found by
+// planar_2r_args as at any singular elbow; false, t unchanged, otherwise.
+bool onto_reach(const Eigen::Vector3d& P, double d5, double a2, double a3, double w, double& t) {
+  // |origin 4|^2 = rho^2 + d5^2 + 2 d5 rho cos(t + beta), with P = rho (sin beta, cos beta).
+  const double rho = std::hypot(P.x(), P.y()), beta = std::atan2(P.x(), P.y());
+  const double x = P.x() - d5 * std::sin(t), y = P.y() + d5 * std::cos(t);
+  const double mid = 0.5 * ((a2 + a3) * (a2 + a3) + (a2 - a3) * (a2 - a3));  // nearer the straight or the folded edge
+  const double edge = x * x + y * y > mid ? a2 + a3 : std::abs(a2 - a3);
+  const double den = 2.0 * d5 * rho;
+  if (!(std::abs(den) > 0.0)) return false;
+  const double cv = (edge * edge - rho * rho - d5 * d5) / den;
+  if (!(std::abs(cv) <= 1.0)) return false;
+  const double a = std::acos(cv);
+  const double up = wrap_angle(a - beta - t), down = wrap_angle(-a - beta - t);  // the two moves
+  const double dt = std::abs(up) <= std::abs(down) ? up : down;
+  if (!(std::abs(dt) * w <= 64.0 * std::numeric_limits<double>::epsilon())) return false;
+  t += dt;
+  return true;
+}
+}  // namespace
+
 ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
                           int* slot) {
   ClosedFormSolutions out;
@@ -645,15 +673,21 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   bool elbow_singular[4];
   for (int j = 0; j < pairs; ++j) {
     const Eigen::Matrix3d& m = M[pair_side[j]];
-    const double c = c234[j], s = s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
-    y[6 * j] = -(c * m(0, 2) + s * m(1, 2)), x[6 * j] = m(2, 2);
-    y[6 * j + 1] = c * m(1, 0) - s * m(0, 0), x[6 * j + 1] = c * m(1, 1) - s * m(0, 1);
+    double c = c234[j], s = s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
     // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
     const Eigen::Vector3d& Ps = P[pair_side[j]];
     X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
     double yx[2][2][2];
+    // Near the wrist's singularity, an elbow within q234's rounding of straight or folded is put there.
+    const double w2 = m(0, 2) * m(0, 2) + m(1, 2) * m(1, 2);  // sin^2 q5
+    if (!wrist_singular[pair_side[j]] && w2 < 1e-6 && onto_reach(Ps, arm.d5, a2, a3, std::sqrt(w2), q234[j])) {
+      c = std::cos(q234[j]), s = std::sin(q234[j]);
+      X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
+    }
     nk[j] = planar_2r_args(a2, a3, X[j], Y[j], yx, lab[j], elbow_singular[j]);
     if (elbow_singular[j]) out.singular = true;
+    y[6 * j] = -(c * m(0, 2) + s * m(1, 2)), x[6 * j] = m(2, 2);
+    y[6 * j + 1] = c * m(1, 0) - s * m(0, 0), x[6 * j + 1] = c * m(1, 1) - s * m(0, 1);
     for (int k = 0; k < nk[j]; ++k)
       for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
     for (int i = 2 + 2 * nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused

@@ -265,7 +265,9 @@ def ur(target, robot, limits="default") -> IKSolutions:
         axis 1: "shoulder singular"), the elbow's (q3 = 0 or pi: "elbow straight" / "elbow
         folded") and the wrist's (joint 5 at 0 or pi: axes 2, 3, 4 and 6 parallel, a continuum of
         solutions of which one representative per shoulder and elbow is returned, "wrist
-        singular", chosen with the elbow as near a right angle as the continuum allows).
+        singular", chosen with the elbow as near a right angle as the continuum allows). Within
+        1e-3 of the wrist's singularity, where q2 + q3 + q4 is known only to ~1e-16 / |sin q5|, an
+        elbow within that rounding of straight or folded is returned straight or folded.
     """
     last = _UR_LAST  # _ur_solver's first test, inline: the same Chain and limits as the call before
     if robot is last[0] and limits is last[1]:
