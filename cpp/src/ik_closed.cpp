@@ -565,19 +565,20 @@ URArm ur_arm(const Chain& chain) {
 
 namespace {
 // Near the wrist's singularity (joint 5 near 0 or pi) q234 = atan2(-M(1, 2), -M(0, 2)) is known only
-// to ~1e-16 / w, w = |(M(0, 2), M(1, 2))| = |sin q5|. Where the elbow is straight or folded, the
-// origin 4 it gives (P + d5 (-sin q234, cos q234) in frame 1) then falls a hair outside the planar
-// 2R's reach, and the pose's own solutions were lost (UR5 at q = (0, 2, 0, 0, 1e-6, 0)), or a hair
-// inside it, and they came back with the elbow bent by ~1e-4 (q5 = 1e-9). Moves t = q234 to the
-// nearest angle that puts origin 4 on the reach's edge (|a2| + |a3| or ||a2| - |a3|| from axis 2)
-// when the move is within that uncertainty (64 eps / w), the edge's one solution then found by
-// planar_2r_args as at any singular elbow; false, t unchanged, otherwise.
+// to the rounding of q1 and M over w = |(M(0, 2), M(1, 2))| = |sin q5| (~80 eps / w measured; 500
+// eps / w next to the shoulder's singularity, where q1 is less precise).
+// Where the elbow is straight or folded, the origin 4 it gives (P + d5 (-sin q234, cos q234) in
+// frame 1) fell a hair outside the planar 2R's reach, and the pose's own solutions were lost (UR5 at
+// q = (0, 2, 0, 0, 1e-6, 0)), or a hair inside, and they came back with the elbow bent by up to
+// ~1e-2 (q5 = 3e-10). Moves t = q234 to the nearest angle that puts origin 4 on the reach's edge
+// (|a2| + |a3| or ||a2| - |a3|| from axis 2) when the move is within 1e-13 / w (the wrist's frame
+// turned by at most 1e-13); false, t unchanged, otherwise. An elbow bent by less than about
+// sqrt(1e-13 / w) is then returned straight: it is that far from straight by rounding alone.
 bool onto_reach(const Eigen::Vector3d& P, double d5, double a2, double a3, double w, double& t) {
   // |origin 4|^2 = rho^2 + d5^2 + 2 d5 rho cos(t + beta), with P = rho (sin beta, cos beta).
   const double rho = std::hypot(P.x(), P.y()), beta = std::atan2(P.x(), P.y());
   const double x = P.x() - d5 * std::sin(t), y = P.y() + d5 * std::cos(t);
-  const double mid = 0.5 * ((a2 + a3) * (a2 + a3) + (a2 - a3) * (a2 - a3));  // nearer the straight or the folded edge
-  const double edge = x * x + y * y > mid ? a2 + a3 : std::abs(a2 - a3);
+  const double edge = x * x + y * y > a2 * a2 + a3 * a3 ? a2 + a3 : std::abs(a2 - a3);  // beyond or within
   const double den = 2.0 * d5 * rho;
   if (!(std::abs(den) > 0.0)) return false;
   const double cv = (edge * edge - rho * rho - d5 * d5) / den;
@@ -585,7 +586,7 @@ bool onto_reach(const Eigen::Vector3d& P, double d5, double a2, double a3, doubl
   const double a = std::acos(cv);
   const double up = wrap_angle(a - beta - t), down = wrap_angle(-a - beta - t);  // the two moves
   const double dt = std::abs(up) <= std::abs(down) ? up : down;
-  if (!(std::abs(dt) * w <= 64.0 * std::numeric_limits<double>::epsilon())) return false;
+  if (!(std::abs(dt) * w <= 1e-13)) return false;
   t += dt;
   return true;
 }
@@ -678,7 +679,6 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
     const Eigen::Vector3d& Ps = P[pair_side[j]];
     X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
     double yx[2][2][2];
-    // Near the wrist's singularity, an elbow within q234's rounding of straight or folded is put there.
     const double w2 = m(0, 2) * m(0, 2) + m(1, 2) * m(1, 2);  // sin^2 q5
     if (!wrist_singular[pair_side[j]] && w2 < 1e-6 && onto_reach(Ps, arm.d5, a2, a3, std::sqrt(w2), q234[j])) {
       c = std::cos(q234[j]), s = std::sin(q234[j]);
