@@ -364,14 +364,18 @@ def test_anthropomorphic_success_is_reachability(a2, a3, d1, scale, q, kind, r, 
 
 
 def wrist_reachable(g, T):
-    """(reachable, distance to the boundary): the wrist centre within the arm's annulus."""
+    """(reachable, distance to the boundary): the wrist centre within the arm's annulus. Distances
+    are lengths: the horizontal one's, |p_xy| - |d3|, from rho2 over |p_xy| + |d3| (rho2 itself, a
+    squared length, made a wrist centre on that boundary of a 1e150 arm, rounded 1e284 below it,
+    look clearly out of reach)."""
     pw = T[:3, 3] - g["d6"] * T[:3, 2]
     L = math.hypot(g["a3"], g["d4"])
     rho2 = pw[0] ** 2 + pw[1] ** 2 - g["d3"] ** 2
+    horizontal = abs(rho2) / (math.hypot(pw[0], pw[1]) + abs(g["d3"]) or 1.0)
     if rho2 < 0:
-        return False, abs(rho2)
+        return False, horizontal
     dist = math.sqrt(rho2 + (pw[2] - g["d1"]) ** 2)
-    return abs(g["a2"] - L) <= dist <= g["a2"] + L, min(abs(dist - g["a2"] - L), abs(dist - abs(g["a2"] - L)), rho2)
+    return abs(g["a2"] - L) <= dist <= g["a2"] + L, min(abs(dist - g["a2"] - L), abs(dist - abs(g["a2"] - L)), horizontal)
 
 
 @given(geometry=st.tuples(good_lengths, st.floats(-0.5, 0.5), st.floats(-0.5, 0.5), st.floats(-1.0, 1.0),
