@@ -414,9 +414,12 @@ def test_spherical_wrist_success_is_reachability(geometry, puma, scale, q, kind,
         assert len(s) > 0, (q, g)
         if abs(math.sin(q[4])) < 1e-6:
             # Wrist singular (also when q5 = 0 came from "fk"): the pose fixes only q4 + q6 (q5 = 0)
-            # or q4 - q6 (q5 = pi), and a solution may carry (q4 + pi, -q5, q6 + pi).
-            assert any(wrapped(row[:3], q[:3]) < 1e-6 and (wrapped(row[3] + row[5], q[3] + q[5]) < 1e-6
-                                                           or wrapped(row[3] - row[5], q[3] - q[5]) < 1e-6)
+            # or q4 - q6 (q5 = pi), and a solution may carry (q4 + pi, -q5, q6 + pi). An elbow
+            # within kCosEps of singular as well is returned once for its two, which differ by up
+            # to ~3e-6 (elbows_apart in ik_closed.cpp).
+            arm_tol = 1e-5 if s.singular else 1e-6
+            assert any(wrapped(row[:3], q[:3]) < arm_tol and (wrapped(row[3] + row[5], q[3] + q[5]) < 1e-6
+                                                              or wrapped(row[3] - row[5], q[3] - q[5]) < 1e-6)
                        for row in s.q), (s, q)
         elif not s.singular:
             assert wrapped(s.q, q).min() < 1e-6, (s, q)
@@ -493,17 +496,36 @@ def test_planar_3r_geometric_folded_elbow_with_a_shorter_first_link():
 def test_nearly_folded_equal_links_reach_a_point_near_the_first_joint(method):
     """a1 = a2 and the tip (or wrist point) 4e-8 from the first joint: the elbow cosine -1 + 8e-16,
     rounded and clamped to -1, folded the arm onto the joint, 4e-8 off; the verification rejected it
-    and a reachable point came back with no solution."""
+    and a reachable point came back with no solution. Both elbows are returned (singular): their
+    first angles are pi apart (the elbow on either side of the joint), not one posture twice."""
     s = rk.closed.planar_2r((0.0, 4e-8), 1.0, 1.0)
-    assert len(s) == 1 and s.singular
-    assert np.linalg.norm(fk_planar((1.0, 1.0), s.q[0])[0] - (0.0, 4e-8)) < 1e-15
+    assert len(s) == 2 and s.singular and wrapped(s.q[0, 0], s.q[1, 0]) > 3.0
+    for q in s.q:
+        assert np.linalg.norm(fk_planar((1.0, 1.0), q)[0] - (0.0, 4e-8)) < 1e-15
     s = rk.closed.planar_3r((0.5, 4e-8, 0.0), 1.0, 1.0, 0.5, method=method)
-    assert len(s) == 1 and s.singular
-    assert np.linalg.norm(fk_planar((1.0, 1.0, 0.5), s.q[0])[0] - (0.5, 4e-8)) < 1e-15
+    assert len(s) == 2 and s.singular and wrapped(s.q[0, 0], s.q[1, 0]) > 3.0
+    for q in s.q:
+        assert np.linalg.norm(fk_planar((1.0, 1.0, 0.5), q)[0] - (0.5, 4e-8)) < 1e-15
     p = np.array([0.0, 0.0, 3.97364299e-08])  # on the shoulder axis, too
     s = rk.closed.anthropomorphic(p, 1.0, 1.0)
-    assert len(s) == 1 and s.singular
-    assert np.linalg.norm(fk_anthropomorphic(1.0, 1.0, 0.0, s.q[0]) - p) < 1e-15
+    assert len(s) == 2 and s.singular
+    for q in s.q:
+        assert np.linalg.norm(fk_anthropomorphic(1.0, 1.0, 0.0, q) - p) < 1e-15
+
+
+@pytest.mark.parametrize("limited", [False, True])
+def test_folded_equal_links_near_the_shoulder_and_wrist_singularities_find_their_source(limited):
+    """Found by `make fuzz`: a2 = -a3 = 0.5 (equal links, the elbow folded at q3 = 0), every joint at
+    1.2e-7, the wrist centre 6e-8 from the shoulder. One elbow was returned for the singular elbow,
+    the mirrored one (q2 = -pi + 2e-7): the source was not among the solutions, and with the PUMA's
+    limits (which the mirrored one leaves) nothing came back."""
+    g = dict(zip(("a2", "a3", "d3", "d4", "d1", "d6"), (0.5, -0.5, 0.0, 0.0, 0.0, 0.0)))
+    q = np.full(6, 1.1920929e-07)
+    T = fk_wrist(g, q)
+    limits = PUMA_LIMITS if limited else None
+    s = rk.closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], limits=limits)
+    check_solutions(s, 6, limits, wrist_reaches(g, T))
+    assert s.singular and wrapped(s.q, q).min() < 1e-6
 
 
 @pytest.mark.parametrize("q0", [41561584.0, 1e17, -1e300])

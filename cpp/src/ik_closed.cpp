@@ -72,6 +72,20 @@ bool elbow_angle(double a1, double a2, double w, double& c, double& s, bool& sin
 
 const char* singular_elbow(double c) { return c > 0 ? "elbow straight" : "elbow folded"; }
 
+// Within kCosEps of stretched or folded (elbow_angle's `singular`) the two elbows of a 2R (links
+// a1, a2 <= 1, the point w from the first joint, the elbow's cosine c and |sine| s) coincide, their
+// angles within ~1e-6, and one is returned; unless their first angles still differ, by
+// 2 atan2(a2 s, |a1 + a2 c|): up to pi for a folded elbow of near-equal links with the point near
+// the first joint (links 0.5 and 0.5, the point 1.2e-7 from the joint: the pose's own elbow was the
+// one left out, and under limits the one kept could be outside them). Apart when that exceeds 1e-5,
+// unless s is rounding (the folded side's factor of s^2, (w - |a1 - a2|) (w + |a1 - a2|), carries
+// ~eps (w + |a1 - a2|)) or the point is on the first joint, where the first angle is free.
+bool elbows_apart(double a1, double a2, double w, double c, double s) {
+  const double d = std::abs(a1 - a2);
+  return (w - d) * (w + d) > 64.0 * std::numeric_limits<double>::epsilon() * (w + d) && w * w >= 1e-24 &&
+         2.0 * std::atan2(a2 * s, std::abs(a1 + a2 * c)) > 1e-5;
+}
+
 // The planar 2R solutions (theta1, theta2) of links a1, a2 for the point (x, y), algebraically:
 // s2 = +sqrt (elbow down) then -sqrt (elbow up); one when singular. Returns the count and, for
 // solution k, theta_i = atan2(yx[k][i][0], yx[k][i][1]) (the arc tangents are the caller's: one
@@ -85,15 +99,16 @@ int planar_2r_args(double a1, double a2, double x, double y, double yx[2][2][2],
   double c2, sin2;
   singular = false;
   // |(x, y)| without std::hypot: a point within an arm's reach, far from overflow and underflow.
-  if (!elbow_angle(a1, a2, std::sqrt(x * x + y * y), c2, sin2, singular)) return 0;
-  const int count = singular ? 1 : 2;
+  const double w = std::sqrt(x * x + y * y);
+  if (!elbow_angle(a1, a2, w, c2, sin2, singular)) return 0;
+  const int count = singular && !elbows_apart(a1, a2, w, c2, sin2) ? 1 : 2;
   for (int k = 0; k < count; ++k) {
     const double s2 = k == 0 ? sin2 : -sin2;
     const double k1 = a1 + a2 * c2, k2 = a2 * s2;
     // s1, c1 share the positive denominator x^2 + y^2: atan2 does not need it.
     yx[k][0][0] = k1 * y - k2 * x, yx[k][0][1] = k1 * x + k2 * y;
     yx[k][1][0] = s2, yx[k][1][1] = c2;
-    label[k] = singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up");
+    label[k] = count == 1 ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up");
   }
   // The base angle is free when the point is on the first axis (x = y = 0, a1 = a2).
   if (x * x + y * y < 1e-24) singular = true;
@@ -331,13 +346,13 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
   // W on the first axis (a1 = a2): theta1 is free, 0 is returned.
   out.singular = elbow_singular || w <= 1e-12;
   const double t2 = std::atan2(s2, c2);  // not acos: exact near 0 and pi too
-  for (int k = 0; k < (elbow_singular ? 1 : 2); ++k) {
+  const int count = elbow_singular && !elbows_apart(b1, b2, w, c2, s2) ? 1 : 2;
+  for (int k = 0; k < count; ++k) {
     // Elbow down: theta2 in (0, pi), theta1 = alpha - beta; elbow up: theta2 < 0, alpha + beta.
     const double theta2 = k == 0 ? t2 : -t2;
     const double theta1 = w > 1e-12 ? (k == 0 ? alpha - beta : alpha + beta) : 0.0;
     double q[3] = {theta1, theta2, phi - theta1 - theta2};
-    add_if_admissible(out, q, limits, elbow_singular ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"),
-                      reaches);
+    add_if_admissible(out, q, limits, count == 1 ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"), reaches);
   }
   return out;
 }

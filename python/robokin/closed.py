@@ -93,7 +93,9 @@ def planar_3r(target, a1: float = 1.0, a2: float = 1.0, a3: float = 1.0, method:
 
     Returns:
         "elbow down" and "elbow up"; one solution ("elbow straight" / "elbow folded", ``singular``)
-        when ``s2 = 0``.
+        when ``s2 = 0``. Within 1e-12 of that cosine the two elbows are returned once, unless their
+        ``theta1`` still differ by more than 1e-5 (a folded elbow of near-equal links with the wrist
+        point near the first joint): then both, ``singular`` set.
     """
     return _core.ik_planar_3r(target, a1, a2, a3, method, _limits(limits))
 
