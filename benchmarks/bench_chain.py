@@ -34,7 +34,7 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 import robokin as rk  # noqa: E402
-from _timing import fmt, goal, once, per_call, ratio_line  # noqa: E402
+from _timing import fmt, goal, once, once_interleaved, per_call, ratio_line  # noqa: E402
 
 L1, L3 = rk.robots.RPR_L1, rk.robots.RPR_L3
 LOWER, UPPER = rk.robots.RPR_LIMITS
@@ -343,8 +343,7 @@ def bench_batch(rng):
         check("numpy batch fk", ref_out, chain.fk(Q))
         check("numpy batch fk, positions", ref_out[:, :3, 3], chain.fk(Q, out="position"))
         del ref_out
-        ours = once(lambda: chain.fk(Q), repeat=5)
-        ref = once(lambda: rpr_fk_batch_np(Q), repeat=5)
+        ours, ref = once_interleaved([lambda: chain.fk(Q), lambda: rpr_fk_batch_np(Q)], repeat=5)
         per = lambda t: (t[0] / BATCH, t[1] / BATCH)  # noqa: E731
         line("batch fk RPR, 1 thread", ours, "numpy", ref, 0.15,
              note=f"per configuration: {fmt(per(ours)[0]).strip()} vs {fmt(per(ref)[0]).strip()}",
