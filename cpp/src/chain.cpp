@@ -584,10 +584,8 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
   };
 #ifdef ROBOKIN_AVX2
   const bool gather = kBlockIsa == 2 && dof_ <= kGatherJoints;
-#else
-  const bool gather = false;
-#endif
   alignas(64) double qT[kGatherJoints * kBlock];
+#endif
   for (; b + kBlock <= end; b += kBlock) {
     const double* qb = q + b * dof_;
     const double* lanes_q = qb;  // the block's joint values as run_lanes reads them
