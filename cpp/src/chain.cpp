@@ -402,6 +402,7 @@ __attribute__((target("avx512f"), always_inline)) inline __m512d odd_pairs(__m51
 __attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>& L, double* m) {
   static_assert(kBlock % 8 == 0, "whole vectors of lanes");
   const __m512d row3 = _mm512_set_pd(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // (0 0 0 1) unpacked, gathered
+  const int lane[4] = {0, 2, 1, 3};  // the first lane of the pairs (even, odd) of each vector below
   for (int k = 0; k < kBlock; k += 8, m += 128) {
     // Rows 0 and 1 as (a b) (c d) pairs: lo[r], lo[2 + r] row r of lanes 0 4 and 2 6; hi[r],
     // hi[2 + r] of lanes 1 5 and 3 7.
@@ -419,14 +420,12 @@ __attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>&
       }
       const __m512d r2[4] = {even_pairs(ab_even, cd_even), odd_pairs(ab_even, cd_even), even_pairs(ab_odd, cd_odd),
                              odd_pairs(ab_odd, cd_odd)};  // lanes 0 4 | 2 6 | 1 5 | 3 7, rows 2 as pairs
-      const int lane[4] = {0, 2, 1, 3};
       for (int h = 0; h < 4; ++h) {
         _mm512_storeu_pd(m + 16 * lane[h] + 8, even_pairs(r2[h], row3));
         _mm512_storeu_pd(m + 16 * (lane[h] + 4) + 8, odd_pairs(r2[h], row3));
       }
     }
     // Rows 0 and 1: lanes 0 4 (lo[0], lo[1]), 2 6 (lo[2], lo[3]), 1 5 (hi[0], hi[1]), 3 7 (hi[2], hi[3]).
-    const int lane[4] = {0, 2, 1, 3};
     const __m512d* pairs[4] = {lo, lo + 2, hi, hi + 2};
     for (int h = 0; h < 4; ++h) {
       _mm512_storeu_pd(m + 16 * lane[h], even_pairs(pairs[h][0], pairs[h][1]));
@@ -608,10 +607,10 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
       const char* line = reinterpret_cast<const char*>(out + width * (b + kBlock));
       const char* const stop = reinterpret_cast<const char*>(out + width * next_end);
       const long part = ((stop - line) / 64 / (dof_ + 1) + 1) * 64;  // bytes of lines per part
-      auto fetch_part = [&](int) {
+      auto fetch_part = [&](int /*joint*/) {
         for (const char* e = std::min(stop, line + part); line < e; line += 64) __builtin_prefetch(line, 1, 3);
       };
-      fetch_part(-1);
+      fetch_part(-1);  // before the first joint
       run_lanes<kBlock>(L, lanes_q, lanes_stride, nullptr, fetch_part);
     } else {
       run_lanes<kBlock>(L, lanes_q, lanes_stride, nullptr);
