@@ -25,10 +25,13 @@ def per_call(stmt: str, namespace: dict, repeat: int = 7, budget: float = 0.05, 
     return min(runs), statistics.median(runs)
 
 
-def once(fn, repeat: int = 3):
-    """(best, median) seconds of ``fn()`` over ``repeat`` runs (for long calls: batches, paths)."""
+def once(fn, repeat: int = 3, before=None):
+    """(best, median) seconds of ``fn()`` over ``repeat`` runs (for long calls: batches, paths);
+    ``before()``, when given, runs untimed before each."""
     runs = []
     for _ in range(repeat):
+        if before is not None:
+            before()
         start = timeit.default_timer()
         fn()
         runs.append(timeit.default_timer() - start)

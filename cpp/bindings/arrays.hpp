@@ -174,13 +174,28 @@ inline Float64View view_of(const Array& a) {
 
 // A new C-contiguous float64 array, made by numpy's C API directly (pybind11's array_t
 // constructor builds shape and stride vectors and a dtype object first).
-inline py::array new_float64(int ndim, const py::ssize_t* shape) {
+inline py::array numpy_float64(int ndim, const py::ssize_t* shape) {
   using py::detail::npy_api;
   const npy_api& api = npy_api::get();
   PyObject* descr = api.PyArray_DescrFromType_(npy_api::NPY_DOUBLE_);  // the reference is stolen below
   PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, ndim, shape, nullptr, nullptr, 0, nullptr);
   if (!a) throw py::error_already_set();
   return py::reinterpret_steal<py::array>(a);
+}
+
+// Outputs of this size or more (numpy asks huge pages for them) come from output_pool.cpp, in
+// memory kept from freed ones.
+constexpr std::size_t kPooledBytes = std::size_t{4} << 20;
+py::array pooled_float64(int ndim, const py::ssize_t* shape, std::size_t bytes);
+
+// A new, uninitialised C-contiguous float64 array: every output the bindings fill.
+inline py::array new_float64(int ndim, const py::ssize_t* shape) {
+  std::size_t bytes = sizeof(double);
+  bool overflow = false;
+  for (int i = 0; i < ndim; ++i)
+    overflow |= shape[i] < 0 || __builtin_mul_overflow(bytes, static_cast<std::size_t>(shape[i]), &bytes);
+  if (!overflow && bytes >= kPooledBytes) return pooled_float64(ndim, shape, bytes);
+  return numpy_float64(ndim, shape);  // numpy's error when the size is too large
 }
 
 inline double* float64_data(const py::array& a) {

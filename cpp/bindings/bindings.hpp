@@ -18,5 +18,6 @@ void bind_manipulability(pybind11::module_& m);  // after bind_chain: adds Chain
 void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
 void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
+void bind_output_pool(pybind11::module_& m);  // release_output_memory
 void bind_chain_pickle(pybind11::module_& m);  // after bind_chain: Chain pickling, ==, hash, repr
 }  // namespace robokin::bind
