@@ -3,6 +3,7 @@ values are those of a fresh output, the reused memory is a freed output's (no pa
 output still referenced is never reused, the freed outputs kept add up to at most 256 MB, and
 rk.release_output_memory() gives them back."""
 
+import gc
 import resource
 import sys
 
@@ -79,9 +80,11 @@ def test_the_freed_outputs_kept_add_up_to_at_most_256_mb_and_are_released_on_req
     chain = rk.robots.rpr()
     rk.release_output_memory()
     sizes = [N + 25_000 * k for k in range(12)]  # 38-74 MB each, 670 MB in all, none reusing another
+    Q = configurations(chain, sizes[-1], 7)  # made first: no other memory comes and goes below
+    gc.collect()
     before = resident_bytes()
     for n in sizes:
-        chain.fk(configurations(chain, n, 7))  # freed at once
+        chain.fk(Q[:n])  # freed at once
     kept = resident_bytes() - before
     assert 128 * MB < kept < 256 * MB + 16 * MB, kept / MB  # the newest ones (their pages still held)
     released = rk.release_output_memory()
