@@ -29,7 +29,7 @@ if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
 
 import robokin as rk  # noqa: E402
-from _timing import fmt, once, per_call, ratio_line  # noqa: E402
+from _timing import fmt, once, per_call, per_call_interleaved, ratio_line  # noqa: E402
 
 SAMPLES = 1_000_000
 goals: list[dict] = []
@@ -48,11 +48,11 @@ def bench_manipulability(rng) -> None:
         if not np.isclose(chain.manipulability(q), np.prod(s), rtol=1e-10):
             raise AssertionError(f"{name}: manipulability disagrees with numpy's SVD")
         ns = {"chain": chain, "q": q}
-        ref = per_call("chain.jacobian(q)", ns)
-        for measure in ("yoshikawa", "condition"):
-            ns["m"] = measure
-            ours = per_call("chain.manipulability(q, m)", ns)
-            line(f"{name} manipulability {measure}", ours, "jacobian", ref, 1.5 if measure == "yoshikawa" else None,
+        measures = ("yoshikawa", "condition")
+        ref, *ours = per_call_interleaved(["chain.jacobian(q)"] + [f"chain.manipulability(q, {m!r})" for m in measures],
+                                          ns)
+        for measure, t in zip(measures, ours):
+            line(f"{name} manipulability {measure}", t, "jacobian", ref, 1.5 if measure == "yoshikawa" else None,
                  name=f"one Chain.manipulability call (Yoshikawa), {name}, vs one Chain.jacobian call")
         ns_np = {"np": np, "J": chain.jacobian(q)}
         svd = per_call("np.linalg.svd(J, compute_uv=False)", ns_np)
