@@ -97,6 +97,7 @@ def test_an_output_larger_than_the_budget_is_kept_alone():
     chain = rk.robots.rpr()
     rk.release_output_memory()
     chain.fk(configurations(chain, N, 8))
-    big = 2_200_000  # 282 MB of frames, in 2 MB pages
+    big = 2_200_000  # 282 MB of frames, in whole pages
     chain.fk(configurations(chain, big, 9))  # the 38 MB one kept before is given back
-    assert rk.release_output_memory() == -(-big * 128 // (2 * MB)) * 2 * MB
+    page = resource.getpagesize()
+    assert rk.release_output_memory() == -(-big * 128 // page) * page

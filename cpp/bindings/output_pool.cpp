@@ -16,6 +16,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdint>
@@ -28,13 +29,16 @@ namespace robokin::bind {
 #if defined(__linux__)
 namespace {
 constexpr std::size_t kHugePage = std::size_t{1} << 21;
+// Blocks are whole pages: a block rounded up to huge pages would hold up to 2 MB more of memory
+// (its last huge page faulted in whole) for every live output of that size.
+const std::size_t kPage = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
 // The freed outputs kept, newest first, while they add up to no more than this (the newest always).
 constexpr std::size_t kKeptBytes = std::size_t{256} << 20;
 constexpr std::size_t kMaxKept = kKeptBytes / kPooledBytes;
 
 struct Block {
   void* data = nullptr;
-  std::size_t bytes = 0;  // a multiple of kHugePage
+  std::size_t bytes = 0;  // a multiple of kPage
 };
 
 struct Pool {
@@ -58,8 +62,8 @@ Pool& pool() {
 
 void unmap(const Block& b) { munmap(b.data, b.bytes); }
 
-// bytes (a multiple of kHugePage) of fresh memory starting on a 2 MB boundary, asked to be backed by
-// huge pages, as numpy asks for its large arrays.
+// bytes (a multiple of kPage) of fresh memory starting on a 2 MB boundary, asked to be backed by
+// huge pages where they cover it, as numpy asks for its large arrays.
 Block map_block(std::size_t bytes) {
   void* p = mmap(nullptr, bytes + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) throw std::bad_alloc();
@@ -110,7 +114,7 @@ void give_back(PyObject* capsule) {
 py::array pooled_float64(int ndim, const py::ssize_t* shape, std::size_t bytes) {
   using py::detail::npy_api;
   const npy_api& api = npy_api::get();
-  Block* block = new Block(take((bytes + kHugePage - 1) / kHugePage * kHugePage));
+  Block* block = new Block(take((bytes + kPage - 1) / kPage * kPage));
   PyObject* capsule = PyCapsule_New(block, nullptr, give_back);
   if (!capsule) {
     unmap(*block);
