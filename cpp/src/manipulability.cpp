@@ -49,10 +49,24 @@ bool yoshikawa_by_cholesky(const M& J, double& value) {
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 6, 6>;
   const long k = std::min(J.rows(), J.cols());
   if (k > 6) return false;
+  // G's diagonal and lower triangle, all that ldlt_in_place reads: dot products of J's rows (or
+  // columns), summed in order. Eigen's product of these runtime-sized matrices took 2,000
+  // instructions a call; these loops are 40 ns a call faster on the UR5 (483 -> 443 ns). (A
+  // fixed-size 6 x 6 G, its loops unrolled, measured slower: 510 ns.)
   Small G(k, k);
-  if (J.rows() <= J.cols()) G.noalias() = J * J.transpose();
-  else G.noalias() = J.transpose() * J;
-  const double trace = G.trace();
+  const bool by_rows = J.rows() <= J.cols();  // G = J J^T: J's rows, else J^T J: its columns
+  const long len = by_rows ? J.cols() : J.rows();
+  const long step = by_rows ? J.rows() : 1, next = by_rows ? 1 : J.rows();  // along a vector, between two
+  const double* data = J.data();
+  double trace = 0.0;
+  for (long i = 0; i < k; ++i)
+    for (long j = 0; j <= i; ++j) {
+      const double *a = data + i * next, *b = data + j * next;
+      double dot = 0.0;
+      for (long t = 0; t < len; ++t) dot += a[t * step] * b[t * step];
+      G(i, j) = dot;
+      if (i == j) trace += dot;
+    }
   // G = L_u D L_u^T (ldlt_in_place: L_u unit lower triangular, 1 / D on G's diagonal); the Cholesky
   // factor is L = L_u D^(1/2): its diagonal's product is prod sqrt(D_j), and L^-1 = D^(-1/2) L_u^-1.
   double dmin, dmax;
