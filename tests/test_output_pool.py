@@ -56,6 +56,11 @@ def test_a_freed_output_is_written_into_by_the_next_call_of_its_size(name):
     assert out.ctypes.data == address
     assert out.flags.writeable and out.flags.c_contiguous and out.dtype == np.float64
     np.testing.assert_array_equal(out, in_small_batches(call, chain, Q))  # outputs below the pool's size
+    for k in np.random.default_rng(3).integers(0, n, 5):  # and KDL's values, independently of both
+        reference = chain._jacobian_kdl(Q[k]) if name == "jacobian" else chain._fk_kdl(Q[k])
+        if name == "fk positions":
+            reference = reference[:3, 3]
+        np.testing.assert_allclose(out[k], reference, rtol=0, atol=1e-12)
     # A fresh output faults in every page (2 MB or 4 KB ones) of its 5.8-38 MB; the reused one none.
     assert fresh_faults >= 3
     assert faults <= fresh_faults // 3, (faults, fresh_faults)
