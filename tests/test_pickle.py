@@ -139,8 +139,8 @@ def test_repr_shows_the_joints_and_the_dh_rows():
 
 def test_bad_chain_states_are_value_errors():
     state = rk.robots.ur5().__getstate__()
-    for bad in [state[:2] + (99,) + state[3:], (state[0], 2) + state[2:], ("x",), state[:5],
-                state[:2] + ("nothing",) + state[3:]]:
+    for bad in [state[:2] + (99,) + state[3:], (state[0], 3) + state[2:], (state[0], 0) + state[2:], ("x",),
+                state[:5], state[:2] + ("nothing",) + state[3:]]:
         chain = rk.Chain.__new__(rk.Chain)
         with pytest.raises(ValueError, match="Chain state"):
             chain.__setstate__(bad)

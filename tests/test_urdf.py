@@ -124,7 +124,7 @@ def test_bad_urdf_input():
         rk.Chain.from_urdf("<robot", "a", "b")
     with pytest.raises(ValueError, match="path_or_string"):
         rk.Chain.from_urdf("/no/such/file.urdf", "a", "b")
-    with pytest.raises(ValueError, match="path_or_string"):
+    with pytest.raises(TypeError, match="path_or_string"):
         rk.Chain.from_urdf(42, "a", "b")
     with pytest.raises(ValueError, match="base"):
         rk.Chain.from_urdf(SMALL, "nowhere", "tool")

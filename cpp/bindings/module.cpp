@@ -5,6 +5,7 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_errors(m);
   robokin::bind::bind_chain(m);
   robokin::bind::bind_chain_pickle(m);
+  robokin::bind::bind_chain_names(m);
   robokin::bind::bind_reach(m);
   robokin::bind::bind_rpr(m);
   robokin::bind::bind_rrr3(m);

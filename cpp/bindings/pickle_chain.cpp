@@ -15,7 +15,8 @@
 namespace robokin::bind {
 namespace {
 
-constexpr int kChainStateVersion = 1;
+// Version 2 added the base link's name to the "segments" layout; version 1 states still load.
+constexpr int kChainStateVersion = 2;
 
 py::tuple floats(const double* v, int count) {
   py::tuple t(count);
@@ -58,8 +59,9 @@ Vector vector_of(py::handle obj, const char* what) {
 }
 
 // ("robokin.Chain", version, "dh", rows, modified, tool, lower, upper) for a chain built from a DH
-// table, ("robokin.Chain", version, "segments", records, lower, upper) otherwise; a record is
-// (segment name, joint name, KDL joint type, origin (3), axis (3), tip (16, row-major)).
+// table, ("robokin.Chain", version, "segments", records, lower, upper, base link name) otherwise
+// (version 1: without the base link's name); a record is (segment name, joint name, KDL joint
+// type, origin (3), axis (3), tip (16, row-major)).
 py::tuple chain_state(const Chain& c) {
   const py::tuple lower = floats(c.lower().data(), c.dof()), upper = floats(c.upper().data(), c.dof());
   if (const DHTable* dh = c.dh()) {
@@ -73,14 +75,16 @@ py::tuple chain_state(const Chain& c) {
   for (const SegmentRecord& r : c.records())
     records.append(py::make_tuple(r.name, r.joint_name, r.type, floats(r.origin.data(), 3), floats(r.axis.data(), 3),
                                   matrix_rows(r.tip)));
-  return py::make_tuple("robokin.Chain", kChainStateVersion, "segments", py::tuple(records), lower, upper);
+  return py::make_tuple("robokin.Chain", kChainStateVersion, "segments", py::tuple(records), lower, upper,
+                        c.base_name());
 }
 
 Chain chain_from_state(const py::tuple& t) {
   if (t.size() < 3 || !py::isinstance<py::str>(t[0]) || t[0].cast<std::string>() != "robokin.Chain")
     fail("Chain state: not a robokin.Chain state");
-  if (!py::isinstance<py::int_>(t[1]) || t[1].cast<long>() != kChainStateVersion)
-    fail("Chain state: version " + py::repr(t[1]).cast<std::string>() + " is not supported (this robokin reads " +
+  const long version = py::isinstance<py::int_>(t[1]) ? t[1].cast<long>() : -1;
+  if (version < 1 || version > kChainStateVersion)
+    fail("Chain state: version " + py::repr(t[1]).cast<std::string>() + " is not supported (this robokin reads 1 to " +
          std::to_string(kChainStateVersion) + ")");
   const std::string kind = py::isinstance<py::str>(t[2]) ? t[2].cast<std::string>() : "";
   if (kind == "dh" && t.size() == 8) {
@@ -95,7 +99,8 @@ Chain chain_from_state(const py::tuple& t) {
     return Chain::from_dh(rows, t[4].cast<bool>(), matrix_of(t[5], "tool"), vector_of(t[6], "lower"),
                           vector_of(t[7], "upper"));
   }
-  if (kind == "segments" && t.size() == 6) {
+  const size_t segments_size = version == 1 ? 6 : 7;
+  if (kind == "segments" && t.size() == segments_size) {
     std::vector<SegmentRecord> records;
     for (py::handle rec : py::reinterpret_borrow<py::sequence>(t[3])) {
       const py::sequence r = py::reinterpret_borrow<py::sequence>(rec);
@@ -110,17 +115,35 @@ Chain chain_from_state(const py::tuple& t) {
       s.tip = matrix_of(r[5], "a segment tip");
       records.push_back(s);
     }
-    return Chain::from_records(records, vector_of(t[4], "lower"), vector_of(t[5], "upper"));
+    const std::string base = version == 1 ? "" : py::str(t[6]).cast<std::string>();
+    return Chain::from_records(records, vector_of(t[4], "lower"), vector_of(t[5], "upper"), base);
   }
   fail("Chain state: unknown layout '" + kind + "'");
 }
 
 std::string number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
 
+// A chain's own names (a URDF chain's): base and tip links, the joints (a long list elided).
+std::string names_repr(const Chain& c) {
+  constexpr size_t kHead = 8, kTail = 2;
+  const std::vector<std::string> links = c.link_names(), joints = c.joint_names();
+  auto quoted = [](const std::string& name) { return py::repr(py::str(name)).cast<std::string>(); };
+  std::string s = ", base=" + quoted(links.front()) + ", tip=" + quoted(links.back()) + ", joint_names=(";
+  for (size_t i = 0; i < joints.size(); ++i) {
+    if (joints.size() > kHead + kTail + 1 && i >= kHead && i + kTail < joints.size()) {
+      if (i == kHead) s += "..., ";
+      continue;
+    }
+    s += quoted(joints[i]) + (i + 1 < joints.size() ? ", " : joints.size() == 1 ? "," : "");
+  }
+  return s + ")";
+}
+
 std::string chain_repr(const Chain& c) {
   std::string joints;
   for (int i = 0; i < c.dof(); ++i) joints += c.prismatic(i) ? 'P' : 'R';
   std::string s = "Chain(dof=" + std::to_string(c.dof()) + ", joints='" + joints + "'";
+  if (c.named()) s += names_repr(c);
   if (const DHTable* dh = c.dh()) {
     s += std::string(", ") + (dh->modified ? "modified " : "") + "dh=[";
     for (size_t i = 0; i < dh->rows.size(); ++i) {

@@ -54,12 +54,45 @@ SegmentRecord SegmentRecord::of(const KDL::Segment& s) {
   return r;
 }
 
-Chain Chain::from_records(const std::vector<SegmentRecord>& records, const Vector& lower, const Vector& upper) {
+Chain Chain::from_records(const std::vector<SegmentRecord>& records, const Vector& lower, const Vector& upper,
+                          const std::string& base_name) {
   KDL::Chain c;
   for (const SegmentRecord& r : records) c.addSegment(r.segment());
   Chain chain(std::move(c), lower, upper);
   chain.records_ = records;
+  chain.base_name_ = base_name;
   return chain;
+}
+
+namespace {
+
+std::string name_or(const std::string& name, const std::string& fallback) {
+  return name.empty() || name == kUnnamed ? fallback : name;
+}
+
+}  // namespace
+
+std::vector<std::string> Chain::joint_names() const {
+  std::vector<std::string> names;
+  for (const SegmentRecord& r : records_)
+    if (r.type != KDL::Joint::Fixed) names.push_back(name_or(r.joint_name, "q" + std::to_string(names.size() + 1)));
+  return names;
+}
+
+std::vector<std::string> Chain::link_names() const {
+  std::vector<std::string> names{name_or(base_name_, "base")};
+  for (const SegmentRecord& r : records_)
+    if (r.type != KDL::Joint::Fixed) names.push_back(name_or(r.name, "link" + std::to_string(names.size())));
+  // The last frame is the chain's end: trailing fixed segments (a flange, a tool) belong to it.
+  names.back() = name_or(records_.back().name, "link" + std::to_string(dof_));
+  return names;
+}
+
+bool Chain::named() const {
+  if (!name_or(base_name_, "").empty()) return true;
+  for (const SegmentRecord& r : records_)
+    if (!name_or(r.name, "").empty() || !name_or(r.joint_name, "").empty()) return true;
+  return false;
 }
 
 bool Chain::same_kinematics(const Chain& o) const {

@@ -7,11 +7,13 @@
 #include <kdl/tree.hpp>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <map>
 #include <unordered_set>
 #include <utility>
 
@@ -192,42 +194,125 @@ void check_tree(const urdf::ModelInterface& model) {
   }
 }
 
-KDL::Tree tree_of(const urdf::ModelInterface& model) {
-  const urdf::LinkConstSharedPtr root = model.getRoot();
-  if (!root) bad("path_or_string: the URDF has no root link");
-  KDL::Tree tree(root->name);
-  std::vector<urdf::LinkConstSharedPtr> stack{root};
-  std::unordered_set<std::string> seen{root->name};
-  while (!stack.empty()) {
-    const urdf::LinkConstSharedPtr link = stack.back();
-    stack.pop_back();
-    for (const urdf::LinkSharedPtr& child : link->child_links) {
-      if (!child || !child->parent_joint) continue;
-      if (!seen.insert(child->name).second)
-        bad("path_or_string: link '" + child->name + "' is reached twice (a loop or two parents)");
-      if (!tree.addSegment(segment_of(*child->parent_joint), link->name))
-        bad("path_or_string: could not add link '" + child->name + "' to the tree");
-      stack.push_back(child);
-    }
-  }
-  return tree;
+bool movable(const urdf::Joint& j) {
+  return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS || j.type == urdf::Joint::PRISMATIC;
 }
 
-}  // namespace
-
-Chain chain_from_urdf(const std::string& xml, const std::string& base, const std::string& tip,
-                      std::vector<std::string>* warnings) {
+// The document as urdfdom's model, checked to be one tree; urdfdom's warnings left in `capture`.
+urdf::ModelInterfaceSharedPtr load(const std::string& xml, Capture& capture) {
   if (xml.find_first_not_of(" \t\r\n") == std::string::npos) bad("path_or_string: the URDF document is empty");
   if (xml_depth(xml, kMaxXmlDepth) > kMaxXmlDepth)
     bad("path_or_string: XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels (not a URDF)");
-  Capture capture;
   const urdf::ModelInterfaceSharedPtr model = parse(xml, capture);
   if (!model) {
     const std::string why = capture.errors.empty() ? joined(capture.warnings) : joined(capture.errors);
     bad("path_or_string: not a valid URDF document: " + (why.empty() ? std::string("urdfdom gives no reason") : why));
   }
   check_tree(*model);
-  if (!model->getLink(base)) bad("base: no link named '" + base + "' in the URDF");
+  if (!model->getRoot()) bad("path_or_string: the URDF has no root link");
+  return model;
+}
+
+// Calls visit(link, parent joint) for every link below `top` (not `top` itself), depth-first, a
+// parent before its children and children in urdfdom's order; without recursion.
+template <class Visit>
+void each_below(const urdf::LinkConstSharedPtr& top, Visit visit) {
+  std::vector<urdf::LinkConstSharedPtr> stack{top};
+  std::unordered_set<const urdf::Link*> seen{top.get()};
+  while (!stack.empty()) {
+    const urdf::LinkConstSharedPtr link = stack.back();
+    stack.pop_back();
+    if (link != top) visit(*link, *link->parent_joint);
+    for (auto child = link->child_links.rbegin(); child != link->child_links.rend(); ++child) {
+      if (!*child || !(*child)->parent_joint) continue;
+      if (!seen.insert(child->get()).second)
+        bad("path_or_string: link '" + (*child)->name + "' is reached twice (a loop or two parents)");
+      stack.push_back(*child);
+    }
+  }
+}
+
+// The ends of the longest branches below `base` (UrdfTree's rule), sorted by name, and how many
+// movable joints lead to them (0 and no end when none moves).
+struct Branches {
+  int movable = 0;
+  std::vector<std::string> ends;
+};
+
+Branches longest_branches(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& base) {
+  // Per link below base: movable joints and joints from base, and the last movable joint on the way.
+  struct Depth {
+    int movable = 0, joints = 0;
+    const urdf::Joint* last = nullptr;
+  };
+  std::map<const urdf::Link*, Depth> depth{{base.get(), {}}};
+  std::vector<const urdf::Link*> deepest;  // the links with the most movable joints so far
+  int best = 0;
+  each_below(base, [&](const urdf::Link& link, const urdf::Joint& joint) {
+    Depth d = depth.at(model.getLink(joint.parent_link_name).get());
+    ++d.joints;
+    if (movable(joint)) ++d.movable, d.last = &joint;
+    depth[&link] = d;
+    if (d.movable == 0 || d.movable < best) return;
+    if (d.movable > best) best = d.movable, deepest.clear();
+    deepest.push_back(&link);
+  });
+  // One branch per last movable joint: its links with the most joints, walked up together (they
+  // are equally deep) to the deepest link they all hang from.
+  std::map<const urdf::Joint*, std::vector<const urdf::Link*>> branches;
+  for (const urdf::Link* link : deepest) {
+    std::vector<const urdf::Link*>& ends = branches[depth.at(link).last];
+    const int joints = depth.at(link).joints, held = ends.empty() ? -1 : depth.at(ends.front()).joints;
+    if (joints > held) ends.clear();
+    if (joints >= held) ends.push_back(link);
+  }
+  Branches out{best, {}};
+  for (auto& [last, ends] : branches) {
+    while (std::any_of(ends.begin(), ends.end(), [&](const urdf::Link* l) { return l != ends.front(); }))
+      for (const urdf::Link*& l : ends) l = l->getParent().get();
+    out.ends.push_back(ends.front()->name);
+  }
+  std::sort(out.ends.begin(), out.ends.end());
+  return out;
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (size_t i = 0; i < names.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + ("'" + names[i] + "'");
+  return s;
+}
+
+// from_urdf's default tip below `base`: the end of the one longest branch.
+std::string default_tip(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& base) {
+  const Branches b = longest_branches(model, base);
+  if (b.ends.empty()) bad("tip: no movable joint below link '" + base->name + "': pass tip=...");
+  if (b.ends.size() > 1)
+    bad("tip: the longest branches from '" + base->name + "' end at " + quoted_list(b.ends) + " (" +
+        std::to_string(b.movable) + " movable joint" + (b.movable == 1 ? "" : "s") + " each): pass tip=...");
+  return b.ends.front();
+}
+
+KDL::Tree tree_of(const urdf::ModelInterface& model) {
+  const urdf::LinkConstSharedPtr root = model.getRoot();
+  KDL::Tree tree(root->name);
+  each_below(root, [&](const urdf::Link& link, const urdf::Joint& joint) {
+    if (!tree.addSegment(segment_of(joint), joint.parent_link_name))
+      bad("path_or_string: could not add link '" + link.name + "' to the tree");
+  });
+  return tree;
+}
+
+}  // namespace
+
+Chain chain_from_urdf(const std::string& xml, const std::optional<std::string>& base_arg,
+                      const std::optional<std::string>& tip_arg, std::vector<std::string>* warnings) {
+  Capture capture;
+  const urdf::ModelInterfaceSharedPtr model = load(xml, capture);
+  const std::string base = base_arg.value_or(model->getRoot()->name);
+  const urdf::LinkConstSharedPtr base_link = model->getLink(base);
+  if (!base_link) bad("base: no link named '" + base + "' in the URDF");
+  const std::string tip = tip_arg ? *tip_arg : default_tip(*model, base_link);
   if (!model->getLink(tip)) bad("tip: no link named '" + tip + "' in the URDF");
   const KDL::Tree tree = tree_of(*model);
   KDL::Chain chain;
@@ -280,7 +365,27 @@ Chain chain_from_urdf(const std::string& xml, const std::string& base, const std
   }
   if (n == 0) bad("base, tip: no moving joint between '" + base + "' and '" + tip + "'");
   if (warnings) warnings->insert(warnings->end(), notes.begin(), notes.end());
-  return Chain::from_records(records, lower, upper);
+  return Chain::from_records(records, lower, upper, base);
+}
+
+UrdfTree urdf_tree(const std::string& xml, std::vector<std::string>* warnings) {
+  Capture capture;
+  const urdf::ModelInterfaceSharedPtr model = load(xml, capture);
+  const urdf::LinkConstSharedPtr root = model->getRoot();
+  UrdfTree tree;
+  tree.name = model->getName();
+  tree.root = tree.base = root->name;
+  tree.links.push_back(root->name);
+  each_below(root, [&](const urdf::Link& link, const urdf::Joint& joint) {
+    tree.joints.push_back({joint.name, type_name(joint.type), joint.parent_link_name, joint.child_link_name});
+    tree.links.push_back(link.name);
+  });
+  const Branches b = longest_branches(*model, root);
+  tree.tips = b.ends;
+  tree.movable = b.movable;
+  if (b.ends.size() == 1) tree.tip = b.ends.front();
+  if (warnings) warnings->insert(warnings->end(), capture.warnings.begin(), capture.warnings.end());
+  return tree;
 }
 
 }  // namespace robokin

@@ -64,6 +64,11 @@ from .ik import IK_DEFAULTS  # noqa: E402
 
 __all__ += ["IK_DEFAULTS", "URDFWarning"]
 
+# A URDF's links and joints, and the chain Chain.from_urdf builds by default.
+from ._core import UrdfJoint, UrdfTree, urdf_tree  # noqa: E402
+
+__all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
+
 # Issue 16: reachability maps (robokin.dask, the [dask] extra, is imported on demand).
 from .reachability import ReachabilityMap, reachability  # noqa: E402
 

@@ -21,7 +21,7 @@ from ._checks import number
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
            "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
            "irb120", "gen3", "puma560", "PUMA560_A", "PUMA560_D", "PUMA560_ALPHA", "PUMA560_LIMITS", "names", "get",
-           "rpr_self_motion"]
+           "configurations", "rpr_self_motion"]
 
 #: Seed 000's planar RPR: link 1, the prismatic stroke, link 3 (metres).
 RPR_L1, RPR_STROKE, RPR_L3 = 1.5, 1.5, 1.0
@@ -325,6 +325,70 @@ def get(name: str) -> Chain:
     if builder is None:
         raise ValueError(f"name: no robot named {name!r} in the catalogue; valid names: {', '.join(names())}")
     return builder()
+
+
+# Named postures of the real arms (radians; sources in configurations' docstring). The UR family
+# shares its maker's postures (one controller convention for all its sizes).
+_PI = math.pi
+_UR_POSTURES = {
+    "home": (0.0, -_PI / 2, 0.0, 0.0, 0.0, 0.0),
+    "up": (0.0, -_PI / 2, 0.0, -_PI / 2, 0.0, 0.0),
+    "ready": (1.54, -1.62, 1.4, -1.2, -1.6, -0.11),
+}
+_GEN3_HOME = tuple(math.radians(a) for a in (0.0, 15.0, 180.0, -130.0, 0.0, 55.0, 90.0))
+_POSTURES = {
+    **{name: _UR_POSTURES for name in ("ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e")},
+    "panda": {"home": (0.0, -_PI / 4, 0.0, -3 * _PI / 4, 0.0, _PI / 2, _PI / 4),
+              "ready": (0.0, -0.3, 0.0, -2.2, 0.0, 2.0, _PI / 4)},
+    "iiwa14": {"home": (0.0,) * 7, "ready": (0.0, -0.3, 0.0, -1.9, 0.0, 1.5, _PI / 4)},
+    "gen3": {"home": _GEN3_HOME, "ready": _GEN3_HOME},
+    "puma560": {"home": (0.0, _PI / 2, -_PI / 2, 0.0, 0.0, 0.0), "ready": (0.0, _PI / 4, -_PI, 0.0, _PI / 4, 0.0)},
+    "irb120": {"home": (0.0,) * 6},
+}
+
+
+def configurations(name: str) -> dict:
+    """Named joint configurations of the catalogue's robot ``name``, like the Robotics Toolbox's
+    ``qz`` / ``qr``: ``{configuration name: q (dof,)}`` (radians; metres for prismatic joints), new
+    arrays at each call. Every one lies within the arm's joint limits.
+
+    - ``zero`` (every robot): all joints at 0, clipped into the limits (the Panda's joint 4 stops at
+      -0.0698). Arms stretched out at zero are singular there (UR, iiwa, Gen3, PUMA 560, IRB 120).
+    - ``home`` (the real arms): the rest posture the maker (or the Robotics Toolbox, RTB) documents;
+      singular where the maker's is (UR, iiwa, PUMA 560, IRB 120: an upright or stretched arm, or a
+      wrist with joint 5 at 0).
+    - ``ready`` (the real arms but the IRB 120): a working posture from a published source, away
+      from every singularity: the posture to start inverse kinematics or a simulation from.
+    - ``up`` (UR arms): the maker's upright posture.
+
+    Sources:
+
+    - UR3 / UR5 / UR10 and the e-Series: Universal Robots' MoveIt configuration (ur_moveit_config,
+      Universal_Robots_ROS2_Driver, ``srdf/ur_macro.srdf.xacro``): ``home`` = (0, -pi/2, 0, 0, 0, 0)
+      and ``up`` = (0, -pi/2, 0, -pi/2, 0, 0) (the file writes -1.5707 for -pi/2), ``ready`` = its
+      ``test_configuration`` (1.54, -1.62, 1.4, -1.2, -1.6, -0.11). RTB's UR ``qr``
+      (pi, 0, 0, 0, pi/2, 0) has the elbow straight (singular) and is not used.
+    - Panda: ``home`` = franka_ros's start pose (``move_to_start``, also panda_moveit_config's
+      ``ready``) (0, -pi/4, 0, -3 pi/4, 0, pi/2, pi/4); ``ready`` = RTB's ``qr``
+      (0, -0.3, 0, -2.2, 0, 2.0, pi/4).
+    - LBR iiwa 14: ``home`` = 0 (the arm straight up, KUKA's zero); ``ready`` = RTB's LBR ``qr``
+      (0, -0.3, 0, -1.9, 0, 1.5, pi/4).
+    - Gen3: ``home`` = ``ready`` = Kinova's Home position (0, 15, 180, 230, 0, 55, 90) deg, which
+      is also RTB's ``qr``; joint 4 written -130 deg, the same angle within its +-147.8 deg range.
+    - PUMA 560: ``home`` = RTB's ``qr``, the arm upright (0, pi/2, -pi/2, 0, 0, 0); ``ready`` =
+      RTB's ``qn``, its nominal table-top picking posture (0, pi/4, pi, 0, pi/4, 0) with joint 3
+      written -pi, the same angle within this model's -225 .. 45 deg range.
+    - IRB 120: ``home`` = 0, ABB's calibration position (see :func:`irb120`).
+
+    Raises:
+        ValueError: ``name`` is not in the catalogue (the message lists the valid names).
+        TypeError: ``name`` is not a string.
+    """
+    chain = get(name)
+    lower, upper = chain.limits
+    named = {"zero": np.clip(np.zeros(chain.dof), lower, upper)}
+    named.update({key: np.array(q, dtype=float) for key, q in _POSTURES.get(name, {}).items()})
+    return named
 
 
 _MAX_SAMPLES = 10_000_000

@@ -43,12 +43,15 @@ struct SegmentSpec {
   Matrix4 tip = Matrix4::Identity();                 // joint frame -> segment tip
 };
 
+// KDL's name for a segment or joint made without one.
+inline const char* const kUnnamed = "NoName";
+
 // How one KDL segment was made: the arguments of its constructors. A chain keeps one per segment so
 // that it can be rebuilt bit for bit (pickling, copies): KDL normalises a joint axis when it is
 // constructed and keeps the tip relative to the joint, so its accessors alone need not give back
 // the same numbers.
 struct SegmentRecord {
-  std::string name = "NoName", joint_name = "NoName";
+  std::string name = kUnnamed, joint_name = kUnnamed;
   int type = 8;  // a KDL::Joint::JointType (8: Fixed)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // RotAxis / TransAxis joints only
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // as given (KDL normalises it)
@@ -77,8 +80,10 @@ class Chain {
                        const Vector& lower, const Vector& upper);
   static Chain from_segments(const std::vector<SegmentSpec>& segments, const Matrix4& tool,
                              const Vector& lower, const Vector& upper);
-  // The chain whose segments are made from `records` (bit for bit the chain they were taken from).
-  static Chain from_records(const std::vector<SegmentRecord>& records, const Vector& lower, const Vector& upper);
+  // The chain whose segments are made from `records` (bit for bit the chain they were taken from);
+  // `base_name` names the link the first segment starts from (empty: unnamed).
+  static Chain from_records(const std::vector<SegmentRecord>& records, const Vector& lower, const Vector& upper,
+                            const std::string& base_name = "");
   // Wraps an existing KDL chain; limits of size dof or empty for none. Its records are read back
   // from KDL (to within rounding): from_records is the exact route.
   Chain(KDL::Chain chain, const Vector& lower, const Vector& upper);
@@ -102,6 +107,16 @@ class Chain {
     return lim;
   }
   const KDL::Chain& kdl() const { return kdl_; }
+
+  // Names, read from the records (a URDF chain's are the file's). joint_names: the dof moving
+  // joints'. link_names (dof + 1): the link of each frame of frames(q): the base link, the link
+  // each joint 1 .. dof-1 moves (the segment it heads), then the chain's last link (the tip, after
+  // any fixed segments: a flange, a tool). Parts without a name (DH tables, plain segments) are
+  // called q1 .. qn, base and link1 .. linkn. named(): some name came with the chain.
+  std::vector<std::string> joint_names() const;
+  std::vector<std::string> link_names() const;
+  const std::string& base_name() const { return base_name_; }
+  bool named() const;
 
   // Fast path (no allocation): tool pose, and the 6 x dof geometric Jacobian at the tool point.
   void fk(const double* q, Rigid& out) const;
@@ -164,6 +179,7 @@ class Chain {
   KDL::Chain kdl_;
   std::vector<SegmentRecord> records_;
   DHTable dh_;
+  std::string base_name_;
   int dof_ = 0;
   Vector lower_, upper_;
   Rigid base_;  // fixed frame before the first joint's motion
