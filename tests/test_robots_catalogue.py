@@ -196,3 +196,72 @@ def test_names_and_get():
         rk.robots.get("")
     with pytest.raises(TypeError, match="name: expected a str"):
         rk.robots.get(5)
+
+
+# Named configurations: the arms whose documented home is singular (an arm upright or stretched out,
+# or a wrist with joint 5 at 0), as robokin.robots.configurations says.
+SINGULAR_HOMES = {"ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "iiwa14", "irb120", "puma560"}
+
+
+def yoshikawa(chain, q):
+    """sqrt(det(J J^T)) from numpy's singular values (not the core's manipulability)."""
+    return float(np.prod(np.linalg.svd(chain.jacobian(q), compute_uv=False)))
+
+
+@pytest.mark.parametrize("name", rk.robots.names())
+def test_named_configurations_lie_within_the_limits(name):
+    chain, named = rk.robots.get(name), rk.robots.configurations(name)
+    lower, upper = chain.limits
+    np.testing.assert_array_equal(named["zero"], np.clip(np.zeros(chain.dof), lower, upper))
+    if name in NEW_ARMS or name == "puma560":
+        assert {"zero", "home"} <= set(named) and ("ready" in named) == (name != "irb120")
+    else:
+        assert set(named) == {"zero"}  # the seeds' arms
+    for key, q in named.items():
+        assert q.shape == (chain.dof,) and q.dtype == np.float64, key
+        assert np.all((lower <= q) & (q <= upper)), (name, key, q)
+    # fresh arrays at each call
+    named["zero"][0] = 99.0
+    assert rk.robots.configurations(name)["zero"][0] != 99.0
+
+
+@pytest.mark.parametrize("name", sorted(set(NEW_ARMS) | {"puma560"}))
+def test_ready_is_clear_of_singularities_and_home_as_documented(name):
+    chain, named = rk.robots.get(name), rk.robots.configurations(name)
+    if name != "irb120":  # no published ready posture
+        assert yoshikawa(chain, named["ready"]) > 1e-3, name
+    home = yoshikawa(chain, named["home"])
+    if name in SINGULAR_HOMES:
+        assert home < 1e-12, name
+    else:
+        assert home > 1e-2, name
+    if "up" in named:
+        assert yoshikawa(chain, named["up"]) < 1e-12
+
+
+def test_named_configurations_are_the_published_numbers():
+    # The Robotics Toolbox's Panda qr; franka_ros's start pose.
+    panda = rk.robots.configurations("panda")
+    np.testing.assert_array_equal(panda["ready"], [0, -0.3, 0, -2.2, 0, 2.0, P / 4])
+    np.testing.assert_array_equal(panda["home"], [0, -P / 4, 0, -3 * P / 4, 0, P / 2, P / 4])
+    np.testing.assert_array_equal(panda["zero"], [0, 0, 0, -0.0698, 0, 0, 0])
+    # Universal Robots' MoveIt configuration, for every size of arm.
+    for name in ("ur3", "ur5e", "ur16e"):
+        ur = rk.robots.configurations(name)
+        np.testing.assert_array_equal(ur["home"], [0, -P / 2, 0, 0, 0, 0])
+        np.testing.assert_array_equal(ur["up"], [0, -P / 2, 0, -P / 2, 0, 0])
+        np.testing.assert_array_equal(ur["ready"], [1.54, -1.62, 1.4, -1.2, -1.6, -0.11])
+    # Kinova's Home (joint 4's 230 deg is -130 deg); the PUMA's qr and qn (joint 3's pi is -pi).
+    np.testing.assert_allclose(rk.robots.configurations("gen3")["home"], np.radians([0, 15, 180, -130, 0, 55, 90]))
+    puma = rk.robots.configurations("puma560")
+    np.testing.assert_array_equal(puma["home"], [0, P / 2, -P / 2, 0, 0, 0])
+    np.testing.assert_array_equal(puma["ready"], [0, P / 4, -P, 0, P / 4, 0])
+    chain = rk.robots.puma560()
+    np.testing.assert_allclose(chain.fk(puma["ready"]), chain.fk([0, P / 4, P, 0, P / 4, 0]), atol=1e-12)
+
+
+def test_configurations_of_an_unknown_name():
+    with pytest.raises(ValueError, match="name: no robot named 'kr16'"):
+        rk.robots.configurations("kr16")
+    with pytest.raises(TypeError, match="name: expected a str"):
+        rk.robots.configurations(None)

@@ -14,6 +14,7 @@ import pytest
 import robokin as rk
 from sim_helpers import read_log, run_sim
 from test_urdf import PUMA_DH, SMALL, UR5_DH, urdf_from_dh
+from test_urdf_names import Y_TREE
 
 from robokin_sim import theme
 from robokin_sim.camera import CENTRE
@@ -346,6 +347,7 @@ def test_urdf_scenes_load_the_suites_files(tmp_path):
     ("not xml at all", [], "--urdf"),
     (SMALL, ["--tip", "nowhere"], "nowhere"),
     (SMALL, ["--base", "link3", "--tip", "tool"], "no moving joint"),
+    (Y_TREE, [], "end at 'left_tip' and 'right_tip' (3 movable joints each): pass --tip LINK"),
 ])
 def test_a_bad_urdf_is_one_line_and_exit_2(tmp_path, content, extra, says):
     path = tmp_path / "bad.urdf"

@@ -5,6 +5,8 @@
 
 #include "robokin/chain.hpp"
 
+#include <pybind11/typing.h>
+
 #include <cmath>
 #include <string>
 #include <unordered_map>
@@ -42,8 +44,10 @@ std::vector<py::object> as_objects(const std::vector<std::string>& names) {
   return out;
 }
 
-py::tuple as_tuple(const std::vector<std::string>& names) {
-  py::tuple t(names.size());
+using Names = py::typing::Tuple<py::str, py::ellipsis>;
+
+Names as_tuple(const std::vector<std::string>& names) {
+  Names t(names.size());
   for (size_t i = 0; i < names.size(); ++i) t[i] = py::str(names[i]);
   return t;
 }
@@ -104,10 +108,10 @@ py::array_t<double> q_from(const Chain& c, JointMapping mapping, JointDefault de
   return to_numpy(q);
 }
 
-py::dict q_dict(const Chain& c, ArrayLike q_obj) {
+py::typing::Dict<py::str, py::float_> q_dict(const Chain& c, ArrayLike q_obj) {
   const Vector q = as_vector(q_obj, "q", c.dof());
   const std::vector<std::string> names = c.joint_names();
-  py::dict out;
+  py::typing::Dict<py::str, py::float_> out;
   for (int i = 0; i < c.dof(); ++i) out[py::str(names[i])] = py::float_(q(i));
   return out;
 }

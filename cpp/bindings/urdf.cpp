@@ -143,7 +143,7 @@ void bind_urdf(py::module_& m) {
       .def_readonly("joints", &UrdfTree::joints, "Every joint (UrdfJoint), in the same order: each before its child.")
       .def_readonly("base", &UrdfTree::base, "The default base: the root link.")
       .def_property_readonly(
-          "tip", [](const UrdfTree& t) { return t.tip.empty() ? py::object(py::none()) : py::object(py::str(t.tip)); },
+          "tip", [](const UrdfTree& t) { return t.tip.empty() ? std::nullopt : std::optional<std::string>(t.tip); },
           "The default tip, or None when several branches tie (see tips) or no joint moves.")
       .def_readonly("tips", &UrdfTree::tips, "The end of each longest branch below the root, sorted by name.")
       .def_readonly("movable", &UrdfTree::movable, "Movable joints from the root to each of tips.")
@@ -161,8 +161,8 @@ void bind_urdf(py::module_& m) {
       "Builds the chain from link `base` to link `tip` of a URDF file or string, with the file's joint\n"
       "limits (continuous joints unlimited) and names (joint_names, link_names).\n\n"
       "path_or_string: a str or bytes whose first non-blank character is '<' is the document itself\n"
-      "  (bytes handed to the parser as they are); any other str or bytes, and any\n"
-      "  os.PathLike, is the path of a file (bytes decoded with os.fsdecode).\n"
+      "  (bytes handed to the parser as they are); any other str or bytes, and any os.PathLike, is the\n"
+      "  path of a file (bytes decoded with os.fsdecode).\n"
       "base: the chain's first link; None: the root link (the one no joint has as its child).\n"
       "tip: the chain's last link; None: the end of the longest branch below base. Longest means the\n"
       "  most movable (revolute, continuous, prismatic) joints. The links that many movable joints\n"

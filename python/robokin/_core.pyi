@@ -6,9 +6,10 @@ from __future__ import annotations
 import collections.abc
 import numpy
 import numpy.typing
+import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'ReachOptions', 'ReachResult', 'TrackResult', 'UR_POSTURES', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'release_output_memory', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry']
+__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'ReachOptions', 'ReachResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'release_output_memory', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -24,10 +25,26 @@ class Chain:
         Builds a chain from KDL-style segments (joint type 'R'|'P'|'F', axis, tip frame).
         """
     @staticmethod
-    def from_urdf(path_or_string: typing.Any, base: str, tip: str) -> Chain:
+    def from_urdf(path_or_string: str | bytes | os.PathLike, base: str | None = None, tip: str | None = None) -> Chain:
         """
-        Builds the chain from link `base` to link `tip` of a URDF file or string, with the joint
-        limits read from the file (continuous joints unlimited). A bad file is a ValueError saying why.
+        Builds the chain from link `base` to link `tip` of a URDF file or string, with the file's joint
+        limits (continuous joints unlimited) and names (joint_names, link_names).
+        
+        path_or_string: a str or bytes whose first non-blank character is '<' is the document itself
+          (bytes handed to the parser as they are); any other str or bytes, and any os.PathLike, is the
+          path of a file (bytes decoded with os.fsdecode).
+        base: the chain's first link; None: the root link (the one no joint has as its child).
+        tip: the chain's last link; None: the end of the longest branch below base. Longest means the
+          most movable (revolute, continuous, prismatic) joints. The links that many movable joints
+          below base must all follow the same last movable joint, else ValueError naming the end of each
+          branch (a two-armed robot: pass tip=). Among them the tip is the link with the most joints (the
+          fixed flange or tool0 after the last movable joint), or, when several have that many, the
+          deepest link they all hang from. Fixed leaves off other links (a 'base' frame) have fewer
+          movable joints and never compete. robokin.urdf_tree shows the choice.
+        
+        Raises ValueError saying what is wrong with the file, the links or the chain between them;
+        TypeError for an argument of the wrong kind. Emits robokin.URDFWarning for what was accepted but
+        changed (a joint with lower == upper limit taken as unlimited, urdfdom's warnings).
         """
     def __eq__(self, arg0: Chain) -> bool:
         """
@@ -79,10 +96,29 @@ class Chain:
         """
         Expresses a point given in frame `frame` in frame `in_frame`.
         """
+    def q_dict(self, q: numpy.typing.ArrayLike) -> dict[str, float]:
+        """
+        {joint name: value} of q (dof,), in the chain's joint order (the inverse of q_from).
+        """
+    def q_from(self, mapping: collections.abc.Mapping[str, float], default: float | numpy.typing.ArrayLike | None = None) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        q (dof,) from a mapping {joint name: value} (names as joint_names gives them).
+        
+        default: the value of the joints the mapping leaves out: a number, or a (dof,) array read at
+          their places; None: every joint must be given. Raises ValueError for a name the chain has
+          not (listing its joints), for joints left out without a default (listing them) and for
+          values that are not finite; TypeError for a mapping or value of the wrong kind.
+        """
     @property
     def dof(self) -> int:
         """
         Number of joints.
+        """
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """
+        The names of the dof joints, in q's order: a URDF chain's from the file (its movable joints
+        between base and tip); q1 .. qn for a chain from a DH table or plain segments.
         """
     @property
     def joint_types(self) -> str:
@@ -93,6 +129,13 @@ class Chain:
     def limits(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (lower, upper) joint limits; +-inf where a joint is unlimited.
+        """
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        """
+        The names of the dof + 1 links whose frames frames(q) gives: the base link, the link each of
+        joints 1 .. dof-1 moves, and the chain's last link (the tip, after any fixed joints: a flange,
+        tool0). A URDF chain's are the file's; base, link1 .. linkn for a DH or segment chain.
         """
 class ReachOptions:
     """
@@ -1120,6 +1163,79 @@ class IKSolver:
     @property
     def task(self) -> str:
         ...
+class UrdfJoint:
+    """
+    One joint of a URDF: its name, type and the links it joins.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def child(self) -> str:
+        """
+        The child link's name.
+        """
+    @property
+    def name(self) -> str:
+        """
+        The joint's name.
+        """
+    @property
+    def parent(self) -> str:
+        """
+        The parent link's name.
+        """
+    @property
+    def type(self) -> str:
+        """
+        'revolute', 'continuous', 'prismatic', 'fixed', 'floating' or 'planar'.
+        """
+class UrdfTree:
+    """
+    The links and joints of a URDF and the chain Chain.from_urdf builds by default
+    (robokin.urdf_tree).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def base(self) -> str:
+        """
+        The default base: the root link.
+        """
+    @property
+    def joints(self) -> list[UrdfJoint]:
+        """
+        Every joint (UrdfJoint), in the same order: each before its child.
+        """
+    @property
+    def links(self) -> list[str]:
+        """
+        Every link's name, depth-first from the root (children by joint name).
+        """
+    @property
+    def movable(self) -> int:
+        """
+        Movable joints from the root to each of tips.
+        """
+    @property
+    def name(self) -> str:
+        """
+        The robot's name.
+        """
+    @property
+    def root(self) -> str:
+        """
+        The root link (the one no joint has as its child).
+        """
+    @property
+    def tip(self) -> str | None:
+        """
+        The default tip, or None when several branches tie (see tips) or no joint moves.
+        """
+    @property
+    def tips(self) -> list[str]:
+        """
+        The end of each longest branch below the root, sorted by name.
+        """
 def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex = 256) -> dict:
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
@@ -1245,6 +1361,15 @@ def traj_via_points(points: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike
     """
 def ur_geometry(chain: Chain) -> tuple:
     ...
+def urdf_tree(path_or_string: str | bytes | os.PathLike) -> UrdfTree:
+    """
+    The links and joints of a URDF file or string and the default base and tip of Chain.from_urdf.
+    
+    path_or_string: as Chain.from_urdf takes it. Returns a UrdfTree: links depth-first from the root,
+    joints (name, type, parent, child) in the same order, root, base (the root), tip (None when the
+    longest branches tie: tips lists their ends). Raises ValueError for a bad document, TypeError for
+    an argument of the wrong kind; robokin.URDFWarning for what urdfdom accepted but warned about.
+    """
 IK_DEFAULTS: types.MappingProxyType
 RRR3_DEFAULTS: types.MappingProxyType
 UR_POSTURES: tuple = ('shoulder left, elbow up, wrist no flip', 'shoulder left, elbow up, wrist flip', 'shoulder left, elbow down, wrist no flip', 'shoulder left, elbow down, wrist flip', 'shoulder right, elbow up, wrist no flip', 'shoulder right, elbow up, wrist flip', 'shoulder right, elbow down, wrist no flip', 'shoulder right, elbow down, wrist flip')
