@@ -260,6 +260,40 @@ def test_wrong_kinds_are_type_errors_naming_the_argument(arg):
                                      f"os.PathLike), got {type(arg).__name__}")
 
 
+def test_names_are_text():
+    """Any UTF-8 name loads, from str or bytes; a bytes document in another encoding is refused where
+    its names are read (not later, wherever a name is shown), while other bytes do not matter."""
+    name = "coude_\u00e9_\u8098_\U0001f9be"
+    xml = urdf([(name, "revolute", "base_link", "a")])
+    for source in (xml, xml.encode()):
+        chain = rk.Chain.from_urdf(source)
+        assert chain.joint_names == (name,) and name in repr(chain)
+        assert pickle.loads(pickle.dumps(chain)).joint_names == (name,)
+    latin = urdf([("coude_\u00e9", "revolute", "base_link", "a")]).encode("latin-1")
+    with pytest.raises(ValueError) as err:
+        rk.Chain.from_urdf(latin)
+    assert str(err.value) == "path_or_string: the joint name 'coude_\\xe9' is not UTF-8 text"
+    with pytest.raises(ValueError, match="the link name 'a\\\\xe9' is not UTF-8"):
+        rk.urdf_tree(urdf([("j", "revolute", "base_link", "a\u00e9")]).encode("latin-1"))
+    commented = urdf([("j", "revolute", "base_link", "a")]).replace("<robot", "<!-- caf\u00e9 --><robot")
+    assert rk.Chain.from_urdf(commented.encode("latin-1")).joint_names == ("j",)
+
+
+@pytest.mark.parametrize("raw", [b"\xe4\xb8\xad", b"\xf4\x8f\xbf\xbf", b"\xc3\xa9x", b"\xc0\xaf", b"\xe0\x80\xaf",
+                                 b"\xed\xa0\x80", b"\xf4\x90\x80\x80", b"\xe4\xb8", b"x\xc3", b"\xbf", b"\xf8\x88\x80\x80\x80"])
+def test_utf8_is_checked_as_python_decodes_it(raw):
+    xml = urdf([("j", "revolute", "base_link", "a")]).encode().replace(b'"j"', b'"j' + raw + b'"')
+    try:
+        expected = ("j" + raw.decode("utf-8"),)
+    except UnicodeDecodeError:
+        expected = None
+    if expected is None:
+        with pytest.raises(ValueError, match="is not UTF-8 text"):
+            rk.Chain.from_urdf(xml)
+    else:
+        assert rk.Chain.from_urdf(xml).joint_names == expected
+
+
 def test_base_and_tip_must_be_names():
     with pytest.raises(TypeError, match=r"^base: expected a link name \(str\) or None, got int$"):
         rk.Chain.from_urdf(SMALL, base=3)

@@ -118,6 +118,52 @@ std::string number(double v) {
   return buf;
 }
 
+// Whether `s` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF).
+bool utf8(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const int more = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (more < 0 || s.size() - i <= static_cast<size_t>(more)) return false;  // bad lead byte, or cut short
+    unsigned long code = more == 0 ? c : c & (0x3F >> more);
+    for (int k = 1; k <= more; ++k) {
+      const unsigned char t = static_cast<unsigned char>(s[i + k]);
+      if ((t >> 6) != 0x2) return false;
+      code = (code << 6) | (t & 0x3F);
+    }
+    static constexpr unsigned long kLeast[] = {0, 0x80, 0x800, 0x10000};
+    if (code < kLeast[more] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
+    i += 1 + more;
+  }
+  return true;
+}
+
+// A name as printable ASCII: other bytes as \xNN (for a message about a name that is not UTF-8).
+std::string escaped(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7F) {
+      out += ch;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  return out;
+}
+
+// The names Python will show (chain and tree names, messages) are text: a document given as bytes
+// in another encoding is refused here rather than failing later wherever a name is shown.
+void check_names(const urdf::ModelInterface& model) {
+  auto check = [](const std::string& name, const char* what) {
+    if (!utf8(name)) bad(std::string("path_or_string: the ") + what + " name '" + escaped(name) + "' is not UTF-8 text");
+  };
+  check(model.getName(), "robot");
+  for (const auto& [name, link] : model.links_) check(name, "link");
+  for (const auto& [name, joint] : model.joints_) check(name, "joint");
+}
+
 std::string joint_label(const urdf::Joint& j) { return "joint '" + j.name + "'"; }
 
 KDL::Frame origin_of(const urdf::Joint& j) {
@@ -208,6 +254,7 @@ urdf::ModelInterfaceSharedPtr load(const std::string& xml, Capture& capture) {
     const std::string why = capture.errors.empty() ? joined(capture.warnings) : joined(capture.errors);
     bad("path_or_string: not a valid URDF document: " + (why.empty() ? std::string("urdfdom gives no reason") : why));
   }
+  check_names(*model);
   check_tree(*model);
   if (!model->getRoot()) bad("path_or_string: the URDF has no root link");
   return model;
