@@ -65,10 +65,14 @@ Vector default_q(const Chain& c, py::handle default_obj) {
 }
 
 double joint_value(py::handle value, const std::string& key) {
-  double v;
-  try {
-    v = py::cast<double>(value);
-  } catch (const py::cast_error&) {
+  // PyFloat_AsDouble takes what Python's float() takes from a number (ints, numpy scalars,
+  // __float__ / __index__); an int past the largest double overflows.
+  const bool text = py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value);
+  const double v = text ? -1.0 : PyFloat_AsDouble(value.ptr());
+  if (text || (v == -1.0 && PyErr_Occurred())) {
+    const bool overflow = !text && PyErr_ExceptionMatches(PyExc_OverflowError);
+    PyErr_Clear();
+    if (overflow) fail("mapping[" + key + "]: must be finite, got an int too large for a float");
     throw py::type_error("mapping[" + key + "]: expected a number, got " +
                          py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
   }
