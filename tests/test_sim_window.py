@@ -305,8 +305,8 @@ def test_the_close_message_ends_the_run_and_keeps_the_log(xserver, tmp_path):
         sim.kill()
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP])
-def test_a_signal_stops_a_window_run_and_leaves_nothing(xserver, tmp_path, sig):
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_a_signal_stops_a_window_run_and_keeps_its_files(xserver, tmp_path, sig):
     env, _ = xserver
     sim = Sim(env, str(tmp_path), "--record", str(tmp_path / "run.mp4"))
     try:
@@ -314,9 +314,16 @@ def test_a_signal_stops_a_window_run_and_leaves_nothing(xserver, tmp_path, sig):
         sim.proc.send_signal(sig)
         status, out, err = sim.finish()
         assert status == 128 + sig, err
-        assert os.listdir(tmp_path) == []
+        assert sorted(os.listdir(tmp_path)) == ["run.csv", "run.mp4"]  # no temporary left
+        with open(sim.log, newline="") as f:
+            steps = [int(r["step"]) for r in csv.DictReader(f)]
+        assert steps == list(range(1, len(steps) + 1)) and len(steps) >= 10
+        import imageio.v3 as iio
+
+        assert len(iio.imread(tmp_path / "run.mp4")) == len(steps)
         assert err.strip().splitlines() == [
-            f"robokin-sim: stopped by {signal.Signals(sig).name}; {sim.log}, {tmp_path / 'run.mp4'} not written"]
+            f"robokin-sim: stopped by {signal.Signals(sig).name} after {len(steps)} steps; log: {sim.log}, "
+            f"recording: {tmp_path / 'run.mp4'}"]
     finally:
         sim.kill()
 
