@@ -126,7 +126,7 @@ def test_joint_keys_land_on_exact_joint_values(tmp_path):
     log = tmp_path / "j.csv"
     run_sim("--robot", "ur5", "--keys", "2,plus*20,3,minus*7,tab,plus*5,6,+*3", "--log", str(log), render=False)
     rows = read_log(log)
-    q0 = start_posture("ur5", rk.robots.ur5())
+    q0 = start_posture(rk.robots.ur5())
     q = joints(rows[-1], 6)
     expected = q0.copy()
     expected[1] = q0[1] + 20 * JOINT_STEP["R"]
@@ -144,7 +144,7 @@ def test_jogging_a_joint_into_its_limit_stops_on_it():
     chain = rk.robots.puma560()
     scene = SerialScene(chain, name="puma560")
     scene.press("5")
-    steps(scene, {"plus"}, 200)  # q5 from 60 deg to its 100 deg limit: 70 steps would do
+    steps(scene, {"plus"}, 400)  # q5 from its start (at most 90 % of the way up) to its 100 deg limit
     assert scene.q[4] == chain.limits[1][4]
     assert scene.sing == "limit" and "limit" in scene.message
     steps(scene, {"minus"}, 3)
@@ -164,7 +164,7 @@ def test_cartesian_keys_move_the_tool_by_the_commanded_amount(name, tmp_path):
     chain = rk.robots.get(name)
     run_sim("--robot", name, "--keys", "right*20,space,space,up*10,pagedown*15", "--log", str(log), render=False)
     rows = read_log(log)
-    q0, q = start_posture(name, chain), joints(rows[-1], chain.dof)
+    q0, q = start_posture(chain), joints(rows[-1], chain.dof)
     T0, T = chain.fk(q0), chain.fk(q)
     assert np.allclose(T[:3, 3] - T0[:3, 3], np.array([20, 10, -15]) * MOVE_STEP, rtol=0, atol=1e-9)
     assert np.allclose(T[:3, :3], T0[:3, :3], rtol=0, atol=1e-9)
@@ -180,7 +180,8 @@ def test_cartesian_keys_move_the_tool_by_the_commanded_amount(name, tmp_path):
 
 def test_the_null_space_term_moves_a_redundant_arm_differently_for_the_same_tool_path():
     chain = rk.robots.panda()
-    with_term, without = SerialScene(chain, name="panda"), SerialScene(chain, name="panda", avoid=False)
+    q0 = np.radians([0, -45, 0, -135, 0, 90, 45])  # off mid-range, where the term's gradient is not zero
+    with_term, without = (SerialScene(chain, name="panda", q0=q0, avoid=avoid) for avoid in (True, False))
     for scene in (with_term, without):
         steps(scene, {"left"}, 60)
     assert np.allclose(chain.fk(with_term.q), chain.fk(without.q), rtol=0, atol=1e-9)
@@ -199,7 +200,7 @@ def test_jogging_into_a_singularity_stays_finite_and_warns(tmp_path):
     assert np.all(np.isfinite(q)) and np.all(np.isfinite(w))
     assert np.max(np.abs(np.diff(q, axis=0))) <= MAX_JOINT_STEP
     assert "near" in {r["state"] for r in rows}
-    assert w[-1] < 0.2 * w[0]  # it got close, and stopped: the last rows no longer move
+    assert w[-1] <= np.min(w) and w[-1] < 0.5 * w[0]  # it got close, and stopped: the last rows no longer move
     assert np.array_equal(q[-1], q[-20])
     scene = SerialScene(rk.robots.puma560(), name="puma560")
     steps(scene, {"right"}, 400)
@@ -227,11 +228,13 @@ def test_a_planar_arm_refuses_what_it_cannot_do():
 
 # --- postures ----------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name, solve", [("puma560", lambda T, c: rk.closed.puma560(T)),
-                                         ("ur5", lambda T, c: rk.closed.ur(T, c))])
-def test_cycling_postures_visits_every_closed_form_solution(name, solve):
+# The PUMA from a posture whose 8 closed-form postures are all within its limits (at its start
+# posture only some are).
+@pytest.mark.parametrize("name, solve, q0", [("puma560", lambda T, c: rk.closed.puma560(T), [0, 50, -150, -20, 60, 0]),
+                                             ("ur5", lambda T, c: rk.closed.ur(T, c), None)])
+def test_cycling_postures_visits_every_closed_form_solution(name, solve, q0):
     chain = rk.robots.get(name)
-    scene = SerialScene(chain, name=name)
+    scene = SerialScene(chain, name=name, q0=None if q0 is None else np.radians(q0))
     T0 = chain.fk(scene.q)
     solutions = solve(T0, chain)
     assert len(solutions) == 8
@@ -270,7 +273,7 @@ def test_the_circle_is_traced_with_the_orientation_kept(tmp_path):
     res = run_sim("--robot", "ur5", "--mode", "circle", "--frames", "400", "--log", str(log), render=False)
     rows = read_log(log)
     chain = rk.robots.ur5()
-    T0 = chain.fk(start_posture("ur5", chain))
+    T0 = chain.fk(start_posture(chain))
     p = np.array([[float(r[c]) for c in "xyz"] for r in rows])
     scene = res.scene
     radius = 0.12 * scene.size

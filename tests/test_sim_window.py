@@ -192,11 +192,17 @@ def test_keys_resize_and_esc_in_a_real_window(xserver, tmp_path):
         phi = float(sim.last()["phi"])
         sim.hold("k", "phi to come down", lambda r: float(r["phi"]) <= phi - 0.03)
 
-        # h shows the key list over the middle of the window (dark box), h again hides it.
+        # h shows the key list in a dark panel down the right side, the robot drawn beside it (its
+        # links in sight left of the panel); h again hides it.
+        def links_left_of(pixels, right):
+            return np.count_nonzero(np.all(np.abs(pixels[:, :right].astype(int) - theme.LINK_1) <= 12, axis=2))
+
+        assert links_left_of(window_pixels(sim, fb), 480) > 100
         sim.press("h")
-        wait_for("the help overlay", lambda: near(window_pixels(sim, fb)[240, 240], theme.OVERLAY))
+        wait_for("the help panel", lambda: near((p := window_pixels(sim, fb))[240, 470], theme.OVERLAY)
+                 and near(p[5, 285], theme.OVERLAY) and links_left_of(p, 275) > 100)
         sim.press("h")
-        wait_for("the help overlay to go", lambda: not near(window_pixels(sim, fb)[240, 240], theme.OVERLAY))
+        wait_for("the help panel to go", lambda: not near(window_pixels(sim, fb)[240, 470], theme.OVERLAY))
         # The window shows REC only when recording: not here.
         assert not near(window_pixels(sim, fb)[20:40, 440:470].min(axis=(0, 1)), theme.SINGULAR, tol=40)
 
@@ -299,8 +305,8 @@ def test_the_close_message_ends_the_run_and_keeps_the_log(xserver, tmp_path):
         sim.kill()
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGHUP])
-def test_a_signal_stops_a_window_run_and_leaves_nothing(xserver, tmp_path, sig):
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_a_signal_stops_a_window_run_and_keeps_its_files(xserver, tmp_path, sig):
     env, _ = xserver
     sim = Sim(env, str(tmp_path), "--record", str(tmp_path / "run.mp4"))
     try:
@@ -308,9 +314,39 @@ def test_a_signal_stops_a_window_run_and_leaves_nothing(xserver, tmp_path, sig):
         sim.proc.send_signal(sig)
         status, out, err = sim.finish()
         assert status == 128 + sig, err
-        assert os.listdir(tmp_path) == []
+        assert sorted(os.listdir(tmp_path)) == ["run.csv", "run.mp4"]  # no temporary left
+        with open(sim.log, newline="") as f:
+            steps = [int(r["step"]) for r in csv.DictReader(f)]
+        assert steps == list(range(1, len(steps) + 1)) and len(steps) >= 10
+        import imageio.v3 as iio
+
+        assert len(iio.imread(tmp_path / "run.mp4")) == len(steps)
         assert err.strip().splitlines() == [
-            f"robokin-sim: stopped by {signal.Signals(sig).name}; {sim.log}, {tmp_path / 'run.mp4'} not written"]
+            f"robokin-sim: stopped by {signal.Signals(sig).name} after {len(steps)} steps; log: {sim.log}, "
+            f"recording: {tmp_path / 'run.mp4'}"]
+    finally:
+        sim.kill()
+
+
+def test_n_pressed_during_a_move_in_a_real_window_is_applied_after_it(xserver, tmp_path):
+    """Nine presses of n in quick succession show nine postures of the UR5, one after the other."""
+    env, _ = xserver
+    sim = Sim(env, str(tmp_path), "--robot", "ur5")
+    try:
+        n0 = len(sim.rows())
+        sim.xdo("key", "--delay", "40", *["n"] * 9)
+
+        def runs():
+            modes = [r["mode"] for r in sim.rows()[n0:]]
+            starts = [k for k in range(len(modes)) if modes[k] == "posture" and (k == 0 or modes[k - 1] != "posture")]
+            return len(starts) if modes and modes[-1] == "joint" else 0
+
+        wait_for("nine posture moves", lambda: runs() >= 9)
+        time.sleep(0.5)
+        assert runs() == 9
+        sim.press("Escape")
+        status, out, err = sim.finish()
+        assert status == 0, err
     finally:
         sim.kill()
 

@@ -12,10 +12,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     Returns:
         The process exit status: 0 on success, 1 when an output cannot be written (one line on
         stderr naming the file), 2 for a bad command line, 128 + N when signal N (SIGINT, SIGTERM,
-        SIGHUP) stopped the run (nothing is written then; see :mod:`robokin_sim.signals`).
+        SIGHUP) stopped the run (its log, recording and screenshot are written whole and named on
+        one line; see :mod:`robokin_sim.signals`).
     """
     from .config import has_display, parse_args
-    from .signals import Stopped, stop_on_signals
+    from .signals import Stopped, requested, stop_on_signals
 
     argv = sys.argv[1:] if argv is None else list(argv)
     config = parse_args(argv)
@@ -30,7 +31,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             except BaseException:
                 _remove_own_temporaries(config)
                 raise
-    except (Stopped, KeyboardInterrupt) as exc:
+            stopped = requested()
+    except (Stopped, KeyboardInterrupt) as exc:  # before the run had opened its outputs
         stop = exc if isinstance(exc, Stopped) else Stopped(2)
         kept = [p for p in (config.log, config.record, config.screenshot) if p]
         note = f"; {', '.join(kept)} not written" if kept else ""
@@ -46,6 +48,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(f"robokin-sim: error: cannot open a window ({exc}); try --headless or --demo", file=sys.stderr)
             return 1
         raise
+    if stopped is not None:
+        return _report_stop(Stopped(stopped), result)
     rate = result.frames / result.seconds if result.seconds > 0 else float("inf")
     print(f"robokin-sim: {config.robot}, {result.frames} frames, {result.steps} steps in {result.seconds:.2f} s "
           f"({rate:.0f} frames/s)")
@@ -56,6 +60,24 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if result.log:
         print(f"log: {result.log}")
     return 0
+
+
+def _written(result) -> str:
+    """The files the run wrote, as ``log: PATH, recording: PATH, screenshot: PATH``."""
+    named = (("log", result.log), ("recording", result.record), ("screenshot", result.screenshot))
+    return ", ".join(f"{what}: {path}" for what, path in named if path)
+
+
+def _report_stop(stop, result) -> int:
+    """One line on stderr: the signal, the steps run, where the files are; the exit status. (The
+    terminal may be gone after SIGHUP: a line that cannot be written is dropped.)"""
+    files = _written(result)
+    line = f"robokin-sim: {stop} after {result.steps} steps" + (f"; {files}" if files else "")
+    try:
+        print(line, file=sys.stderr, flush=True)
+    except OSError:
+        pass
+    return stop.status
 
 
 def _remove_own_temporaries(config) -> None:

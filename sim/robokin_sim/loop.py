@@ -21,6 +21,7 @@ from .config import Config
 from .keys import HELD_KEYS, NO_INPUT, Input
 from .scene import DT
 from .scenes import entry
+from .signals import deferred, requested
 
 #: Frames a headless run lasts when neither --frames nor --keys says: about one clover turn
 #: (628 steps) with its approach.
@@ -38,6 +39,7 @@ class RunResult:
     screenshot: Optional[str]
     seconds: float
     scene: object
+    stopped: Optional[int] = None  # the signal that stopped the run (its files are whole), or None
 
 
 def make_scene(config: Config):
@@ -154,8 +156,9 @@ def _apply(inp: Input, scene, hud) -> bool:
 
 
 class _Outputs:
-    """The recording and the log of a run: each written under its name only when the run ends
-    normally (close); an interrupted run discards both, leaving no temporary file."""
+    """The recording and the log of a run: each written under its name when the run ends (its
+    frame budget, esc, the window's close button or a signal: close); a run cut short by an error
+    discards both, leaving no temporary file."""
 
     def __init__(self) -> None:
         self.recorder = self.log = None
@@ -215,75 +218,106 @@ def run(config: Config, render: bool = True) -> RunResult:
             turn it off to measure or log the kinematics alone).
 
     Returns:
-        RunResult with the frames and steps run and the files written.
+        RunResult with the frames and steps run, the files written and the signal that stopped the
+        run, if one did (under :func:`robokin_sim.signals.stop_on_signals`; its files are whole).
     """
     pygame = _start_pygame(config)
-    from .outputs import save_png
-    from .render_common import Hud
-
-    scene = make_scene(config)
-    screen = _open_screen(pygame, config, scene)
-    # The window is drawn every frame; headless, the screen only when asked (render) and not
-    # recording (the recording has its own frames), and once at the end for a screenshot.
-    draw_screen = not config.headless or (render and not config.record)
-    renderer = make_renderer(config.robot, screen.get_size()) if (draw_screen or config.screenshot) else None
-    keyboard = None if config.headless else _Keyboard(pygame)
-    script: Iterator[Input] = config.keys.inputs()
-    clock = pygame.time.Clock()
-    hud = Hud(recording=bool(config.record))
-    budget = _frame_budget(config)
-    frames = 0
-    started = last = time.perf_counter()
-    written_shot = None
-    outputs = _Outputs()
     try:
-        outputs.open(pygame, config, scene, screen.get_size())
-        drawn = False
-        while budget is None or frames < budget:
-            inp = next(script, NO_INPUT)
-            if keyboard is not None:
-                live = keyboard.poll()
-                inp = Input(inp.pressed | live.pressed, inp.held | live.held, live.drag, live.wheel)
-                if keyboard.quit:
-                    break
-            if not _apply(inp, scene, hud):
-                break
-            stepped = not hud.paused
-            if stepped:
-                scene.step(inp.held)
-                outputs.log_step(scene)
-            state = None
-            if draw_screen:
-                if keyboard is not None and screen.get_size() != pygame.display.get_surface().get_size():
-                    screen = pygame.display.get_surface()
-                state = scene.state()
-                renderer.draw(screen, state, hud)
-                drawn = True
-            if stepped:
-                outputs.record_step(pygame, scene, hud, state)
-            frames += 1
-            if keyboard is not None:
-                pygame.display.flip()
-                clock.tick(config.fps)
-                hud.fps = clock.get_fps()
-            elif frames % 30 == 0:
-                now = time.perf_counter()
-                hud.fps = 30.0 / max(now - last, 1e-9)
-                last = now
-        if config.screenshot and renderer is not None:
-            if not drawn:
-                renderer.draw(screen, scene.state(), dataclasses.replace(hud, recording=False))
-            written_shot = save_png(pygame, screen, config.screenshot)
-    except BaseException:
-        # Interrupted (a signal, an error): the recording and the log would be cut short, so neither
-        # is written under its name.
-        outputs.discard()
-        raise
-    else:
-        written_record, written_log = outputs.close()
+        scene = make_scene(config)
+        screen = _open_screen(pygame, config, scene)
+        # From here a signal only asks the loop to stop after the frame it comes in: the log, the
+        # recording and the screenshot are then finished whole, as by esc (robokin_sim.signals).
+        with deferred():
+            return _Session(pygame, config, scene, screen, render).run()
     finally:
         pygame.display.quit()
-    return RunResult(
-        frames=frames, steps=scene.steps, record=written_record, log=written_log, screenshot=written_shot,
-        seconds=time.perf_counter() - started, scene=scene,
-    )
+
+
+class _Session:
+    """One run's loop over frames: input, one simulation step, drawing, recording, logging."""
+
+    def __init__(self, pygame, config: Config, scene, screen, render: bool) -> None:
+        from .render_common import Hud
+
+        self.pg, self.config, self.scene, self.screen = pygame, config, scene, screen
+        # The window is drawn every frame; headless, the screen only when asked (render) and not
+        # recording (the recording has its own frames), and once at the end for a screenshot.
+        self.draw_screen = not config.headless or (render and not config.record)
+        wanted = self.draw_screen or config.screenshot
+        self.renderer = make_renderer(config.robot, screen.get_size()) if wanted else None
+        self.keyboard = None if config.headless else _Keyboard(pygame)
+        self.script: Iterator[Input] = config.keys.inputs()
+        self.clock = pygame.time.Clock()
+        self.hud = Hud(recording=bool(config.record))
+        self.outputs = _Outputs()
+        self.frames = 0
+        self.drawn = False
+
+    def run(self) -> RunResult:
+        started = time.perf_counter()
+        try:
+            self.outputs.open(self.pg, self.config, self.scene, self.screen.get_size())
+            stopped = self._loop()
+            shot = self._screenshot()
+        except BaseException:
+            # An error (or Ctrl-C outside robokin-sim's handlers): the recording and the log would be
+            # cut short, so neither is written under its name.
+            self.outputs.discard()
+            raise
+        record, log = self.outputs.close()
+        return RunResult(frames=self.frames, steps=self.scene.steps, record=record, log=log, screenshot=shot,
+                         seconds=time.perf_counter() - started, scene=self.scene, stopped=stopped)
+
+    def _loop(self) -> Optional[int]:
+        """Frames until the budget, esc, the window's close or a signal (returned, else None)."""
+        budget = _frame_budget(self.config)
+        last = time.perf_counter()
+        while budget is None or self.frames < budget:
+            if requested() is not None:
+                return requested()
+            inp = next(self.script, NO_INPUT)
+            if self.keyboard is not None:
+                live = self.keyboard.poll()
+                inp = Input(inp.pressed | live.pressed, inp.held | live.held, live.drag, live.wheel)
+                if self.keyboard.quit:
+                    break
+            if not _apply(inp, self.scene, self.hud):
+                break
+            self._frame(inp)
+            if self.keyboard is not None:
+                self.pg.display.flip()
+                self.clock.tick(self.config.fps)
+                self.hud.fps = self.clock.get_fps()
+            elif self.frames % 30 == 0:
+                now = time.perf_counter()
+                self.hud.fps = 30.0 / max(now - last, 1e-9)
+                last = now
+        return None
+
+    def _frame(self, inp: Input) -> None:
+        """One frame: a step (unless paused) logged, the screen drawn, a recording frame."""
+        scene, hud = self.scene, self.hud
+        stepped = not hud.paused
+        if stepped:
+            scene.step(inp.held)
+            self.outputs.log_step(scene)
+        state = None
+        if self.draw_screen:
+            if self.keyboard is not None and self.screen.get_size() != self.pg.display.get_surface().get_size():
+                self.screen = self.pg.display.get_surface()
+            state = scene.state()
+            self.renderer.draw(self.screen, state, hud)
+            self.drawn = True
+        if stepped:
+            self.outputs.record_step(self.pg, scene, hud, state)
+        self.frames += 1
+
+    def _screenshot(self) -> Optional[str]:
+        """The PNG of the last frame drawn (drawn now if none was), when asked for."""
+        if not (self.config.screenshot and self.renderer is not None):
+            return None
+        from .outputs import save_png
+
+        if not self.drawn:
+            self.renderer.draw(self.screen, self.scene.state(), dataclasses.replace(self.hud, recording=False))
+        return save_png(self.pg, self.screen, self.config.screenshot)

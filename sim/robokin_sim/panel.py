@@ -1,4 +1,4 @@
-"""Text drawing shared by the renderers: the information panel, joint bars and the help overlay."""
+"""Text drawing shared by the renderers: the information panel, joint bars and the help panel."""
 
 from __future__ import annotations
 
@@ -42,6 +42,14 @@ def number(value: float, fmt: str = "{:+.4f}") -> str:
     return fmt.format(value) if math.isfinite(value) else "-"
 
 
+def joint_value(value: float, kind: str) -> str:
+    """A joint's value as the panel shows it, with its unit: degrees for a revolute joint ("R"),
+    metres for a prismatic one ("P")."""
+    if kind == "R":
+        return number(math.degrees(value), "{:+.1f}") + " deg"
+    return number(value, "{:+.3f}") + " m"
+
+
 def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, str, Optional[Colour]]],
                topleft=(8, 8), bars: Sequence[Tuple[str, float, float, float]] = (), label_w: int = 92,
                bar_w: int = 160) -> pygame.Rect:
@@ -54,8 +62,10 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
         topleft: Pixel position of the box.
         label_w: Width of the label column (pixels).
         bar_w: Width of the joint bars (pixels).
-        bars: ``(label, value, lower, upper[, selected])`` drawn as a bar filled up to the value
-            (a tick within one turn when a limit is infinite), outlined when selected.
+        bars: ``(label, value, lower, upper[, selected[, kind]])`` drawn as a bar filled up to the
+            value (a tick within one turn when a limit is infinite), outlined when selected, the
+            value written after it with its unit when ``kind`` ("R" or "P") is given
+            (:func:`joint_value`).
 
     Returns:
         The box's rectangle.
@@ -65,7 +75,10 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
     height = pad * 2 + line * len(rows) + (line + 4) * len(bars)
     widest = max([value_w] + [text.render(value, colour or theme.TEXT).get_width() + (14 if colour else 0) + 4
                               for _, value, colour in rows])
-    width = pad * 2 + max(label_w + widest, bar_w + 70 if bars else 0)
+    shown = [joint_value(value, more[1]) if len(more) > 1 and more[1] else number(value, "{:.3f}")
+             for _, value, _, _, *more in bars]
+    bar_text_w = max([0] + [text.render(v, theme.TEXT).get_width() for v in shown])
+    width = pad * 2 + max(label_w + widest, bar_w + 40 + bar_text_w if bars else 0)
     rect = pygame.Rect(topleft[0], topleft[1], width, height)
     pygame.draw.rect(surface, theme.PANEL, rect)
     pygame.draw.rect(surface, theme.PANEL_EDGE, rect, 1)
@@ -78,8 +91,9 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
         else:
             surface.blit(text.render(value, theme.TEXT), (x + label_w, y))
         y += line
-    for label, value, lower, upper, *selected in bars:
-        surface.blit(text.render(label, theme.TEXT if selected and selected[0] else theme.TEXT_DIM), (x, y))
+    for (label, value, lower, upper, *more), value_text in zip(bars, shown):
+        selected = bool(more and more[0])
+        surface.blit(text.render(label, theme.TEXT if selected else theme.TEXT_DIM), (x, y))
         bar = pygame.Rect(x + 34, y + 2, bar_w, line - 6)
         pygame.draw.rect(surface, theme.BAR_BACK, bar)
         limited = math.isfinite(lower) and math.isfinite(upper) and upper > lower
@@ -92,30 +106,62 @@ def draw_panel(surface: pygame.Surface, text: Text, rows: Sequence[Tuple[str, st
             # Unlimited: a tick at the angle within one turn (-pi to pi).
             share = (math.remainder(value, 2 * math.pi) + math.pi) / (2 * math.pi)
             pygame.draw.rect(surface, theme.BAR, (bar.x + int((bar.w - 3) * share), bar.y, 3, bar.h))
-        pygame.draw.rect(surface, theme.SELECTED if selected and selected[0] else theme.PANEL_EDGE, bar,
-                         2 if selected and selected[0] else 1)
-        surface.blit(text.render(number(value, "{:.3f}"), theme.TEXT), (bar.right + 6, y))
+        pygame.draw.rect(surface, theme.SELECTED if selected else theme.PANEL_EDGE, bar, 2 if selected else 1)
+        surface.blit(text.render(value_text, theme.TEXT), (bar.right + 6, y))
         y += line + 4
     return rect
 
 
-def draw_help(surface: pygame.Surface, text: Text, robot: str) -> None:
-    """The key list, centred over a darkened box (as wide as its longest lines need)."""
-    items = HELP.get(robot, [])
-    line = text.height + 4
-    key_w = max([70] + [text.render(key, theme.NEAR).get_width() + 14 for key, _ in items])
-    what_w = max([0] + [text.render(what, theme.OVERLAY_TEXT).get_width() for _, what in items])
-    width, height = max(470, key_w + what_w + 32), line * (len(items) + 2) + 16
+#: Width of the help panel: this share of the window's, within HELP_WIDTH pixels (and at most half
+#: the window).
+HELP_SHARE, HELP_WIDTH = 0.36, (200, 340)
+
+
+def help_width(window_width: int) -> int:
+    """Pixels the help panel takes at the right of a window ``window_width`` pixels wide."""
+    low, high = HELP_WIDTH
+    return int(min(max(HELP_SHARE * window_width, low), high, window_width // 2))
+
+
+def wrap(text: Text, words: str, width: int, first: int = 0) -> List[str]:
+    """``words`` broken into lines of at most ``width`` pixels (the first line ``first`` pixels
+    shorter); a word longer than a line gets a line of its own."""
+    lines: List[str] = []
+    line = ""
+    for word in words.split():
+        trial = f"{line} {word}" if line else word
+        room = width - (first if not lines else 0)
+        if line and text.font.size(trial)[0] > room:
+            lines.append(line)
+            line = word
+        else:
+            line = trial
+    return lines + [line] if line else lines
+
+
+def draw_help(surface: pygame.Surface, text: Text, robot: str) -> pygame.Rect:
+    """The key list in a dark panel down the right side of the window (the scene is drawn beside
+    it, :func:`robokin_sim.render_common.scene_area`, without the information panel): each key in
+    the accent colour followed by what it does, wrapped to the panel's width. Returns the panel's
+    rectangle."""
     w, h = surface.get_size()
-    rect = pygame.Rect((w - width) // 2, (h - height) // 2, width, height)
+    rect = pygame.Rect(w - help_width(w), 0, help_width(w), h)
     pygame.draw.rect(surface, theme.OVERLAY, rect)
-    x, y = rect.x + 16, rect.y + 10
+    pad, line = 12, text.height + 2
+    x, y, inner = rect.x + pad, rect.y + 10, rect.w - 2 * pad
     surface.blit(text.render("keys (h closes this help)", theme.OVERLAY_TEXT), (x, y))
-    y += line + 6
-    for key, what in items:
+    y += line + 8
+    for key, what in HELP.get(robot, []):
+        key_w = text.render(key, theme.NEAR).get_width() + 8
         surface.blit(text.render(key, theme.NEAR), (x, y))
-        surface.blit(text.render(what, theme.OVERLAY_TEXT), (x + key_w, y))
-        y += line
+        indent = key_w if key_w <= inner // 2 else 0
+        if not indent:  # a long key name: its text starts on the next line
+            y += line
+        for k, piece in enumerate(wrap(text, what, inner - 10, first=indent - 10 if indent else 0)):
+            surface.blit(text.render(piece, theme.OVERLAY_TEXT), (x + (indent if k == 0 and indent else 10), y))
+            y += line
+        y += 3
+    return rect
 
 
 def draw_footer(surface: pygame.Surface, text: Text, lines: List[str]) -> None:
@@ -127,12 +173,12 @@ def draw_footer(surface: pygame.Surface, text: Text, lines: List[str]) -> None:
 
 
 def draw_overlays(surface: pygame.Surface, text: Text, small: Text, robot: str, message: str, paused: bool,
-                  show_help: bool, hint: str = "h: keys") -> None:
-    """The footer (message, "paused", the help hint) and, when asked for, the key list."""
+                  show_help: bool, hint: str = "h: keys") -> Optional[pygame.Rect]:
+    """The footer (message, "paused", the help hint) and, when asked for, the key list; returns the
+    help panel's rectangle (None when hidden)."""
     lines = [message] if message else []
     if paused:
         lines.append("paused (space)")
     lines.append(hint)
     draw_footer(surface, small, lines)
-    if show_help:
-        draw_help(surface, text, robot)
+    return draw_help(surface, text, robot) if show_help else None

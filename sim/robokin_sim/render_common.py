@@ -9,6 +9,7 @@ from typing import Optional
 import pygame
 
 from . import theme
+from .panel import help_width
 from .view import Viewport
 
 
@@ -28,12 +29,20 @@ def fps_rows(hud: Hud) -> list:
     return [] if hud.fps is None else [("fps", f"{hud.fps:.0f}", None)]
 
 
+def scene_area(size, hud: Hud) -> tuple:
+    """(x, y, width, height) of the part of a surface of ``size`` pixels the scene is drawn in: all
+    of it, or with the help shown the part left of the help panel (so the robot stays in sight)."""
+    w, h = int(size[0]), int(size[1])
+    return (0, 0, w - help_width(w), h) if hud.help else (0, 0, w, h)
+
+
 def draw_rec(surface: pygame.Surface, text, hud: Hud) -> None:
-    """A red dot and "REC" at the top right while the run is recording (the window only)."""
+    """A red dot and "REC" at the top right of the scene's area while the run is recording (the
+    window only)."""
     if not hud.recording:
         return
     label = text.render("REC", theme.SINGULAR)
-    w = surface.get_width()
+    w = scene_area(surface.get_size(), hud)[2]
     x, y = w - label.get_width() - 12, 10
     pygame.draw.circle(surface, theme.SINGULAR, (x - 11, y + label.get_height() // 2 - 1), 7)
     surface.blit(label, (x, y))

@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_overlays, draw_panel, number
-from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline
+from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline, scene_area
 from .view import Viewport
 
 JOINT_NAMES = ("t1", "t2", "t3")
@@ -22,10 +22,13 @@ class RprRenderer:
         self.view = Viewport(center=(1.3, 1.5), extent=(2.9, 2.9), size=size)
         self.text = Text(18)
         self.small = Text(16)
+        #: Where the help panel covers the window (after a draw; empty when hidden).
+        self.help_rect = pygame.Rect(0, 0, 0, 0)
 
     def draw(self, surface: pygame.Surface, state, hud: Hud) -> None:
-        if surface.get_size() != self.view.size:
-            self.view.resize(surface.get_size())
+        area = scene_area(surface.get_size(), hud)[2:]
+        if area != self.view.size:
+            self.view.resize(area)
         v = self.view
         surface.fill(theme.BACKGROUND)
         draw_grid(surface, v, 0.5)
@@ -50,9 +53,12 @@ class RprRenderer:
             ("Reach error", number(state.error, "{:.1e}") + " m", None if state.converged else theme.SINGULAR),
             *fps_rows(hud),
         ]
-        bars = [(JOINT_NAMES[i], float(joint[i]), float(state.lower[i]), float(state.upper[i])) for i in range(3)]
-        draw_panel(surface, self.text, rows, bars=bars)
-        draw_overlays(surface, self.text, self.small, "rpr", state.message, hud.paused, hud.help)
+        bars = [(JOINT_NAMES[i], float(joint[i]), float(state.lower[i]), float(state.upper[i]), False, kind)
+                for i, kind in enumerate("RPR")]
+        if not hud.help:  # the help panel stands in for it, leaving the arm in sight
+            draw_panel(surface, self.text, rows, bars=bars)
+        help_rect = draw_overlays(surface, self.text, self.small, "rpr", state.message, hud.paused, hud.help)
+        self.help_rect = help_rect or pygame.Rect(0, 0, 0, 0)
         draw_rec(surface, self.text, hud)
 
     def _arm(self, surface: pygame.Surface, state) -> None:

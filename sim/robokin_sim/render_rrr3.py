@@ -9,7 +9,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_overlays, draw_panel, number
-from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline
+from .render_common import Hud, draw_grid, draw_rec, fps_rows, polyline, scene_area
 from .view import Viewport
 
 #: Cell code of the core's workspace map -> colour (0 unreachable is left transparent).
@@ -25,6 +25,8 @@ class Rrr3Renderer:
         self.view = Viewport(center=(0.0, -0.005), extent=(0.27, 0.27), size=size)
         self.text = Text(18)
         self.small = Text(16)
+        #: Where the help panel covers the window (after a draw; empty when hidden).
+        self.help_rect = pygame.Rect(0, 0, 0, 0)
         self._backdrops: dict = {}
         self._grids: dict = {}
 
@@ -99,8 +101,9 @@ class Rrr3Renderer:
 
     # --- the frame ----------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, state, hud: Hud) -> None:
-        if surface.get_size() != self.view.size:
-            self.view.resize(surface.get_size())
+        area = scene_area(surface.get_size(), hud)[2:]
+        if area != self.view.size:
+            self.view.resize(area)
         v = self.view
         surface.blit(self._backdrop(state.workspace), (0, 0))
         if state.path is not None:
@@ -122,7 +125,9 @@ class Rrr3Renderer:
             ("avoidance", "on" if state.avoid else "off", None),
             *fps_rows(hud),
         ]
-        draw_panel(surface, self.text, rows)
-        draw_overlays(surface, self.text, self.small, "rrr3", state.message, hud.paused, hud.help,
-                      hint="h: keys   pink: parallel singularities at this phi")
+        if not hud.help:  # the help panel stands in for it, leaving the robot in sight
+            draw_panel(surface, self.text, rows)
+        help_rect = draw_overlays(surface, self.text, self.small, "rrr3", state.message, hud.paused, hud.help,
+                                  hint="h: keys   pink: parallel singularities at this phi")
+        self.help_rect = help_rect or pygame.Rect(0, 0, 0, 0)
         draw_rec(surface, self.text, hud)

@@ -1,4 +1,5 @@
-"""Draws a :class:`~robokin_sim.scene_serial.SerialState`: floor grid, path and trail, the arm from
+"""Draws a :class:`~robokin_sim.scene_serial.SerialState`: floor grid (at the state's floor height,
+with a pedestal up to the base when the arm reaches below its base), path and trail, the arm from
 its frames (links as thick segments shaded by depth, joints, joint axes), the tool's triad, the
 velocity ellipsoid, and the panel (tool pose, manipulability, joint-limit bars).
 
@@ -16,7 +17,7 @@ import pygame
 
 from . import theme
 from .panel import Text, draw_overlays, draw_panel, number
-from .render_common import Hud, draw_rec, fps_rows, polyline
+from .render_common import Hud, draw_rec, fps_rows, polyline, scene_area
 
 #: Velocity ellipsoid drawn as the tool's displacement in this many seconds at unit joint speed.
 ELLIPSOID_SECONDS = 0.15
@@ -51,37 +52,35 @@ class SerialRenderer:
         #: Integer pixels of the frames' origins drawn last (base first).
         self.joint_pixels: list = []
         self.panel_rect = pygame.Rect(0, 0, 0, 0)
+        self.help_rect = pygame.Rect(0, 0, 0, 0)
 
     # --- fixed things -----------------------------------------------------------------------------
-    def _floor_surface(self, camera, size: float, surface_size) -> pygame.Surface:
-        """Background and the floor grid (z = 0), drawn once per camera position."""
-        key = (camera.key(), size, surface_size)
+    def _floor_surface(self, camera, size: float, floor: float, surface_size) -> pygame.Surface:
+        """Background and the floor grid (z = ``floor``), drawn once per camera position."""
+        key = (camera.key(), size, floor, surface_size)
         if self._floor[0] == key:
             return self._floor[1]
-        floor = pygame.Surface(surface_size)
-        floor.fill(theme.BACKGROUND)
+        surface = pygame.Surface(surface_size)
+        surface.fill(theme.BACKGROUND)
         spacing = _nice(size / 4.0)
         k = int(math.ceil(1.25 * size / spacing))
         ends = k * spacing
         for i in range(-k, k + 1):
             c = i * spacing
             colour = theme.AXES if i == 0 else theme.FLOOR
-            for a, b in (((c, -ends, 0.0), (c, ends, 0.0)), ((-ends, c, 0.0), (ends, c, 0.0))):
+            for a, b in (((c, -ends, floor), (c, ends, floor)), ((-ends, c, floor), (ends, c, floor))):
                 pa, pb = camera.pixels([a, b])
-                pygame.draw.line(floor, colour, pa, pb, 1)
-        # The base frame's x, y, z (the floor's origin).
-        o = camera.pixels([(0.0, 0.0, 0.0)])[0]
-        for axis, colour in zip(np.eye(3), (theme.FRAME_X, theme.FRAME_Y, theme.FRAME_Z)):
-            pygame.draw.line(floor, colour, o, camera.pixels([axis * 0.1 * size])[0], 2)
-        self._floor = (key, floor)
-        return floor
+                pygame.draw.line(surface, colour, pa, pb, 1)
+        self._floor = (key, surface)
+        return surface
 
     # --- the frame --------------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, state, hud: Hud) -> None:
         cam = state.camera
-        if cam.size != surface.get_size():
-            cam.resize(surface.get_size())
-        surface.blit(self._floor_surface(cam, state.size, surface.get_size()), (0, 0))
+        area = scene_area(surface.get_size(), hud)
+        if cam.size != surface.get_size() or cam.area != area:
+            cam.resize(surface.get_size(), area)
+        surface.blit(self._floor_surface(cam, state.size, state.floor, surface.get_size()), (0, 0))
         if state.path is not None:
             polyline(surface, theme.PATH, True, cam.pixels(state.path), 2)
             if state.missed is not None and np.any(state.missed):
@@ -95,10 +94,16 @@ class SerialRenderer:
         self._triad(surface, state)
         for c in self.joint_pixels[:-1]:  # the joints' centres on top; the tool's marker is the triad's
             pygame.draw.circle(surface, theme.JOINT_EDGE, c, 2)
-        self._panel(surface, state, hud)
+        if hud.help:  # the help panel stands in for the information panel, leaving the arm in sight
+            self.panel_rect = pygame.Rect(0, 0, 0, 0)
+        else:
+            self._panel(surface, state, hud)
         hint = "h: keys   drag: orbit   wheel: zoom"
         # Every serial arm has the same keys (the table's "urdf" entry has them too).
-        draw_overlays(surface, self.text, self.small, "urdf", state.message, hud.paused, hud.help, hint=hint)
+        help_rect = draw_overlays(surface, self.text, self.small, "urdf", state.message, hud.paused, hud.help,
+                                  hint=hint)
+        #: Where the help panel covers the window (after a draw; empty when hidden).
+        self.help_rect = help_rect or pygame.Rect(0, 0, 0, 0)
         draw_rec(surface, self.text, hud)
 
     def _arm(self, surface: pygame.Surface, state) -> None:
@@ -127,12 +132,16 @@ class SerialRenderer:
         if 0 <= state.selected < len(state.axes):  # the selected joint: a ring on its axis, over its neighbours
             point, d = cam.project(state.axes[state.selected, 0])
             items.append((float(d) + 3e-6, "joint", (point, True)))
+        items += self._base_items(state, width)
         items.sort(key=lambda item: item[0])
-        base = np.rint(px[0]).astype(int)
-        pygame.draw.polygon(surface, theme.BASE, [(base[0] - 14, base[1] + 12), (base[0] + 14, base[1] + 12),
-                                                  (base[0], base[1] - 6)])
+        foot = np.rint(cam.project([*origins[0, :2], min(state.floor, origins[0, 2])])[0]).astype(int)
+        pygame.draw.polygon(surface, theme.BASE, [(foot[0] - 14, foot[1] + 12), (foot[0] + 14, foot[1] + 12),
+                                                  (foot[0], foot[1] - 6)])
         for _, kind, data in items:
-            if kind == "link":
+            if kind in ("pedestal", "base axis"):
+                a, b = np.rint(data[0]).astype(int)
+                pygame.draw.line(surface, data[1], a, b, data[2])
+            elif kind == "link":
                 a, b, colour = (np.rint(data[0]).astype(int), np.rint(data[1]).astype(int), data[2])
                 pygame.draw.line(surface, colour, a, b, width)
                 for c in (a, b):
@@ -148,6 +157,20 @@ class SerialRenderer:
                 pygame.draw.circle(surface, theme.JOINT_FILL, c, r)
                 pygame.draw.circle(surface, theme.SELECTED if selected else theme.JOINT_EDGE, c, r, 2)
         self.joint_pixels = np.rint(px).astype(int).tolist()
+
+    def _base_items(self, state, width: int) -> list:
+        """The depth-sorted items of the base: its frame's x, y, z axes and, when the floor is below
+        the base (the arm reaches below its base), the pedestal from the floor up to it."""
+        cam = state.camera
+        base = state.frames[0][:3, 3]
+        items = []
+        if state.floor < base[2] - 1e-9:
+            ends, depth = cam.project(np.array([[base[0], base[1], state.floor], base]))
+            items.append((float(np.mean(depth)), "pedestal", (ends, theme.PEDESTAL, max(2 * width, 10))))
+        for axis, colour in zip(np.eye(3), (theme.FRAME_X, theme.FRAME_Y, theme.FRAME_Z)):
+            ends, depth = cam.project(np.array([base, base + axis * 0.1 * state.size]))
+            items.append((float(np.max(depth)) + 1e-6, "base axis", (ends, colour, 2)))
+        return items
 
     def _triad(self, surface: pygame.Surface, state) -> None:
         cam, tool = state.camera, state.frames[-1]
@@ -192,7 +215,7 @@ class SerialRenderer:
         bars = []
         for i, kind in enumerate(state.joint_types):
             bars.append((f"q{i + 1}", float(state.q[i]), float(state.lower[i]), float(state.upper[i]),
-                         i == state.selected))
+                         i == state.selected, kind))
         #: Where the panel covers the scene (after a draw).
         small = self.text.height < 16
         self.panel_rect = draw_panel(surface, self.text, rows, bars=bars, label_w=92 if small else 112,

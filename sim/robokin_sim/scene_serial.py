@@ -14,14 +14,17 @@
   workspace boundary, a singularity that would make the joints jump) is refused: the arm stays and
   the panel says why. Arms with fewer than 6 joints control fewer rows (:func:`serial_model.task_of`).
 * ``n``: the next closed-form posture (``robokin.closed``) of the current tool pose, reached along a
-  joint-space quintic (``rk.traj.quintic``), animated.
+  joint-space quintic (``rk.traj.quintic``), animated. Keys acting on the arm pressed during such a
+  move (or an approach) are queued and applied after it, in order: ``n`` pressed 9 times shows 9
+  postures.
 * ``o`` / ``p``: a circle / a straight line through the start pose's tool point, in the plane the
   tool moves in most easily there (vertical, facing the robot, for a 3-D arm; the floor plane for a
   planar arm), solved in one call by the core's path IK (``rk.ik_batch(..., path=True)``) and
   traced one point per step; points it could not reach are reported (``state`` ``unreachable``, red
   on the path) and the arm holds still there. ``m`` goes back to jogging.
-* ``e`` the velocity ellipsoid, ``f1`` - ``f4`` / ``v`` the camera's views, the mouse orbits and
-  zooms (the camera is view state, kept by the scene so that the window and the recording agree).
+* ``e`` the velocity ellipsoid, ``f1`` - ``f4`` / ``v`` the camera's views (at zoom 1), the mouse
+  orbits and zooms (the camera is view state, kept by the scene so that the window and the
+  recording agree); ``r`` resets the camera with the arm.
 """
 
 from __future__ import annotations
@@ -62,6 +65,10 @@ TRAIL = 1500
 AXIS_KEYS = {"right": (0, 1), "left": (0, -1), "up": (1, 1), "down": (1, -1), "pageup": (2, 1), "pagedown": (2, -1)}
 #: Which of the 6 directions (vx, vy, vz, wx, wy, wz) each task can command.
 TASK_DIRECTIONS = {"pose": (0, 1, 2, 3, 4, 5), "position": (0, 1, 2), "xyphi": (0, 1, 5), "xy": (0, 1)}
+#: Keys that act on the arm: pressed during an animated move they wait for its end (at most
+#: MAX_QUEUED of them).
+QUEUED_KEYS = frozenset({"1", "2", "3", "4", "5", "6", "7", "8", "9", "tab", "m", "o", "p", "n", "s"})
+MAX_QUEUED = 64
 #: Preset views keyed by f1 .. f4.
 VIEW_KEYS = dict(zip(("f1", "f2", "f3", "f4"), VIEW_ORDER))
 
@@ -91,6 +98,7 @@ class SerialState:
     trail: np.ndarray  # (T, 3)
     camera: Camera
     size: float
+    floor: float  # z of the floor (base frame, m); below the base, the base stands on a pedestal
     planar: bool
     task: str
     avoid: bool
@@ -124,7 +132,7 @@ class SerialScene(Scene):
         self.columns = ("step", "time", "mode", *(f"q_{i}" for i in range(self.dof)), "x", "y", "z", "roll", "pitch",
                         "yaw", "manipulability", "state")
         self.lower, self.upper = (np.asarray(v, dtype=float) for v in chain.limits)
-        self.q_start = model.start_posture(name, chain) if q0 is None else np.clip(
+        self.q_start = model.start_posture(chain) if q0 is None else np.clip(
             np.asarray(q0, dtype=float), self.lower, self.upper)
         self.planar = model.is_planar(chain)
         self.task = model.task_of(chain, self.planar)
@@ -132,15 +140,20 @@ class SerialScene(Scene):
         self.size = model.size_of(chain, self.q_start)
         self.w_ref = model.reference_manipulability(chain)
         self.solver = model.posture_solver(name, chain, self.q_start)
-        # Planar arms: the disc of their reach from above; others: the box of the start posture's
-        # frame origins and the floor under the base, from the iso view.
-        origins = np.vstack([self.chain.frames(self.q_start)[:, :3, 3], np.zeros(3)])
-        target = np.zeros(3) if self.planar else 0.5 * (origins.min(axis=0) + origins.max(axis=0))
-        self.camera = Camera(target, (1.05 if self.planar else 0.6) * self.size, "top" if self.planar else "iso")
+        self.floor_start = self.floor = model.floor_height(chain, self.q_start, self.size)
+        # Planar arms: the disc of their reach from above; others: the start posture's frame
+        # origins and the pedestal's foot, from the iso view (and fitting every preset view).
+        if self.planar:
+            self.camera = Camera(np.zeros(3), 1.05 * self.size, "top")
+        else:
+            origins = self.chain.frames(self.q_start)[:, :3, 3]
+            foot = [origins[0, 0], origins[0, 1], self.floor]
+            self.camera = Camera.fitting(np.vstack([origins, foot]), "iso")
         self.start_mode = mode
         self.start_avoid = bool(avoid)
         self.trail: deque = deque(maxlen=TRAIL)
         self._paths: dict = {}
+        self._queue: deque = deque()  # (key, held) pressed during an animated move
         self.reset()
 
     # --- the model, through the core ----------------------------------------------------------
@@ -148,6 +161,9 @@ class SerialScene(Scene):
         """Moves the arm to q and evaluates what the panel and the log show there."""
         self.q = np.asarray(q, dtype=float).copy()
         self.frames = self.chain.frames(self.q)
+        lowest = float(np.min(self.frames[:, 2, 3]))
+        if lowest < self.floor:  # below the sampled reach (an unlimited slide): the floor goes down
+            self.floor = lowest - model.FLOOR_CLEARANCE * self.size
         tool = self.frames[-1]
         self.position = tool[:3, 3].copy()
         self.rpy = rk.pose.rpy(tool)
@@ -169,9 +185,14 @@ class SerialScene(Scene):
 
     # --- keys ---------------------------------------------------------------------------------
     def reset(self) -> None:
+        """The start again: the arm at its start posture in the start mode, the camera as it began,
+        no key waiting."""
+        self.camera.reset()
+        self._queue.clear()
         self.avoid = self.start_avoid
         self.selected = 0
         self.trail.clear()
+        self.floor = self.floor_start
         self._set(self.q_start)
         self._go_free("joint")
         self.posture = ""
@@ -190,6 +211,18 @@ class SerialScene(Scene):
         self._jog = None  # (joint, value at selection, whole steps since)
 
     def press(self, key: str, held: FrozenSet[str] = frozenset()) -> None:
+        """A key went down. While the arm makes an animated move (a posture change, an approach)
+        the keys that act on the arm (:data:`QUEUED_KEYS`) wait and are applied in order after it
+        (those after one that starts a move of its own wait for that move); ``r`` and the view keys
+        act at once."""
+        if key in QUEUED_KEYS and (self._motion is not None or self._queue):
+            if len(self._queue) < MAX_QUEUED:
+                self._queue.append((key, held))
+                self.message = f"{' '.join(k for k, _ in self._queue)}: after this move"
+            return
+        self._apply(key, held)
+
+    def _apply(self, key: str, held: FrozenSet[str]) -> None:
         if key in ("1", "2", "3", "4", "5", "6", "7", "8", "9"):
             k = int(key) - 1
             if k < self.dof:
@@ -201,7 +234,7 @@ class SerialScene(Scene):
             self.selected, self._jog = (self.selected + 1) % self.dof, None
             self.message = f"joint {self.selected + 1} selected: + / - move it"
         elif key == "m":
-            if self.mode in ("circle", "line", "approach", "posture"):
+            if self.mode in ("circle", "line"):
                 self.trail.clear()
                 self._go_free("joint")
             self.message = "free mode: + / - jog a joint, arrows and page keys move the tool"
@@ -235,9 +268,6 @@ class SerialScene(Scene):
     def _next_posture(self) -> None:
         if self.solver is None:
             self.message = "no closed form for this arm: one posture (use the jog)"
-            return
-        if self.mode in ("posture", "approach"):
-            self.message = "wait: the arm is moving"
             return
         if self._postures is not None and np.allclose(self.chain.fk(self.q), self._postures[0], rtol=0, atol=1e-9):
             pose, solutions = self._postures
@@ -337,6 +367,8 @@ class SerialScene(Scene):
 
     # --- one step -------------------------------------------------------------------------------
     def advance(self, held: FrozenSet[str]) -> None:
+        while self._motion is None and self._queue:  # the keys pressed during the last move
+            self._apply(*self._queue.popleft())
         if self._motion is not None:
             self._set(self._motion.popleft())
             if self.mode == "approach":
@@ -467,5 +499,6 @@ class SerialScene(Scene):
             manipulability=self.w, ratio=self.ratio, state=self.sing, mode=self.mode, posture=self.posture,
             ellipsoid=ellipsoid, path=self.path, missed=self.missed,
             trail=np.array(self.trail) if self.trail else np.zeros((0, 3)), camera=self.camera, size=self.size,
-            planar=self.planar, task=self.task, avoid=self.avoid, redundant=self.redundant, message=self.message,
+            floor=self.floor, planar=self.planar, task=self.task, avoid=self.avoid, redundant=self.redundant,
+            message=self.message,
         )

@@ -1,4 +1,5 @@
-"""The serial scene's view of a chain: its start posture, its task, its closed form, its size.
+"""The serial scene's view of a chain: its start posture, its task, its closed form, its size, the
+floor it stands on.
 
 Nothing numerical is computed here beyond choosing: each function asks the core (frames,
 Jacobians, manipulability, closed forms) and turns the answer into what the scene needs.
@@ -12,21 +13,6 @@ from typing import Callable, Optional
 import numpy as np
 import robokin as rk
 
-#: Start postures of the catalogue's arms (degrees for revolute joints, metres for prismatic
-#: ones): away from singularities, with every closed-form posture within the limits where the arm
-#: has a closed form (all 8 for the PUMA 560 and the UR arms).
-START = {
-    "puma560": (0, 50, -150, -20, 60, 0),
-    "panda": (0, -45, 0, -135, 0, 90, 45),
-    "iiwa14": (0, 35, 0, -80, 0, 55, 0),
-    "gen3": (0, 15, 180, -130, 0, -35, 90),
-    "irb120": (0, 10, 10, 0, 40, 0),
-    "planar_3r": (20, 100, 40),
-    "prr": (0.5, 30, 60),
-    "rp": (45, 0.6),
-}
-UR_START = (0, -110, 100, -80, -90, 0)
-
 #: Manipulability (Yoshikawa, pose rows) relative to the best of a sample of postures, below which
 #: a posture is "near" a singularity (orange) and "singular" (red).
 NEAR_RATIO, SINGULAR_RATIO = 0.1, 0.01
@@ -34,18 +20,74 @@ NEAR_RATIO, SINGULAR_RATIO = 0.1, 0.01
 REFERENCE_SAMPLES = 512
 
 
-def start_posture(name: str, chain: rk.Chain) -> np.ndarray:
-    """The posture a scene starts in: the table above for the catalogue's arms; for others (URDF)
-    0.3 rad on every revolute joint, alternating in sign, 0 on prismatic ones, clamped into the
-    limits."""
-    values = START.get(name) or (UR_START if name.startswith("ur") else None)
+#: Share of each limited joint's range kept clear of either limit by the start posture.
+START_MARGIN = 0.1
+#: Offsets (rad) from mid-range tried for the start posture's revolute joints; a prismatic joint
+#: moves the same share of its free half-range (offset / (pi / 2)).
+START_OFFSETS = (math.pi / 6, math.pi / 3)
+#: Manipulability share of the best candidate within which the candidate nearest mid-range wins.
+START_TIE = 0.99
+
+
+def _mid_range(chain: rk.Chain):
+    """(centre, room) per joint: the middle of its limits and how far the start posture may move
+    from it with :data:`START_MARGIN` kept to each limit. An unlimited revolute joint is centred on
+    0 with half a turn of room; one limited on one side only starts a quarter turn (or 0.5 m)
+    inside its limit; an unlimited prismatic joint is centred on 0 with 0.5 m of room."""
     lower, upper = (np.asarray(v, dtype=float) for v in chain.limits)
-    types = chain.joint_types
-    if values is not None and len(values) == chain.dof:
-        q = np.array([math.radians(v) if t == "R" else float(v) for v, t in zip(values, types)])
-    else:
-        q = np.array([(0.3 if i % 2 == 0 else -0.3) if t == "R" else 0.0 for i, t in enumerate(types)])
-    return np.clip(q, lower, upper)
+    centre, room = np.zeros(chain.dof), np.zeros(chain.dof)
+    for i, kind in enumerate(chain.joint_types):
+        unit = math.pi if kind == "R" else 1.0
+        lo, hi = lower[i], upper[i]
+        if math.isfinite(lo) and math.isfinite(hi):
+            centre[i], room[i] = 0.5 * (lo + hi), (0.5 - START_MARGIN) * (hi - lo)
+        elif math.isfinite(lo) or math.isfinite(hi):
+            inward = 1.0 if math.isfinite(lo) else -1.0
+            centre[i], room[i] = (lo if math.isfinite(lo) else hi) + inward * unit / 2, unit / 4
+        else:
+            centre[i], room[i] = 0.0, unit / 2
+    return centre, room
+
+
+def start_candidates(chain: rk.Chain) -> np.ndarray:
+    """(K, dof) postures the start posture is chosen from: mid-range, and mid-range moved by each
+    offset of :data:`START_OFFSETS` in a few sign patterns (every joint one way, every joint the
+    other, alternating both ways, every second joint bent either way: the elbows); nearest
+    mid-range first (distance in shares of each joint's room), mid-range itself first."""
+    centre, room = _mid_range(chain)
+    n = chain.dof
+    alternate = np.array([1.0 if i % 2 == 0 else -1.0 for i in range(n)])
+    elbows = np.array([0.0 if i % 2 == 0 else 1.0 for i in range(n)])
+    patterns = [elbows, -elbows, alternate, -alternate, np.ones(n), -np.ones(n)]
+    radians = np.array([kind == "R" for kind in chain.joint_types])
+    rows = [centre]
+    for offset in START_OFFSETS:
+        step = np.where(radians, np.minimum(offset, room), room * offset / (math.pi / 2))
+        rows += [centre + s * step for s in patterns]
+    rows = np.array(rows)
+    spread = np.linalg.norm((rows - centre) / np.where(room > 0, room, 1.0), axis=1)
+    return rows[np.argsort(spread, kind="stable")]
+
+
+def start_posture(chain: rk.Chain) -> np.ndarray:
+    """The posture a scene starts in, read off the arm alone: of :func:`start_candidates` (all
+    within the limits, :data:`START_MARGIN` of each range away from them), the one of the best
+    manipulability, where candidates within :data:`START_TIE` of the best count as equal and the
+    one nearest mid-range wins; then each joint whose move back to mid-range keeps the
+    manipulability within :data:`START_TIE` of the best goes back (the base's turn and the tool's
+    roll, which do not change it, stay mid-range)."""
+    q = start_candidates(chain)
+    w = np.asarray(chain.manipulability(q), dtype=float)
+    w = np.where(np.isfinite(w), w, 0.0)
+    good = START_TIE * np.max(w)
+    best = q[int(np.flatnonzero(w >= good)[0])].copy()
+    centre = q[0]  # the first candidate: mid-range
+    for i in range(chain.dof):
+        trial = best.copy()
+        trial[i] = centre[i]
+        if float(chain.manipulability(trial)) >= good:
+            best = trial
+    return best
 
 
 def is_planar(chain: rk.Chain, seed: int = 0) -> bool:
@@ -82,6 +124,31 @@ def reference_manipulability(chain: rk.Chain) -> float:
     w = chain.manipulability(sample(chain, REFERENCE_SAMPLES, seed=1))
     best = float(np.max(w)) if np.all(np.isfinite(w)) else 0.0
     return best if best > 0 else 1.0
+
+
+#: Postures sampled (within the limits, seeded) for the lowest point the arm reaches.
+FLOOR_SAMPLES = 2048
+#: Clearance (relative to the arm's size) between the lowest point sampled and the floor: as long
+#: as the joint axes drawn about a joint (render_serial.AXIS).
+FLOOR_CLEARANCE = 0.08
+
+
+def floor_height(chain: rk.Chain, q_start, size: float) -> float:
+    """The height (base z, m) of the floor the arm stands on: the base's own height when no frame
+    origin of the arm goes below it, else below the lowest origin of a seeded sample of postures
+    (and of ``q_start``) by :data:`FLOOR_CLEARANCE` of ``size``: the arm then stands on a pedestal.
+    A prismatic joint without limits stays at its start value in the sample (its travel has no
+    lowest point); the scene lowers the floor further if the arm ever goes below it."""
+    q_start = np.asarray(q_start, dtype=float)
+    q = sample(chain, FLOOR_SAMPLES, seed=2)
+    lower, upper = chain.limits
+    free = np.array([t == "P" for t in chain.joint_types]) & ~(np.isfinite(lower) & np.isfinite(upper))
+    q[:, free] = q_start[free]
+    base = float(chain.frames(q_start)[0, 2, 3])
+    lowest = min(float(np.min(chain.frames(row)[:, 2, 3])) for row in np.vstack([q_start, q]))
+    if lowest >= base - 1e-9 * max(size, 1.0):
+        return base
+    return lowest - FLOOR_CLEARANCE * size
 
 
 def size_of(chain: rk.Chain, q) -> float:
