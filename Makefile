@@ -31,7 +31,7 @@ run: setup
 demo-rpr: setup
 	$(VPY) -m robokin.demo
 
-# Issue 15: greedy vs planned postures along a straight line of the PUMA 560 (figure in out/).
+# Greedy vs planned postures along a straight line of the PUMA 560 (figure in out/).
 demo-postures: setup
 	$(VPY) -m robokin.demo_postures
 

@@ -1,4 +1,4 @@
-// Heap allocations made by the hot calls (issue 2: the Reach loop must not allocate per iteration).
+// Heap allocations made by the hot calls (the Reach loop must not allocate per iteration).
 // Build and run from the repository root (not part of make bench: it links the core statically):
 //   g++ -O2 -std=c++17 -I cpp/include -I /usr/include/eigen3 benchmarks/alloc_check.cpp \
 //       cpp/src/chain.cpp cpp/src/reach.cpp cpp/src/task.cpp -lorocos-kdl -lpthread -o /tmp/alloc_check && /tmp/alloc_check

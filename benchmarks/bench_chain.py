@@ -6,11 +6,11 @@ robokin / reference (lower is better). References:
 - PyKDL (Debian's python3-pykdl) for single fk / jacobian: it is built for /usr/bin/python3, so it
   runs in a subprocess (benchmarks/_pykdl_worker.py) with the same timing code; its FK includes the
   list -> JntArray conversion, as a PyKDL user writes it.
-- a numpy closed form for single fk / jacobian (RPR: seed 000's eqs. 1 and 9; UR5: the product of
+- a numpy closed form for single fk / jacobian (RPR: the RPR study's eqs. 1 and 9; UR5: the product of
   its DH matrices), and the numpy vectorised closed form of the RPR for the batch FK;
 - Pinocchio (``pip install pin``) for single fk / jacobian: the UR5 (and the RPR) built as a
   pinocchio Model with the same joint placements; its fastest natural FK call with a numpy 4x4 out;
-- seed 000's Algorithm 1 written literally in plain numpy, one Reach per path point.
+- the RPR study's Algorithm 1 written literally in plain numpy, one Reach per path point.
 
 Every reference is checked against robokin before it is timed. Times: best of several repeats
 (median also shown) on a shared machine; batch FK single-threaded (ROBOKIN_NUM_THREADS=1) like
@@ -357,7 +357,7 @@ def bench_batch(rng):
         line("batch fk RPR, 1 thread", ours, "numpy", ref, 0.15,
              note=f"per configuration: {fmt(per(ours)[0]).strip()} vs {fmt(per(ref)[0]).strip()}",
              name=f"batch FK of {BATCH:,} RPR configurations, (N, 4, 4) out, 1 thread, repeated calls, vs numpy's "
-                  "vectorised closed form (seed 000, eq. 1)")
+                  "vectorised closed form (the RPR study, eq. 1)")
         g = goals[-1]
         fresh = fresh_output(chain, Q)
         line("batch fk RPR, 1 thread, fresh output", fresh, "numpy", ref,
@@ -407,7 +407,7 @@ def bench_reach():
     ref = once(lambda: track_literal(points, q0), repeat=3)
     per = lambda t: t[0] / len(points)  # noqa: E731
     line("Reach path RPR", ours, "numpy", ref, 0.01,
-         name=f"Reach path, RPR, {len(points):,} points, seed defaults, vs seed 000's Algorithm 1 in plain numpy",
+         name=f"Reach path, RPR, {len(points):,} points, seed defaults, vs the RPR study's Algorithm 1 in plain numpy",
          note=f"per point: {fmt(per(ours)).strip()} vs {fmt(per(ref)).strip()}; "
               f"{int(tr.converged.sum())}/{len(points)} converged, "
               f"{tr.iterations.mean():.2f} iterations per point")

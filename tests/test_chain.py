@@ -57,7 +57,7 @@ def random_q(rng, chain, n=None):
     return rng.uniform(lo, hi, size=size)
 
 
-# --- seed 000: the RPR ----------------------------------------------------------------------
+# --- the RPR study's arm ---------------------------------------------------------------------
 
 
 def test_rpr_fk_equals_seed_eq1(rng):
@@ -82,7 +82,7 @@ def test_rpr_jacobian_equals_seed_annex_and_finite_differences(rng):
         np.testing.assert_allclose(chain.jacobian(q), numeric_jacobian(chain.fk, q), atol=1e-7)
 
 
-# --- seed 004: the PRR ----------------------------------------------------------------------
+# --- the DH exercise's PRR ----------------------------------------------------------------------
 
 
 def prr_T30(q, a2, a3):

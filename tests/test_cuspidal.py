@@ -1,4 +1,4 @@
-"""General 3R arms: rk.closed.general_3r (every position solution) and rk.cuspidal (issue 15).
+"""General 3R arms: rk.closed.general_3r (every position solution) and rk.cuspidal.
 
 Truth: the forward model (KDL's, chain._fk_kdl), numerical IK from many random starts (every
 distinct solution it finds must be in the closed-form set), KDL's Jacobian for the singular curve,

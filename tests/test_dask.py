@@ -1,4 +1,4 @@
-"""robokin.dask on a real cluster of two worker processes (issue 16): FK, batch IK, reachability
+"""robokin.dask on a real cluster of two worker processes: FK, batch IK, reachability
 maps and the 3-RRR sweeps give the one-machine call's bits for any chunking; a worker killed in
 the middle of a map is replaced and the map is still the same; Ctrl-C on the client cancels the
 tasks on the cluster. One cluster for the module."""

@@ -19,8 +19,8 @@ from robokin import _core, demo, plots, plots_rrr3, rrr3_design
 
 MODULES = {"closed": rk.closed, "paths": rk.paths, "robots": rk.robots, "rrr3_design": rrr3_design,
            "plots": plots, "plots_rrr3": plots_rrr3, "demo": demo}
-MODULES.update({"traj": rk.traj, "pose": rk.pose})  # issue 13, part B
-import robokin.dask  # noqa: E402  (issue 16; rk.reachability is the function, the module is in sys.modules)
+MODULES.update({"traj": rk.traj, "pose": rk.pose})
+import robokin.dask  # noqa: E402  (rk.reachability is the function, the module is in sys.modules)
 import robokin.plots_reachability  # noqa: E402
 import sys  # noqa: E402
 MODULES.update({"reachability": sys.modules["robokin.reachability"], "plots_reachability": robokin.plots_reachability,

@@ -1,4 +1,4 @@
-"""Property tests of issue 15's calls: rk.closed.ur / ur_batch, rk.track_postures,
+"""Property tests of the posture calls: rk.closed.ur / ur_batch, rk.track_postures,
 rk.count_reconfigurations, rk.closed.general_3r, rk.cuspidal.
 
 Rules. (1) Any arguments: a result whose every number is finite (NaN only as the batch's "no

@@ -1,4 +1,4 @@
-"""Property tests of the serial-arm toolkit of issue 13 (part B): robokin.traj, robokin.pose,
+"""Property tests of the serial-arm toolkit: robokin.traj, robokin.pose,
 Chain.manipulability / Chain.ellipsoid, rk.resolved_rate and rk.servo.
 
 Every argument arbitrary (arrays of any shape, dtype and layout, wild numbers): a call returns

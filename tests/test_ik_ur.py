@@ -1,4 +1,4 @@
-"""rk.closed.ur: the UR family's closed form (issue 15).
+"""rk.closed.ur: the UR family's closed form.
 
 Truth: the textbook DH product of tests/dh_reference.py (not the core's forward model), the joints
 each target was made from, and the numerical IK (rk.ik_batch, Levenberg-Marquardt from many random

@@ -1,4 +1,4 @@
-"""Pickling and deep copies (issue 16): models and results survive pickle and copy.deepcopy, and a
+"""Pickling and deep copies: models and results survive pickle and copy.deepcopy, and a
 copy computes the same bits as the original (compared with ==, not a tolerance), also when it is
 unpickled in a fresh interpreter. Chain == compares the kinematics."""
 

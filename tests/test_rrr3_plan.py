@@ -156,7 +156,7 @@ def test_plan_sizes_are_bounded(robot):
 
 
 def test_plan_and_connect_options_are_the_cores():
-    """The seed's robot and tolerance (seed 002: R_b 0.13, R_e 0.07, l1 = l2 = 0.12 m; det A detected
+    """The seed's robot and tolerance (the 3-RRR project: R_b 0.13, R_e 0.07, l1 = l2 = 0.12 m; det A detected
     at 1e-3) are the core's named constants; plan's and connect's options are core structs, keyword-only."""
     d = rk.RRR3_DEFAULTS
     assert (d["base_radius"], d["platform_radius"], d["l1"], d["l2"], d["singular_tol"]) == (0.13, 0.07, 0.12, 0.12, 1e-3)

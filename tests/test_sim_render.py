@@ -102,7 +102,7 @@ def test_the_readme_lists_every_key_of_both_scenes():
     from robokin_sim.panel import HELP
 
     readme = open(os.path.join(os.path.dirname(__file__), "..", "README.md"), encoding="utf-8").read()
-    section = readme[readme.index("## The simulator"):readme.index("## A tour of the Python API")]
+    section = readme[readme.index("## The simulator"):readme.index("## Conventions")]
     for robot in ("rrr3", "rpr"):
         for keys, _ in HELP[robot]:
             for key in keys.split(" / "):

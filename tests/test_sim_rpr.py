@@ -1,4 +1,4 @@
-"""The RPR scene: the Reach loop along seed 000's line, both solutions, free mode, joint limits."""
+"""The RPR scene: the Reach loop along the RPR study's line, both solutions, free mode, joint limits."""
 
 import math
 import warnings

@@ -149,7 +149,7 @@ def test_jogging_a_joint_into_its_limit_stops_on_it():
     assert scene.sing == "limit" and "limit" in scene.message
     steps(scene, {"minus"}, 3)
     assert scene.q[4] == pytest.approx(chain.limits[1][4] - 3 * JOINT_STEP["R"], abs=1e-15)
-    # A prismatic joint (seed 004's PRR) jogs in metres.
+    # A prismatic joint (the DH exercise's PRR) jogs in metres.
     prr = SerialScene(rk.robots.prr(), name="prr")
     d1 = prr.q[0]
     steps(prr, {"plus"}, 10)
@@ -186,7 +186,7 @@ def test_the_null_space_term_moves_a_redundant_arm_differently_for_the_same_tool
         steps(scene, {"left"}, 60)
     assert np.allclose(chain.fk(with_term.q), chain.fk(without.q), rtol=0, atol=1e-9)
     assert np.max(np.abs(with_term.q - without.q)) > 1e-3
-    # The term pulls toward the middle of the ranges (seed 000's cost z), so z is lower with it.
+    # The term pulls toward the middle of the ranges (the RPR study's cost z), so z is lower with it.
     assert rk.joint_limit_cost(chain, with_term.q) < rk.joint_limit_cost(chain, without.q)
 
 
@@ -292,7 +292,7 @@ def test_the_circle_is_traced_with_the_orientation_kept(tmp_path):
 
 def test_unreachable_path_points_are_reported():
     # Planar 3R (a = 1, 1, 1) at a fixed phi: the tip reaches p when the wrist p - (cos phi, sin phi)
-    # is within a1 + a2 = 2 of the base (seed 003, example 2).
+    # is within a1 + a2 = 2 of the base (the IK course, example 2).
     chain = rk.robots.planar_3r()
     scene = SerialScene(chain, name="planar_3r", mode="circle", q0=np.radians([30, 50, 40]))
     points, missed = scene.path, scene.missed
@@ -397,7 +397,7 @@ def test_the_readme_lists_every_key_of_the_serial_scene():
     from robokin_sim.scenes import SERIAL_HELP
 
     readme = open(os.path.join(os.path.dirname(__file__), "..", "README.md"), encoding="utf-8").read()
-    section = readme[readme.index("### Serial arms in the simulator"):readme.index("## A tour of the Python API")]
+    section = readme[readme.index("### Serial arms in the simulator"):readme.index("## Conventions")]
     for keys, _ in SERIAL_HELP:
         for key in keys.replace(" - ", " / ").split(" / "):
             assert f"`{key}`" in section, key

@@ -1,4 +1,4 @@
-"""rk.track_postures: fewest reconfigurations, then least motion (IKLink's objective, issue 15).
+"""rk.track_postures: fewest reconfigurations, then least motion (IKLink's objective).
 
 Truth: an exhaustive search over every sequence of solutions on short paths (the dynamic
 programme must find the same optimum), the greedy closed-form tracker closed.puma560_path (never

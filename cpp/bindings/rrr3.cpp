@@ -1,4 +1,4 @@
-// robokin.RRR3: the planar 3-RRR parallel robot of seed 002.
+// robokin.RRR3: the planar 3-RRR parallel robot of the 3-RRR project.
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "options.hpp"
@@ -516,7 +516,7 @@ void bind_rrr3(py::module_& m) {
   bind_options(m);
   bind_defaults(m);
   bind_design_study(m);
-  py::class_<RRR3> cls(m, "RRR3", "The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).");
+  py::class_<RRR3> cls(m, "RRR3", "The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).");
   def_geometry(cls);
   def_kinematics(cls);
   def_planning(cls);

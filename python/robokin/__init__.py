@@ -69,7 +69,7 @@ from ._core import UrdfJoint, UrdfTree, urdf_tree  # noqa: E402
 
 __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 
-# Issue 16: reachability maps (robokin.dask, the [dask] extra, is imported on demand).
+# Reachability maps (robokin.dask, the [dask] extra, is imported on demand).
 from .reachability import ReachabilityMap, reachability  # noqa: E402
 
 __all__ += ["ReachabilityMap", "reachability"]

@@ -1,4 +1,4 @@
-"""Aspects and cuspidality of 3R positioning arms (seed 003: "a cuspidal robot can change
+"""Aspects and cuspidality of 3R positioning arms (the IK course: "a cuspidal robot can change
 posture without meeting a singularity").
 
 The aspects are the regions of joint space where det J (3 x 3, position) keeps its sign; det J does

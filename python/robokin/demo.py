@@ -1,4 +1,4 @@
-"""The RPR straight-line demo of seed 000 (``python -m robokin.demo``; ``make run``).
+"""The RPR straight-line demo of the RPR study (``python -m robokin.demo``; ``make run``).
 
 Tracks the line from point 1, on the workspace boundary (t1 = pi/2), to point 2 with the Reach
 loop, once with the minimum-norm step and once with null-space joint-limit avoidance, prints a
@@ -48,7 +48,7 @@ def main(argv=None) -> int:
     if len(points) > MAX_POINTS:
         parser.error(f"--step: {args.step!r} gives {len(points)} path points, the demo draws at most {MAX_POINTS}")
     tracks = {}
-    print(f"RPR (seed 000): line from point 1 {np.round(p1, 3)} to point 2 {P2}, {len(points)} points")
+    print(f"RPR (redundancy study): line from point 1 {np.round(p1, 3)} to point 2 {P2}, {len(points)} points")
     for label, nullspace in (("minimum norm", None), ("null-space joint-limit avoidance", "joint_limits")):
         start = time.perf_counter()
         tr = track(chain, points, Q1, nullspace=nullspace)
@@ -59,7 +59,7 @@ def main(argv=None) -> int:
             f"  {label:34s} converged {int(tr.converged.sum())}/{len(points)}, max error {tr.error.max():.2e} m, "
             f"mean z {z.mean():.4f}, {tr.iterations.mean():.2f} iterations/point, {1e6 * elapsed / len(points):.2f} us/point"
         )
-    fig = rpr_line_figure(points, tracks, title="RPR arm, straight line from 1 to 2 (seed 000, Figure 2)")
+    fig = rpr_line_figure(points, tracks, title="RPR arm, straight line from 1 to 2 (the RPR study, Figure 2)")
     # Written under a temporary name and renamed: an interrupted save leaves no truncated PNG.
     with AtomicPath(args.out) as tmp:
         fig.savefig(tmp, dpi=90, format=ext or "png")

@@ -20,7 +20,7 @@ class NoRouteError(UnreachableError):
 
 
 class PrecisionWarning(UserWarning):
-    """A numerical loop stopped before reaching its tolerance ("precision not reached", seed 000)."""
+    """A numerical loop stopped before reaching its tolerance ("precision not reached", the RPR study)."""
 
 
 class URDFWarning(UserWarning):

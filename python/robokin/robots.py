@@ -40,7 +40,7 @@ def _translate_x(length: float) -> np.ndarray:
 
 
 def rpr() -> Chain:
-    """The planar RPR arm of seed 000 (L. Baron, "Modélisation et commande d'un robot RPR planaire").
+    """The planar RPR arm of the RPR study (L. Baron, "Modélisation et commande d'un robot RPR planaire").
 
     Tip ``p = (L1 + t2) (cos t1, sin t1) + L3 (cos(t1 + t3), sin(t1 + t3))`` with ``L1 = 1.5``,
     ``L3 = 1.0`` and a prismatic stroke ``L2 = 1.5`` m; limits ``[0, 0, 0]`` to ``[pi/2, 1.5, pi]``.
@@ -54,7 +54,7 @@ def rpr() -> Chain:
 
 
 def prr(a2: float = 1.0, a3: float = 1.0) -> Chain:
-    """The 3-DoF PRR arm of seed 004 (F. Morbidi, "Modèle géométrique direct", 2019).
+    """The 3-DoF PRR arm of the DH exercise (F. Morbidi, "Modèle géométrique direct", 2019).
 
     DH table ``(a, alpha, d, theta)``: ``(0, pi/2, d1, 0)``, ``(a2, 0, 0, theta2)``,
     ``(a3, 0, 0, theta3)``; ``q = (d1, theta2, theta3)``; frame 3 is the tool (the seed omits T_e^3).
@@ -64,13 +64,13 @@ def prr(a2: float = 1.0, a3: float = 1.0) -> Chain:
 
 
 def planar_3r(a1: float = 1.0, a2: float = 1.0, a3: float = 1.0) -> Chain:
-    """A planar 3R arm (seed 003, example 2): three revolute joints about z, links a1, a2, a3."""
+    """A planar 3R arm (the IK course, example 2): three revolute joints about z, links a1, a2, a3."""
     a1, a2, a3 = number(a1, "a1"), number(a2, "a2"), number(a3, "a3")
     return Chain.from_dh([(a, 0.0, 0.0, 0.0, "R") for a in (a1, a2, a3)])
 
 
 def rp(stroke: float = 1.0) -> Chain:
-    """The planar RP arm of seed 003, example 1: a revolute joint, then a prismatic one along the arm.
+    """The planar RP arm of the IK course, example 1: a revolute joint, then a prismatic one along the arm.
 
     The tip is at ``d2 (cos theta1, sin theta1)``; ``d2`` is limited to ``[0, stroke]``.
     """
@@ -395,7 +395,7 @@ _MAX_SAMPLES = 10_000_000
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
-    """Every joint vector of the seed-000 RPR that puts the tip at ``point``, within its limits.
+    """Every joint vector of the RPR study's arm that puts the tip at ``point``, within its limits.
 
     For each ``t1`` the prismatic extension ``L1 + t2`` solves a quadratic (closed form, in the
     core), so the set is sampled along ``t1``.

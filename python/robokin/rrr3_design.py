@@ -1,4 +1,4 @@
-"""The seed's design study of the 3-RRR (seed 002, section 3): workspace area against the
+"""The seed's design study of the 3-RRR (the 3-RRR project, section 3): workspace area against the
 platform size, and the best second link for a given first one. The areas come from the core's
 workspace maps (RRR3.workspace); this module only lays out the studies."""
 

@@ -46,7 +46,7 @@ class RprRenderer:
         self._arm(surface, state)
         joint = state.q
         rows = [
-            ("robot", "RPR (seed 000)", None),
+            ("robot", "RPR (redundancy study)", None),
             ("mode", state.mode, None),
             ("solution", "null-space limits" if state.avoid else "minimum norm", None),
             ("tip x, y", f"{number(state.frames[-1][0, 3], '{:+.3f}')}, {number(state.frames[-1][1, 3], '{:+.3f}')}", None),

@@ -1,4 +1,4 @@
-"""The seed-000 RPR arm tracking a straight line with the Reach loop (state and step logic).
+"""The RPR arm of the redundancy study tracking a straight line with the Reach loop (state and step logic).
 
 The line runs from point 1, on the workspace boundary (``t1 = pi/2``, the joint's upper limit),
 to point 2 and back, one path point per step, each reached by ``rk.reach`` from the joints the

@@ -1,4 +1,4 @@
-"""The 3-RRR planar parallel robot of seed 002: free, circle and clover modes (state and step logic).
+"""The 3-RRR planar parallel robot of the 3-RRR project: free, circle and clover modes (state and step logic).
 
 * Free mode: the arrows move the effector 1 mm per step, ``k`` / ``l`` rotate it 0.01 rad; a step
   that would leave the workspace, stretch a leg (serial singularity) or land on a parallel

@@ -311,7 +311,7 @@ class SerialScene(Scene):
             return np.cross([0.0, 0.0, 1.0], out), out
         axes, lengths = self.chain.ellipsoid(self.q_start)
         if lengths[2] < 1e-9 * max(lengths[0], 1e-300):
-            # The tool moves in a plane only (e.g. the PRR of seed 004): that plane.
+            # The tool moves in a plane only (e.g. the PRR of the DH exercise): that plane.
             return axes[:, 0], axes[:, 1]
         out = np.array([p[0], p[1], 0.0])
         out = out / np.linalg.norm(out) if np.linalg.norm(out) > 1e-9 else np.array([1.0, 0.0, 0.0])

@@ -2,8 +2,8 @@
 its help text), the key help and the factories of scenes and renderers are derived.
 
 Adding a robot to the simulator is one entry here. The serial arms are every arm of
-:mod:`robokin.robots` (``rk.robots.names()``) but the seed-000 RPR, which keeps its own scene (the
-straight line of seed 000's Figure 2); ``--urdf FILE`` makes a serial scene of the chain it loads.
+:mod:`robokin.robots` (``rk.robots.names()``) but the RPR study's arm, which keeps its own scene (the
+straight line of the RPR study's Figure 2); ``--urdf FILE`` makes a serial scene of the chain it loads.
 """
 
 from __future__ import annotations
@@ -117,9 +117,9 @@ SERIAL_HELP = (
 
 def _table() -> Dict[str, SceneEntry]:
     table = {
-        "rrr3": SceneEntry("rrr3", "3-RRR (seed 002)", ("free", "circle", "clover"), "clover", _rrr3_scene,
+        "rrr3": SceneEntry("rrr3", "3-RRR parallel robot", ("free", "circle", "clover"), "clover", _rrr3_scene,
                            _rrr3_renderer, RRR3_HELP),
-        "rpr": SceneEntry("rpr", "RPR (seed 000)", ("line", "free"), "line", _rpr_scene, _rpr_renderer, RPR_HELP),
+        "rpr": SceneEntry("rpr", "RPR (redundancy study)", ("line", "free"), "line", _rpr_scene, _rpr_renderer, RPR_HELP),
     }
     for name in rk.robots.names():
         if name not in table:

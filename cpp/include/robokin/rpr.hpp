@@ -1,4 +1,4 @@
-// The planar RPR arm of seed 000: tip = (L1 + t2) u(t1) + L3 u(t1 + t3), u(a) = (cos a, sin a).
+// The planar RPR arm of the RPR study: tip = (L1 + t2) u(t1) + L3 u(t1 + t3), u(a) = (cos a, sin a).
 #pragma once
 
 #include "robokin/chain.hpp"

@@ -1,4 +1,4 @@
-// The planar 3-RRR parallel robot of seed 002: inverse and forward models, the seed's Jacobians
+// The planar 3-RRR parallel robot of the 3-RRR project: inverse and forward models, the seed's Jacobians
 // A and B, singularities.
 //
 // Geometry (DESIGN.md): base joints O_i = R_b u(t_i), platform joints B_i = E + R_e R(phi) u(t_i),

@@ -1,4 +1,4 @@
-// 3-RRR path planning with parallel-singularity avoidance (seed 002, section 2.2.3): the
+// 3-RRR path planning with parallel-singularity avoidance (the 3-RRR project, section 2.2.3): the
 // orientation leaves its nominal value only where the path comes near a parallel singularity.
 #pragma once
 
