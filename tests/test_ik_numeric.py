@@ -171,6 +171,13 @@ def test_path_warm_start_has_no_branch_jumps():
     assert jumps < 0.05
     for k in range(0, steps, 10):
         assert verified(chain, res.q[k], targets[k])
+    # Each target is solved from the answer to the one before (one attempt, no restart).
+    for k in range(1, steps, 9):
+        assert np.array_equal(rk.ik(chain, targets[k], res.q[k - 1], restarts=0).q, res.q[k])
+    # From the other postures of the first target the path stays in that posture too.
+    for start in rk.closed.puma560(targets[0], limits="default").q:
+        res = rk.ik_batch(chain, targets[:30], start, path=True)
+        assert res.success.all() and np.abs(np.diff(np.vstack([start, res.q]), axis=0)).max() < 0.05
 
 
 def test_hessian_term_matches_finite_differences():

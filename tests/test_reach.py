@@ -28,7 +28,7 @@ def jacobian(t):
 
 
 def seed_reach(p_target, theta, weights=None):
-    """Algorithm 1 of seed 000, line by line; with `weights`, the homogeneous term of eqs. (5)-(7),
+    """The Reach algorithm, line by line; with `weights`, the homogeneous term of eqs. (5)-(7),
     dq_H = (1 - J^+ J) W (qbar - q), added to the first iteration's step (robokin.reach's rule:
     the following iterations are the minimum-norm corrections that remove its second-order
     residual)."""

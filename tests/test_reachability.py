@@ -66,7 +66,7 @@ def test_index_agrees_with_a_brute_force_fk_estimate(planar_map):
 def test_manipulability_is_the_best_among_the_solutions(planar_map):
     m = planar_map
     assert np.all((m.manipulability > 0) == (m.index > 0))
-    # Seed 003: at a reachable (x, y, phi) both elbows have |sin q2| from the wrist distance w,
+    # At a reachable (x, y, phi) both elbows have |sin q2| from the wrist distance w,
     # cos q2 = (w^2 - a1^2 - a2^2) / (2 a1 a2), and the xyphi manipulability a1 a2 |sin q2|: the map
     # holds the best of it over the voxel's sampled orientations (the map's own).
     K = m.orientations
