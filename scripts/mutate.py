@@ -20,8 +20,9 @@ baseline fails) and exits 1 unless every mutant was caught. Before the mutants, 
 run once on the clean build: a selection that fails already cannot tell anything ("baseline
 fails"). After the run it checks that ``git diff`` of every file it touched is what it was before.
 
-Usage: scripts/mutate.py [--list] [--only NAME[,NAME...]] [--timeout S] [--no-baseline]
-(``make mutate``, ``make mutate ONLY=name``). Not part of ``make test``: it takes long.
+Usage: scripts/mutate.py [--list] [--check] [--only NAME[,NAME...]] [--timeout S] [--no-baseline]
+(``make mutate``, ``make mutate ONLY=name``; a name ending in ``*`` selects by prefix). Not part of
+``make test``: it takes long.
 """
 
 from __future__ import annotations
@@ -37,9 +38,13 @@ import signal
 import subprocess
 import sys
 import time
-import tomllib
 from pathlib import Path
 from typing import Dict, List, Optional
+
+try:
+    import tomllib
+except ImportError:  # Python < 3.11
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parent.parent
 MUTANTS = ROOT / "tests" / "mutants" / "mutants.toml"
@@ -54,6 +59,9 @@ BUILD_TIMEOUT = 1800  # s, one incremental build on a loaded machine
 
 @dataclasses.dataclass
 class Mutant:
+    """One planted bug: ``find`` (exactly once in ``file``) becomes ``replace``; ``tests`` are the
+    pytest arguments that must then fail; ``why`` is the wrong result it stands for."""
+
     name: str
     file: str
     find: str
@@ -65,6 +73,9 @@ class Mutant:
 
 @dataclasses.dataclass
 class Outcome:
+    """A mutant's result: ``status`` as the table prints it, the seconds it took, and the first
+    failing test (or pytest's last line, or the build's error)."""
+
     mutant: Mutant
     status: str
     seconds: float = 0.0
@@ -72,6 +83,7 @@ class Outcome:
 
 
 def load(path: Path = MUTANTS) -> List[Mutant]:
+    """The mutants of the list, checked for unique names, a change and a test selection each."""
     data = tomllib.loads(path.read_text(encoding="utf-8"))
     mutants = [Mutant(**entry) for entry in data["mutant"]]
     names = [m.name for m in mutants]
@@ -158,6 +170,7 @@ class Builder:
         self.saved = True
 
     def restore_installed(self) -> None:
+        """Puts the venv's own extensions back (the run ends as it found the venv)."""
         if not self.saved:
             return
         for so in self._extensions(self.backup):
@@ -165,6 +178,7 @@ class Builder:
         shutil.rmtree(self.backup, ignore_errors=True)
 
     def build(self) -> subprocess.CompletedProcess:
+        """``cmake --build`` of the build directory: what changed since the last build, nothing more."""
         env = dict(os.environ)
         env.setdefault("CCACHE_BASEDIR", "/work")
         env.setdefault("CCACHE_DIR", "/work/.ccache")
@@ -172,6 +186,7 @@ class Builder:
                               timeout=BUILD_TIMEOUT)
 
     def install(self) -> None:
+        """Copies the built extensions where the venv imports them."""
         for so in self._extensions(self.dir):
             shutil.copy2(so, self.site / "robokin" / so.name)
 
@@ -179,6 +194,7 @@ class Builder:
 # --- one mutant -----------------------------------------------------------------------------------
 
 def pytest_command(tests: List[str]) -> List[str]:
+    """pytest on the selection: stop at the first failure, name it, no tracebacks."""
     return [str(VENV_PYTHON), "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "--no-header", "-rfE",
             "--tb=no", *tests]
 
@@ -205,6 +221,7 @@ def run_tests(tests: List[str], timeout: float) -> tuple:
 
 
 def status_of(code) -> str:
+    """The table's word for pytest's exit code: 1 (tests failed) is caught, 0 is not."""
     if code == "timeout":
         return "caught (timeout)"
     return {0: "NOT CAUGHT", 1: "caught", 5: "no tests"}.get(code, f"error (pytest exit {code})")
@@ -224,12 +241,14 @@ class Planter:
         return self._propagate(m.file)
 
     def restore(self, m: Mutant, original: bytes) -> None:
+        """Writes the file's original bytes back, and the venv's copy or the build after them."""
         (ROOT / m.file).write_bytes(original)
         error = self._propagate(m.file)
         if error:
             raise RuntimeError(f"the clean build failed after restoring {m.file}:\n{error}")
 
     def _propagate(self, rel: str) -> Optional[str]:
+        """Makes the tests import the file as it now is; the build's error output when it fails."""
         copy = installed_copy(rel, self.site)
         if copy is not None:
             shutil.copyfile(ROOT / rel, copy)
@@ -245,11 +264,13 @@ class Planter:
 
 
 def snippet_count(m: Mutant) -> int:
+    """How often the mutant's snippet occurs in its file (0 when the file is gone)."""
     path = ROOT / m.file
     return path.read_bytes().decode("utf-8").count(m.find) if path.exists() else 0
 
 
 def run_mutant(m: Mutant, planter: Planter, timeout: float) -> Outcome:
+    """Plants m, runs its tests, and takes it out again whatever happens."""
     count = snippet_count(m)
     if count != 1:
         return Outcome(m, "stale", detail=f"the snippet occurs {count} times in {m.file}")
@@ -270,6 +291,7 @@ def run_mutant(m: Mutant, planter: Planter, timeout: float) -> Outcome:
 # --- the run --------------------------------------------------------------------------------------
 
 def git_diff(files: List[str]) -> str:
+    """``git diff`` of the files (compared before and after the run: it must not change)."""
     return subprocess.run(["git", "diff", "--no-ext-diff", "--", *files], cwd=ROOT, capture_output=True,
                           text=True, check=True).stdout
 
@@ -295,7 +317,49 @@ def baseline(mutants: List[Mutant], timeout: float) -> Dict[str, str]:
 
 
 def interrupt(signum, frame):
+    """SIGTERM ends the run as Ctrl-C does: through the finally clauses that restore the files."""
     raise KeyboardInterrupt
+
+
+def matches(name: str, pattern: str) -> bool:
+    return name == pattern or (pattern.endswith("*") and name.startswith(pattern[:-1]))
+
+
+def select(mutants: List[Mutant], only: str) -> List[Mutant]:
+    """The mutants named in ``only`` (comma-separated names or prefixes ending in ``*``), all when empty."""
+    wanted = [w.strip() for w in only.split(",") if w.strip()]
+    if not wanted:
+        return mutants
+    unknown = [w for w in wanted if not any(matches(m.name, w) for m in mutants)]
+    if unknown:
+        raise SystemExit(f"unknown mutants: {', '.join(unknown)} (see --list)")
+    return [m for m in mutants if any(matches(m.name, w) for w in wanted)]
+
+
+def check_snippets(mutants: List[Mutant]) -> int:
+    stale = [(m.name, n) for m in mutants for n in [snippet_count(m)] if n != 1]
+    for name, n in stale:
+        print(f"stale: {name} (its snippet occurs {n} times)")
+    print(f"{len(mutants) - len(stale)} of {len(mutants)} mutants apply")
+    return 1 if stale else 0
+
+
+def run_all(mutants: List[Mutant], builder: Builder, planter: Planter, args) -> List[Outcome]:
+    """The clean build brought up to date and installed, the baseline, then each mutant in turn."""
+    done = builder.build()
+    if done.returncode != 0:
+        print(done.stdout + done.stderr, file=sys.stderr)
+        raise SystemExit("the clean build fails: nothing to mutate")
+    builder.install()
+    failing = {} if args.no_baseline else baseline(mutants, args.timeout)
+    outcomes = []
+    for k, m in enumerate(mutants, 1):
+        print(f"[{k}/{len(mutants)}] {m.name} ({m.file}) ...", end=" ", flush=True)
+        key = " ".join(m.tests)
+        o = Outcome(m, "baseline fails", detail=failing[key]) if key in failing else run_mutant(m, planter, args.timeout)
+        outcomes.append(o)
+        print(f"{o.status} ({o.seconds:.0f} s)", flush=True)
+    return outcomes
 
 
 def main(argv=None) -> int:
@@ -306,27 +370,13 @@ def main(argv=None) -> int:
     parser.add_argument("--timeout", type=float, default=600.0, help="seconds per mutant's tests (default 600)")
     parser.add_argument("--no-baseline", action="store_true", help="skip the clean run of each selection")
     args = parser.parse_args(argv)
-    mutants = load()
+    mutants = select(load(), args.only)
     if args.list:
         for m in mutants:
             print(f"{m.name:<36} {m.file:<40} {' '.join(m.tests)}")
         return 0
-    if args.only:
-        wanted = [w.strip() for w in args.only.split(",") if w.strip()]
-        chosen = [m for m in mutants if any(m.name == w or (w.endswith("*") and m.name.startswith(w[:-1]))
-                                            for w in wanted)]
-        unknown = [w for w in wanted if not any(m.name == w or (w.endswith("*") and m.name.startswith(w[:-1]))
-                                                for m in mutants)]
-        if unknown:
-            print(f"unknown mutants: {', '.join(unknown)} (see --list)", file=sys.stderr)
-            return 2
-        mutants = chosen
     if args.check:
-        stale = [(m.name, n) for m in mutants for n in [snippet_count(m)] if n != 1]
-        for name, n in stale:
-            print(f"stale: {name} (its snippet occurs {n} times)")
-        print(f"{len(mutants) - len(stale)} of {len(mutants)} mutants apply")
-        return 1 if stale else 0
+        return check_snippets(mutants)
     site = site_packages()
     stale = check_installed_is_current(site)
     if stale:
@@ -336,28 +386,10 @@ def main(argv=None) -> int:
     files = sorted({m.file for m in mutants})
     diff_before = git_diff(files)
     builder = Builder(site)
-    planter = Planter(site, builder)
-    outcomes: List[Outcome] = []
-    # SIGTERM ends the run as Ctrl-C does: through the finally clauses that restore the files.
     signal.signal(signal.SIGTERM, interrupt)
     try:
         builder.save_installed()
-        done = builder.build()  # the build directory brought up to date with the clean sources
-        if done.returncode != 0:
-            print(done.stdout + done.stderr, file=sys.stderr)
-            print("the clean build fails: nothing to mutate", file=sys.stderr)
-            return 2
-        builder.install()
-        failing = {} if args.no_baseline else baseline(mutants, args.timeout)
-        for k, m in enumerate(mutants, 1):
-            print(f"[{k}/{len(mutants)}] {m.name} ({m.file}) ...", end=" ", flush=True)
-            key = " ".join(m.tests)
-            if key in failing:
-                o = Outcome(m, "baseline fails", detail=failing[key])
-            else:
-                o = run_mutant(m, planter, args.timeout)
-            outcomes.append(o)
-            print(f"{o.status} ({o.seconds:.0f} s)", flush=True)
+        outcomes = run_all(mutants, builder, Planter(site, builder), args)
     except KeyboardInterrupt:
         print("\ninterrupted: the files are restored", file=sys.stderr)
         return 130
@@ -365,7 +397,6 @@ def main(argv=None) -> int:
         builder.restore_installed()
         if git_diff(files) != diff_before:
             print("ERROR: git diff of the mutated files changed: check " + ", ".join(files), file=sys.stderr)
-            return 3
     print_table(outcomes)
     return 0 if outcomes and all(o.status.startswith("caught") for o in outcomes) else 1
 
