@@ -7,7 +7,7 @@ DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr demo-postures test fuzz test-asan bench stubs wheel clean
+.PHONY: setup run demo-rpr demo-postures test fuzz test-asan mutate bench stubs wheel clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -56,6 +56,12 @@ test-asan: $(ASAN_VENV)/.installed
 	LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libstdc++.so)" \
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	HYPOTHESIS_PROFILE=asan $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
+
+# Planted bugs (tests/mutants/mutants.toml), one at a time, each against the tests that cover it:
+# every one must be caught. Long (an incremental build per C++ mutant): not part of `make test`;
+# run it before calling a numerical change done. `make mutate ONLY=name1,name2` runs a few.
+mutate: setup
+	$(VPY) scripts/mutate.py $(if $(ONLY),--only $(ONLY))
 
 bench: setup
 	$(DEPS) python3-pykdl

@@ -2,16 +2,20 @@ import os
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, Phase, settings
 
 # How many examples each property test runs. `make test` (CI) uses "ci": a fixed sequence, so that
 # a landing is reproducible; `make fuzz` uses "fuzz": ten times as many, freshly random each run;
-# `make test-asan` uses "asan": fewer, since the sanitizer build is several times slower.
+# `make test-asan` uses "asan": fewer, since the sanitizer build is several times slower;
+# `make mutate` uses "mutate": the examples of "ci" without shrinking a failure (only whether a
+# planted bug is caught matters there, not its smallest example).
 _COMMON = dict(deadline=None, print_blob=True,
                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much])
 settings.register_profile("ci", max_examples=300, derandomize=True, **_COMMON)
 settings.register_profile("fuzz", max_examples=3000, **_COMMON)
 settings.register_profile("asan", max_examples=60, derandomize=True, **_COMMON)
+settings.register_profile("mutate", max_examples=300, derandomize=True,
+                          phases=[Phase.explicit, Phase.reuse, Phase.generate], **_COMMON)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 

@@ -57,12 +57,31 @@ def test_ur_every_solution_reaches_and_the_source_is_found(q):
         assert np.min(np.max(np.abs(d), axis=1)) < 1e-6
 
 
+def ur_rows(g):
+    """The UR table of a geometry dict as standard DH rows (rk.closed.ur's docstring)."""
+    return [(0.0, P / 2, g["d1"], 0.0, "R"), (g["a2"], 0.0, 0.0, 0.0, "R"), (g["a3"], 0.0, 0.0, 0.0, "R"),
+            (0.0, P / 2, g["d4"], 0.0, "R"), (0.0, -P / 2, g["d5"], 0.0, "R"), (0.0, 0.0, g["d6"], 0.0, "R")]
+
+
+def assert_ur_solutions_reach(g, s, T):
+    """Every solution puts the arm g's tool on T by the textbook DH product, within the core's
+    verified tolerance (1e-9 of the arm's size in position, 1e-8 in the rotation's entries) and the
+    reference's own rounding."""
+    size = sum(abs(float(g[k])) for k in ("d1", "a2", "a3", "d4", "d5", "d6"))
+    for row in s.q:
+        F = fk_dh(ur_rows(g), row)
+        miss = math.hypot(*(F[:3, 3] - T[:3, 3]))
+        assert miss <= 4e-9 * size + 1e-12, (g, row, miss)
+        assert np.max(np.abs(F[:3, :3] - T[:3, :3])) <= 4e-8, (g, row)
+
+
 @settings(max_examples=100)
 @given(geometry, ur_joints(), st.one_of(st.none(), st.just("default"), st.tuples(joints, joints), wild_floats))
 def test_ur_any_geometry_and_limits(g, q, limits):
     s = check_call(lambda: rk.closed.ur(UR5.fk(q), g, limits=limits), "robot", "limits", "target")
     if s is not None:
         assert_finite(s.q)
+        assert_ur_solutions_reach(g, s, UR5.fk(q))
     b = check_call(lambda: rk.closed.ur_batch(UR5.fk(q)[None], UR5, limits=limits), "limits", "targets")
     if b is not None:
         assert b[0].shape == (1, 8, 6)

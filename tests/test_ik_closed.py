@@ -268,6 +268,12 @@ def test_puma560_path_keeps_its_branch():
     for k in range(K):
         assert np.abs(puma.fk(q[k]) - targets[k]).max() < 1e-10
     assert np.abs(np.diff(np.vstack([q_start, q]), axis=0)).max() < 0.05
+    # From each of the start pose's postures the path stays in that posture (never a jump).
+    starts = rk.closed.puma560(T0, limits=None).q
+    assert len(starts) == 8
+    for start in starts:
+        q, ok = rk.closed.puma560_path(targets[:20], start, limits=None)
+        assert ok.all() and np.abs(np.diff(np.vstack([start, q]), axis=0)).max() < 0.05, start
     # an unreachable frame keeps the previous joints and says so
     far = targets.copy()
     far[100, 0, 3] = 3.0

@@ -51,6 +51,34 @@ def test_reported_success_equals_verified_success(robot, method):
         assert res.success.all()
 
 
+def verified_errors(chain, q, T):
+    """(position error, rotation angle) of q for the target T, by KDL's FK."""
+    F = chain._fk_kdl(q)
+    return np.linalg.norm(F[:3, 3] - T[:3, 3]), rotation_angle(F[:3, :3].T @ T[:3, :3])
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("tol_p, tol_r", [(1e-2, 1e-12), (1e-12, 1e-2), (1e-3, 1e-7), (1e-7, 1e-3)])
+def test_success_meets_each_tolerance_on_its_own(method, tol_p, tol_r):
+    """Position and rotation tolerances far apart: success means both verified errors are within
+    their own tolerance (a test with tol_p == tol_r cannot tell which error is compared with which
+    tolerance, nor whether the rotation is compared at all)."""
+    chain = rk.robots.ur5()
+    _, targets = random_targets(chain, 40, seed=17)
+    res = rk.ik_batch(chain, targets, np.zeros(6), method=method, tol_p=tol_p, tol_r=tol_r, restarts=2, seed=5,
+                      max_iter=60)
+    for k in range(len(targets)):
+        ep, er = verified_errors(chain, res.q[k], targets[k])
+        assert res.error_p[k] == pytest.approx(ep, rel=1e-6, abs=1e-13)
+        assert res.error_r[k] == pytest.approx(er, rel=1e-6, abs=1e-13)
+        if res.success[k]:
+            assert ep < tol_p * (1 + 1e-6) and er < tol_r * (1 + 1e-6), (k, ep, er)
+        else:
+            assert ep > tol_p * (1 - 1e-6) or er > tol_r * (1 - 1e-6), (k, ep, er)
+    # Not a test of nothing: some answers succeed and some fail on one tolerance only.
+    assert res.success.any()
+
+
 def test_single_solve_matches_batch_and_repr():
     chain = rk.robots.ur5()
     q, T = random_targets(chain, 1, seed=11)
@@ -143,6 +171,13 @@ def test_path_warm_start_has_no_branch_jumps():
     assert jumps < 0.05
     for k in range(0, steps, 10):
         assert verified(chain, res.q[k], targets[k])
+    # Each target is solved from the answer to the one before (one attempt, no restart).
+    for k in range(1, steps, 9):
+        assert np.array_equal(rk.ik(chain, targets[k], res.q[k - 1], restarts=0).q, res.q[k])
+    # From the other postures of the first target the path stays in that posture too.
+    for start in rk.closed.puma560(targets[0], limits="default").q:
+        res = rk.ik_batch(chain, targets[:30], start, path=True)
+        assert res.success.all() and np.abs(np.diff(np.vstack([start, res.q]), axis=0)).max() < 0.05
 
 
 def test_hessian_term_matches_finite_differences():
@@ -155,6 +190,43 @@ def test_hessian_term_matches_finite_differences():
             h = 1e-6
             fd = (chain.jacobian(q + h * a) - chain.jacobian(q - h * a)) / (2 * h)
             assert np.allclose(_testing.hessian_times(chain, q, a), fd, atol=1e-7)
+
+
+def rotation_vector(R):
+    """angle * axis of R (angle < pi), from its skew part and trace."""
+    v = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    s = np.linalg.norm(v)
+    return v * (math.atan2(s, (np.trace(R) - 1) / 2) / s) if s > 0 else v
+
+
+def wrapped_difference(a, b):
+    return np.remainder(np.asarray(a) - np.asarray(b) + math.pi, 2 * math.pi) - math.pi
+
+
+@pytest.mark.parametrize("method", ["nr", "halley"])
+def test_one_step_is_the_methods_formula(method, rng):
+    """One iteration from a start near the target (it lowers the error, so it is the answer), against
+    the method written here: pose error e = (p* - p, rotation vector of R* R^T), the damped Newton
+    step a = J^T (J J^T + l^2 I)^-1 e (l = 1e-6 for NR), and Halley's correction solving
+    (J + 1/2 sum_j a_j dJ/dq_j) dq = e with the Hessian term by central differences of KDL's Jacobian."""
+    chain = rk.robots.ur5()
+    for _ in range(10):
+        q_goal = rng.uniform(-2.5, 2.5, 6)
+        q0 = q_goal + rng.normal(scale=0.05, size=6)
+        T, F = chain._fk_kdl(q_goal), chain._fk_kdl(q0)
+        e = np.concatenate([T[:3, 3] - F[:3, 3], rotation_vector(T[:3, :3] @ F[:3, :3].T)])
+        J = chain._jacobian_kdl(q0)
+        if method == "nr":
+            dq = J.T @ np.linalg.solve(J @ J.T + 1e-12 * np.eye(6), e)
+        else:
+            a = np.linalg.solve(J, e)
+            h = 1e-6
+            HA = (chain._jacobian_kdl(q0 + h * a) - chain._jacobian_kdl(q0 - h * a)) / (2 * h)
+            dq = np.linalg.solve(J + 0.5 * HA, e)
+            assert np.linalg.norm(dq) <= 2 * np.linalg.norm(a)  # Halley's own step, not the Newton fallback
+        r = rk.ik(chain, T, q0, method=method, max_iter=1, restarts=0)
+        assert r.iterations == 1 and r.error_p < np.linalg.norm(e[:3])
+        np.testing.assert_allclose(wrapped_difference(r.q, q0 + dq), 0, atol=1e-7)
 
 
 def test_timeout_bounds_the_restarts():
@@ -272,6 +344,30 @@ def test_the_best_point_is_returned(method):
     for seed in range(5):  # across attempts too: random restarts never lose the first attempt's best
         r = rk.ik(chain, [5.0, 0.0], q0, method=method, task="xy", max_iter=7, restarts=3, seed=seed)
         assert r.error_p <= start and np.all(np.isfinite(r.q))
+
+
+@pytest.mark.parametrize("method", ["lm", "gn"])
+def test_descent_methods_never_return_a_worse_point_with_more_iterations(method):
+    """LM and GN accept a step only when it lowers the error at a point within the limits, so the
+    answer after k + 1 iterations is never worse than after k (one attempt, no restart). Planar arms
+    whose limits span less than a turn: a line search through the wrap at +-pi must stop on the
+    limit, not evaluate a point beyond it that the answer is clamped back from."""
+    rng = np.random.default_rng(0)
+    worse = []
+    for trial in range(300):
+        n = int(rng.integers(2, 4))
+        lim = rng.uniform(2.6, 3.1, n)
+        chain = rk.Chain.from_dh([(float(a), 0, 0, 0, "R") for a in rng.uniform(0.5, 1.5, n)], limits=(-lim, lim))
+        q_goal, q0 = rng.uniform(-lim, lim), rng.uniform(-lim, lim)
+        target = chain.fk(q_goal)[:2, 3]
+        previous = np.hypot(*(chain.fk(q0)[:2, 3] - target))
+        for k in range(1, 9):
+            r = rk.ik(chain, target, q0, method=method, task="xy", restarts=0, max_iter=k)
+            assert np.all(r.q >= -lim) and np.all(r.q <= lim)
+            if r.error_p > previous * (1 + 1e-12) + 1e-15:
+                worse.append((trial, k, previous, r.error_p))
+            previous = r.error_p
+    assert not worse, worse[:5]
 
 
 def test_default_damping_is_the_documented_one():

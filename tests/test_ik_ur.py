@@ -196,6 +196,31 @@ def test_singular_cases_are_flagged_and_verified():
     assert np.min(angle_dist(s.q, q)) < 1e-6
 
 
+@pytest.mark.parametrize("a1", [0.0, 0.9e-9])
+def test_every_solution_is_verified_by_the_chains_forward_model(a1, rng):
+    """A UR3 scaled to 1/100 with a1 = 0.9e-9 m: the UR reading admits it (its layout tolerance is
+    1e-9 m for arms under 1 m) but its closed form ignores a1, so its candidates miss by ~9e-10 m,
+    75 times the verified tolerance (1e-9 x the arm's size): the forward-model check must drop them
+    all. With a1 = 0 every target is solved, each solution within that tolerance."""
+    t = tuple(0.01 * v for v in UR_TABLES["ur3"])
+    rows = rows_of(t)
+    rows[0] = (a1,) + rows[0][1:]
+    chain = rk.Chain.from_dh(rows)
+    size = a1 + sum(abs(v) for v in t)
+    count = 0
+    for _ in range(20):
+        q = rng.uniform(-P, P, 6)
+        T = fk_dh(rows, q)
+        s = rk.closed.ur(T, chain, limits=None)
+        for row in s.q:
+            F = fk_dh(rows, row)
+            assert np.linalg.norm(F[:3, 3] - T[:3, 3]) <= 1.01e-9 * size
+            assert np.max(np.abs(F[:3, :3] - T[:3, :3])) <= 1e-8
+        count += len(s)
+    if a1 == 0:
+        assert count >= 20 * 2
+
+
 def test_out_of_reach_is_empty():
     T = np.eye(4)
     T[:3, 3] = (2.0, 0.0, 0.1)

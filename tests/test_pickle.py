@@ -197,37 +197,45 @@ def same_value(a, b):
     return type(a) is type(b) and a == b
 
 
-def results():
-    ur5, p3 = rk.robots.ur5(), rk.robots.planar_3r()
-    q = configurations(ur5, 4)
-    robot = rk.RRR3()
-    yield rk.ik(ur5, ur5.fk(q[0]), q[1], restarts=2, seed=1)
-    yield rk.ik_batch(ur5, ur5.fk(q), q[1], restarts=2, seed=1)
-    yield rk.closed.ur(ur5.fk(q[0]), ur5)
-    yield rk.reach(p3, (1.2, 0.7), np.zeros(3))
-    yield rk.track(p3, rk.paths.line((1.2, 0.7), (1.4, 0.7), 0.05), np.zeros(3))
-    yield robot.ik_newton((0.01, 0.0, 0.0), (np.zeros(3), np.ones(3)))
-    yield robot.fk(robot.ik((0.01, 0.0, 0.0)), (0.0, 0.0, 0.0))
-    yield robot.singularity((0.0, 0.0, 0.0))
-    yield robot.plan(rk.paths.circle(12))
-    yield robot.workspace(n=20)
-    yield rk.servo(ur5, ur5.fk(q[:2]), q[0], 0.01)
-    yield rk.traj.quintic(np.zeros(2), np.ones(2), np.linspace(0, 1, 5))
-    yield rk.cuspidal(p3)
-    yield rrr3_design.best_l2([0.1], [0.1, 0.12], n=20)
-    yield rk.reachability(p3, ((0.5, 1.5), (0.0, 1.0)), 0.5, orientations=3, task="xyphi")
+def on_ur5(call):
+    """call(chain, q) on the UR5 and four configurations of it."""
+    chain = rk.robots.ur5()
+    return call(chain, configurations(chain, 4))
 
 
-@pytest.mark.parametrize("result", list(results()), ids=lambda r: type(r).__name__)
-def test_every_result_type_pickles_and_copies(result):
+#: One builder per result type, called inside the test: a builder that raises fails its own test
+#: (a list computed while the module is collected would stop the collection, and with it the run).
+RESULTS = {
+    "IKResult": lambda: on_ur5(lambda c, q: rk.ik(c, c.fk(q[0]), q[1], restarts=2, seed=1)),
+    "IKBatchResult": lambda: on_ur5(lambda c, q: rk.ik_batch(c, c.fk(q), q[1], restarts=2, seed=1)),
+    "IKSolutions": lambda: on_ur5(lambda c, q: rk.closed.ur(c.fk(q[0]), c)),
+    "ReachResult": lambda: rk.reach(rk.robots.planar_3r(), (1.2, 0.7), np.zeros(3)),
+    "TrackResult": lambda: rk.track(rk.robots.planar_3r(), rk.paths.line((1.2, 0.7), (1.4, 0.7), 0.05), np.zeros(3)),
+    "RRR3Newton": lambda: rk.RRR3().ik_newton((0.01, 0.0, 0.0), (np.zeros(3), np.ones(3))),
+    "RRR3Fk": lambda: rk.RRR3().fk(rk.RRR3().ik((0.01, 0.0, 0.0)), (0.0, 0.0, 0.0)),
+    "RRR3Singularity": lambda: rk.RRR3().singularity((0.0, 0.0, 0.0)),
+    "RRR3Plan": lambda: rk.RRR3().plan(rk.paths.circle(12)),
+    "RRR3Workspace": lambda: rk.RRR3().workspace(n=20),
+    "ServoResult": lambda: on_ur5(lambda c, q: rk.servo(c, c.fk(q[:2]), q[0], 0.01)),
+    "Trajectory": lambda: rk.traj.quintic(np.zeros(2), np.ones(2), np.linspace(0, 1, 5)),
+    "Cuspidality": lambda: rk.cuspidal(rk.robots.planar_3r()),
+    "DesignStudy": lambda: rrr3_design.best_l2([0.1], [0.1, 0.12], n=20),
+    "ReachabilityMap": lambda: rk.reachability(rk.robots.planar_3r(), ((0.5, 1.5), (0.0, 1.0)), 0.5, orientations=3,
+                                               task="xyphi"),
+}
+
+
+@pytest.mark.parametrize("name", RESULTS)
+def test_every_result_type_pickles_and_copies(name):
+    result = RESULTS[name]()
     before = attributes(result)
-    assert before, type(result).__name__
+    assert before, name
     for copied in (pickle.loads(pickle.dumps(result)), copy.deepcopy(result)):
         assert type(copied) is type(result)
         after = attributes(copied)
         assert after.keys() == before.keys()
-        for name in before:
-            assert same_value(before[name], after[name]), (type(result).__name__, name)
+        for field in before:
+            assert same_value(before[field], after[field]), (name, field)
         assert repr(copied) == repr(result)
 
 

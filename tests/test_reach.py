@@ -27,8 +27,11 @@ def jacobian(t):
     return np.array([[-(L1 + t[1]) * s1 - L3 * s13, c1, -L3 * s13], [(L1 + t[1]) * c1 + L3 * c13, s1, L3 * c13]])
 
 
-def seed_reach(p_target, theta):
-    """Algorithm 1 of seed 000, line by line."""
+def seed_reach(p_target, theta, weights=None):
+    """The Reach algorithm, line by line; with `weights`, the homogeneous term of eqs. (5)-(7),
+    dq_H = (1 - J^+ J) W (qbar - q), added to the first iteration's step (robokin.reach's rule:
+    the following iterations are the minimum-norm corrections that remove its second-order
+    residual)."""
     n, delta = 25, 1e-5
     d, dt = 0.75, 0.025
     p = forward_kinematic(theta)
@@ -36,7 +39,10 @@ def seed_reach(p_target, theta):
     while True:
         dp = d * (p_target - p) / dt
         J = jacobian(theta)
-        dq_m = J.T @ np.linalg.inv(J @ J.T) @ dp
+        Jp = J.T @ np.linalg.inv(J @ J.T)
+        dq_m = Jp @ dp
+        if weights is not None and iterations == 0:
+            dq_m = dq_m + (np.eye(3) - Jp @ J) @ (weights * ((Q_MAX + Q_MIN) / 2 - theta))
         theta = np.clip(theta + dt * dq_m, Q_MIN, Q_MAX)
         p = forward_kinematic(theta)
         n -= 1
@@ -69,6 +75,24 @@ def test_reach_equals_the_literal_seed_algorithm(rng):
         assert r.iterations == iterations
         assert r.converged == (np.linalg.norm(target - forward_kinematic(r.q)) < 1e-5)
         assert r.error == pytest.approx(np.linalg.norm(target - forward_kinematic(r.q)), abs=1e-12)
+
+
+@pytest.mark.parametrize("gain", [1.0, 5.0])
+def test_reach_with_the_nullspace_term_equals_the_literal_seed_algorithm(rng, gain):
+    chain = rk.robots.rpr()
+    weights = gain / (Q_MAX - Q_MIN)
+    changed = 0
+    for _ in range(200):
+        q = rng.uniform(Q_MIN, Q_MAX)
+        target = forward_kinematic(q) + rng.normal(scale=0.01, size=2)
+        expected, iterations = seed_reach(target, q, weights)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", rk.PrecisionWarning)
+            r = rk.reach(chain, target, q, nullspace="joint_limits" if gain == 1.0 else weights)
+        np.testing.assert_allclose(r.q, expected, atol=1e-9)
+        assert r.iterations == iterations
+        changed += not np.allclose(expected, seed_reach(target, q)[0], atol=1e-6)
+    assert changed > 150  # the term does move the joints
 
 
 def test_track_a_2000_point_line_within_tolerance_and_limits():

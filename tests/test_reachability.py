@@ -66,6 +66,20 @@ def test_index_agrees_with_a_brute_force_fk_estimate(planar_map):
 def test_manipulability_is_the_best_among_the_solutions(planar_map):
     m = planar_map
     assert np.all((m.manipulability > 0) == (m.index > 0))
+    # At a reachable (x, y, phi) both elbows have |sin q2| from the wrist distance w,
+    # cos q2 = (w^2 - a1^2 - a2^2) / (2 a1 a2), and the xyphi manipulability a1 a2 |sin q2|: the map
+    # holds the best of it over the voxel's sampled orientations (the map's own).
+    K = m.orientations
+    u = R._uniforms(m.seed, 0, m.index.size * K, 3)
+    phi = (2 * u[:, 0] - 1) * np.pi
+    X, Y = np.meshgrid(*m.axes, indexing="ij")
+    w = np.hypot(np.repeat(X.ravel(), K) - A[2] * np.cos(phi), np.repeat(Y.ravel(), K) - A[2] * np.sin(phi))
+    c2 = np.clip((w**2 - A[0] ** 2 - A[1] ** 2) / (2 * A[0] * A[1]), -1, 1)
+    reachable = (w >= abs(A[0] - A[1]) + 1e-9) & (w <= A[0] + A[1] - 1e-9)
+    best = np.where(reachable, A[0] * A[1] * np.sqrt(1 - c2**2), 0.0).reshape(-1, K).max(axis=1)
+    edge = ((np.abs(w - abs(A[0] - A[1])) < 1e-6) | (np.abs(w - A[0] - A[1]) < 1e-6)).reshape(-1, K).any(axis=1)
+    # (the IK stops within 1e-6: near a stretched or folded elbow |sin q2| moves by ~1e-5)
+    np.testing.assert_allclose(m.manipulability.ravel()[~edge], best[~edge], rtol=0, atol=1e-4)
     # The 3R's xyphi manipulability is a1 a2 |sin q2|: at most a1 a2.
     assert m.manipulability.max() <= A[0] * A[1] + 1e-12 and m.manipulability.max() > 0.9 * A[0] * A[1]
 

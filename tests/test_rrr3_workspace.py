@@ -73,6 +73,37 @@ def test_singular_cells(robot, ws):
         change = np.abs(a[1:] - a[:-1]) == 2
         assert np.all(((c[1:] >= 2) | (c[:-1] >= 2))[change])
     assert ws.area <= ws.regular_area <= ws.reachable_area
+
+
+def largest_region(regular):
+    """Cells of the largest 4-connected region of True cells (a flood fill written here)."""
+    seen = np.zeros(regular.shape, bool)
+    best = 0
+    for start in zip(*np.nonzero(regular)):
+        if seen[start]:
+            continue
+        seen[start], stack, size = True, [start], 0
+        while stack:
+            j, i = stack.pop()
+            size += 1
+            for nb in ((j + 1, i), (j - 1, i), (j, i + 1), (j, i - 1)):
+                if 0 <= nb[0] < regular.shape[0] and 0 <= nb[1] < regular.shape[1] and regular[nb] and not seen[nb]:
+                    seen[nb] = True
+                    stack.append(nb)
+        best = max(best, size)
+    return best
+
+
+def test_areas_are_the_cells_counted(ws):
+    """The areas are cell counts times the cell's area: reachable, regular, and the largest
+    singularity-free region (several regions here: the largest is not all of the regular area)."""
+    cells = np.asarray(ws.cells)
+    cell = ws.cell_size**2
+    assert ws.reachable_area == pytest.approx(np.count_nonzero(cells > 0) * cell, rel=1e-12)
+    assert ws.regular_area == pytest.approx(np.count_nonzero(cells == 1) * cell, rel=1e-12)
+    largest = largest_region(cells == 1)
+    assert largest < np.count_nonzero(cells == 1)
+    assert ws.area == pytest.approx(largest * cell, rel=1e-12)
     assert ws.regular_area == pytest.approx(np.sum(ws.cells == 1) * ws.cell_size**2)
 
 
@@ -104,22 +135,42 @@ def test_design_study_matches_the_workspace_maps():
         assert best.index[k].max() == best.index[k][list(best.l2).index(best.best_l2[k])]
 
 
-def test_plots_render(tmp_path, robot):
+def segments(ax):
+    """Every two-point line of the axes as ((x0, y0), (x1, y1))."""
+    return [tuple(map(tuple, np.asarray(line.get_xydata()))) for line in ax.lines if len(line.get_xydata()) == 2]
+
+
+def test_plots_draw_the_model(robot):
+    """The figures are checked by what they draw: the legs where DESIGN.md's geometry puts them
+    (elbows from the core's inverse model), the map's cells in their colours, the design curves."""
     mpl = pytest.importorskip("matplotlib")
     mpl.use("Agg")
     import matplotlib.pyplot as plt
 
     import robokin.plots_rrr3 as plots
 
-    fig, _ = plots.plot_robot(robot, np.array([0.02, 0.01, 0.2]), path=rk.paths.clover(100))
-    fig.savefig(tmp_path / "robot.png")
-    fig, _, w = plots.plot_workspace(robot, n=80)
-    fig.savefig(tmp_path / "ws.png")
-    fig, _ = plots.plot_design(design.area_vs_platform_radius(np.linspace(0.03, 0.12, 4), n=40),
-                               design.best_l2([0.08, 0.1], [0.05, 0.1, 0.15], n=40))
-    fig.savefig(tmp_path / "design.png")
+    pose = np.array([0.02, 0.01, 0.2])
+    clover = rk.paths.clover(100)
+    fig, ax = plots.plot_robot(robot, pose, path=clover)
+    o, b = base(robot), platform(robot, pose)
+    alpha = robot.ik(pose)
+    a = o + robot.l1 * np.column_stack((np.cos(alpha), np.sin(alpha)))
+    np.testing.assert_allclose(np.linalg.norm(b - a, axis=1), robot.l2, atol=1e-12)  # the loops close
+    drawn = segments(ax)
+    for i in range(3):
+        for p, q in ((o[i], a[i]), (a[i], b[i])):
+            assert any(np.allclose(seg, (p, q), atol=1e-12) for seg in drawn), (i, p, q)
+    assert any(np.array_equal(line.get_xydata(), clover) for line in ax.lines)  # the path as given
+    np.testing.assert_allclose(ax.patches[-1].get_xy()[:3], b, atol=1e-12)  # the platform's triangle
+    fig, ax, w = plots.plot_workspace(robot, phi=0.1, n=80)
+    np.testing.assert_array_equal(ax.images[0].get_array(), plots.CELL_COLOURS[np.asarray(w.cells)])
+    assert tuple(ax.images[0].get_extent()) == tuple(w.extent)
+    curve = design.area_vs_platform_radius(np.linspace(0.03, 0.12, 4), n=40)
+    best = design.best_l2([0.08, 0.1], [0.05, 0.1, 0.15], n=40)
+    fig, (ax1, ax2) = plots.plot_design(curve, best)
+    np.testing.assert_array_equal(ax1.lines[0].get_xydata(), np.column_stack((curve.values * 100, curve.area * 1e4)))
+    np.testing.assert_array_equal(ax2.lines[0].get_xydata(), np.column_stack((best.l1 * 100, best.best_l2 * 100)))
     plt.close("all")
-    assert all((tmp_path / f).stat().st_size > 1000 for f in ("robot.png", "ws.png", "design.png"))
 
 
 def test_map_cells_agree_with_singularity_everywhere(robot):

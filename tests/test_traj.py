@@ -134,6 +134,17 @@ def test_via_points_limits_ends_and_finite_differences():
     assert tr.via_times[1] - tr.via_times[0] >= 1.0 - 1e-12
 
 
+def test_via_points_segments_last_the_slowest_joints_time_at_its_limit():
+    # Blends short next to the segments (a large amax): each segment lasts max_i |dp_i| / vmax_i, the
+    # time of the joint that needs longest at its velocity limit, which it reaches.
+    points = np.array([[0.0, 0.0], [1.0, 0.5], [1.5, 2.0]])
+    vmax = np.array([1.0, 0.8])
+    tr = traj.via_points(points, vmax, amax=[1000.0, 1000.0], dt=1e-3)
+    np.testing.assert_allclose(np.diff(tr.via_times), [1.0, 1.5 / 0.8], rtol=1e-12)
+    assert np.all(np.abs(tr.qd) <= vmax * (1 + 1e-12))
+    assert np.abs(tr.qd[:, 0]).max() == pytest.approx(1.0) and np.abs(tr.qd[:, 1]).max() == pytest.approx(0.8)
+
+
 def test_via_points_pass_a_point_where_the_velocity_does_not_change():
     # Three collinear points equally spaced: no blend at the middle one, passed exactly at its time.
     tr = traj.via_points([[0.0, 0.0], [1.0, 2.0], [2.0, 4.0]], vmax=[1.0, 2.0], amax=[4.0, 8.0], dt=1e-3)
