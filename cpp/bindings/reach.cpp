@@ -1,6 +1,7 @@
 // The Reach loop and path tracking (seed 000, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "results.hpp"
@@ -20,14 +21,7 @@ using ReachOptionsClass = OptionsClass<ReachOptions>;
 // The options of one call: the keyword arguments, plus the null-space term the chain gives them.
 ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
   ReachOptions o = ReachOptionsClass::from_kwargs(kwargs);
-  if (py::isinstance<py::str>(nullspace)) {
-    if (py::cast<std::string>(nullspace) != "joint_limits")
-      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" +
-           py::cast<std::string>(nullspace) + "'");
-    o.nullspace_weights = joint_limit_weights(chain);
-  } else if (!nullspace.is_none()) {
-    o.nullspace_weights = as_vector(nullspace, "nullspace", chain.dof());
-  }
+  o.nullspace_gains = nullspace_gains(chain, nullspace);
   o.validate(chain);
   return o;
 }

@@ -13,22 +13,11 @@
 namespace robokin::bind {
 namespace {
 
-Vector nullspace_weights(const Chain& chain, NullspaceLike nullspace) {
-  if (nullspace.is_none()) return Vector();
-  if (py::isinstance<py::str>(nullspace)) {
-    if (py::cast<std::string>(nullspace) != "joint_limits")
-      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" + py::cast<std::string>(nullspace) +
-           "'");
-    return joint_limit_weights(chain);
-  }
-  return as_vector(nullspace, "nullspace", chain.dof());
-}
-
 RateOptions rate_options(const Chain& chain, TaskName task, double damping, NullspaceLike nullspace) {
   RateOptions o;
   o.task = task_of(task);
   o.damping = damping;
-  o.nullspace_weights = nullspace_weights(chain, nullspace);
+  o.nullspace_gains = nullspace_gains(chain, nullspace);
   check_rate_options(chain, o);
   return o;
 }

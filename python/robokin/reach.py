@@ -31,10 +31,15 @@ def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspa
             ``"pose"`` a (4, 4) frame.
         q: Start joints, shape (dof,); the target should be close to the tool at q.
         task: Which rows of the geometric Jacobian are controlled.
-        nullspace: ``"joint_limits"`` adds the homogeneous term ``(1 - J^p J) h`` with
-            ``h = W (qbar - q)``, ``W = diag(1 / (q_max - q_min))`` (seed eqs. 5-7), on the first
-            iteration of each call; the remaining iterations are minimum-norm corrections, so the
-            tolerance is still met. An array of ``dof`` gains replaces ``W``'s diagonal.
+        nullspace: ``"joint_limits"`` adds the homogeneous term ``(1 - J^p J) h`` (seed eqs. 5-7)
+            with ``h = -grad z = W^T W (qbar - q)``, the descent direction of the seed's
+            joint-limit cost ``z = 1/2 |W (qbar - q)|^2``, ``W = diag(1 / (q_max - q_min))``
+            (:func:`robokin.joint_limit_cost`), on the first iteration of each call; the remaining
+            iterations are minimum-norm corrections, so the tolerance is still met. An array of
+            ``dof`` gains ``g`` gives ``h = g * (qbar - q)``, the descent direction of
+            ``1/2 sum g_i (qbar_i - q_i)^2`` (``"joint_limits"`` is ``g = 1 / (q_max - q_min)^2``;
+            ``k`` times those gains pulls ``k`` times harder toward the least cost, 0 for a joint
+            that should not be pulled).
         **options: Keyword-only, the fields of :class:`ReachOptions` (defaults the seed's):
             ``max_iter`` iterations at most (the seed's n = 25, in [1, 100000]); ``tol`` on the norm
             of the task error (metres for positions; the seed's 1e-5); ``gain`` the seed's d;

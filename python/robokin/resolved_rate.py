@@ -23,7 +23,7 @@ def resolved_rate(chain: _core.Chain, q, twist, damping: float = 0.0, nullspace:
 
     ``qd = J^p twist + (1 - J^p J) h`` with the damped least-squares pseudoinverse
     ``J^p = J^T (J J^T + damping^2 I)^-1`` (the minimum-norm pseudoinverse when ``damping = 0``) and
-    the null-space term of seed 000: ``h = W (qbar - q)``.
+    the null-space term of seed 000, ``h = -grad z`` (see ``nullspace``).
 
     Args:
         chain: The serial chain.
@@ -31,8 +31,9 @@ def resolved_rate(chain: _core.Chain, q, twist, damping: float = 0.0, nullspace:
         twist: Task velocity, the task's rows of ``(v_x, v_y, v_z, w_x, w_y, w_z)`` in the base frame
             (6 for ``"pose"``, 3 for ``"position"``, 2 for ``"xy"``, 3 for ``"xyphi"``).
         damping: lambda of the damped least squares (>= 0), for use near singularities.
-        nullspace: None; ``"joint_limits"`` (``W = diag(1 / (q_max - q_min))``, the seed's
-            joint-limit avoidance, as :func:`robokin.reach`); or (dof,) gains as ``W``'s diagonal.
+        nullspace: None; ``"joint_limits"`` (the seed's joint-limit avoidance,
+            ``h = W^T W (qbar - q)``, ``W = diag(1 / (q_max - q_min))``, as :func:`robokin.reach`);
+            or (dof,) gains ``g``: ``h = g * (qbar - q)``.
         task: Which rows of the Jacobian are controlled.
 
     Returns:
