@@ -144,9 +144,9 @@ def test_track_equals_reach_point_by_point(rng):
     chain = rk.robots.planar_3r(0.5, 0.4, 0.3)
     q = np.array([0.3, 0.6, -0.4])
     points = rk.paths.circle(50, radius=0.05, center=chain.fk(q)[:2, 3] - (0.05, 0))
-    tr = rk.track(chain, points, q)
+    tr = rk.track(chain, points, q, task="xy")
     for k, p in enumerate(points):
-        r = rk.reach(chain, p, q)
+        r = rk.reach(chain, p, q, task="xy")
         np.testing.assert_array_equal(r.q, tr.q[k])
         assert (r.iterations, r.converged, r.error) == (tr.iterations[k], tr.converged[k], tr.error[k])
         q = r.q
@@ -195,8 +195,8 @@ def test_damping_near_a_singularity():
     target = [2.9, 0.05]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", rk.PrecisionWarning)
-        plain = rk.reach(chain, target, q, max_iter=200)
-    damped = rk.reach(chain, target, q, max_iter=200, damping=0.05)
+        plain = rk.reach(chain, target, q, max_iter=200, task="xy")
+    damped = rk.reach(chain, target, q, max_iter=200, damping=0.05, task="xy")
     assert damped.converged and np.all(np.isfinite(plain.q))
 
 
@@ -249,17 +249,19 @@ def test_reach_rejects_bad_options(kwargs, match):
 def test_reach_rejects_bad_targets_and_joints():
     chain = rk.robots.rpr()
     with pytest.raises(ValueError, match=r"target: expected shape \(2,\)"):
-        rk.reach(chain, [1.0, 2.0, 3.0], Q1)
+        rk.reach(chain, [1.0, 2.0, 3.0, 4.0], Q1)
     with pytest.raises(ValueError, match="target: expected a \\(4, 4\\) homogeneous matrix"):
-        rk.reach(chain, [1.0, 2.0], Q1, task="pose")
+        rk.reach(chain, [1.0, 2.0, 3.0, 4.0], Q1, task="pose")
     with pytest.raises(ValueError, match="q: contains NaN or inf"):
         rk.reach(chain, P1, [np.nan, 0, 0])
     with pytest.raises(ValueError, match=r"points: expected shape \(K, 2\)"):
-        rk.track(chain, np.zeros((4, 3)), Q1)
+        rk.track(chain, np.zeros((4, 5)), Q1)
     with pytest.raises(ValueError, match="points: contains NaN or inf"):
         rk.track(chain, [[0, np.inf]], Q1)
     with pytest.raises(ValueError, match="nullspace: joint 0 has no finite limits"):
-        rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], nullspace=[1, 0, 0])
+        rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], task="xy", nullspace=[1, 0, 0])
+    with pytest.raises(TypeError, match="task: expected None or a string"):
+        rk.reach(chain, P1, Q1, task=3)
     empty = rk.track(chain, np.zeros((0, 2)), Q1)
     assert empty.q.shape == (0, 3)
 

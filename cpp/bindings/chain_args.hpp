@@ -43,8 +43,9 @@ inline Float64View q_view(py::handle q_obj, Array& holder) {
   return view_of(holder);
 }
 
-// The task's rows of the 6 x n geometric Jacobian.
-inline Task task_of(py::handle obj) {
+// The task named by obj (a string), or for None the chain's natural task (natural_task, task.hpp).
+inline Task task_of(py::handle obj, const Chain& chain) {
+  if (obj.is_none()) return natural_task(chain);
   if (PyUnicode_Check(obj.ptr())) {
     Py_ssize_t len = 0;
     const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
@@ -52,7 +53,7 @@ inline Task task_of(py::handle obj) {
     return parse_task(std::string(s, static_cast<size_t>(len)));  // short: no allocation; throws naming the task
   }
   // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
-  throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
+  throw py::type_error("task: expected None or a string, one of 'pose', 'position', 'xy', 'xyphi'");
 }
 
 // The null-space gains of a Reach or resolved-rate call (reach.hpp): None for none, "joint_limits"

@@ -64,16 +64,18 @@ class Chain:
         """
         Frames (dof + 1, 4, 4): base, then the frame after each joint.
         """
-    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.ndarray:
+    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose') -> numpy.ndarray:
         """
-        Geometric Jacobian at the tool point in the base frame, rows of the task.
+        Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)
+        by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.
         """
-    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> float | numpy.typing.NDArray[numpy.float64]:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
         """
         Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
         product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
         condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),
-        an array (N,) for a batch (N, dof) (GIL released, every core).
+        an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's
+        natural_task (a planar arm's 'pose' rows would always give 0).
         """
     def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -93,6 +95,13 @@ class Chain:
     def limits(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
         """
         (lower, upper) joint limits; +-inf where a joint is unlimited.
+        """
+    @property
+    def natural_task(self) -> str:
+        """
+        The task calls control when given task=None: 'xyphi' for a planar arm (every joint moving the tool
+        parallel to the base xy plane) with at least three revolute joints, 'xy' for another planar arm,
+        'pose' for a spatial arm of six joints or more, 'position' for one with fewer.
         """
 class ReachOptions:
     """
@@ -916,7 +925,7 @@ class IKOptions:
     """
     __hash__: typing.ClassVar[None] = None
     fields: typing.ClassVar[tuple] = ('method', 'task', 'tol_p', 'tol_r', 'max_iter', 'restarts', 'timeout', 'damping', 'stall_window')
-    kinds: typing.ClassVar[tuple] = ('str', 'str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
+    kinds: typing.ClassVar[tuple] = ('str', 'None or str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
     def __eq__(self, arg0: typing.Any) -> bool:
         ...
     def __getstate__(self) -> dict:
@@ -974,12 +983,12 @@ class IKOptions:
     def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def task(self) -> str:
+    def task(self) -> str | None:
         """
-        'pose', 'position', 'xy' or 'xyphi'.
+        'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.
         """
     @task.setter
-    def task(self, arg1: str) -> None:
+    def task(self, arg1: str | None) -> None:
         ...
     @property
     def timeout(self) -> float | None:
@@ -1115,11 +1124,13 @@ class IKSolver:
     @property
     def options(self) -> IKOptions:
         """
-        The solver's IKOptions (a copy).
+        The solver's IKOptions (a copy), its task resolved (None: the chain's natural_task).
         """
     @property
     def task(self) -> str:
-        ...
+        """
+        The task solved for (task=None: the chain's natural_task).
+        """
 def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex = 256) -> dict:
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
@@ -1191,7 +1202,7 @@ def pose_rpy(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     (roll, pitch, yaw) of rotations. Use robokin.pose.rpy.
     """
-def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
+def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
     """
     One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
     """
@@ -1207,7 +1218,7 @@ def release_output_memory() -> int:
     frames on one thread: 24 -> 15 ms here). The kernel may take kept memory back under memory
     pressure at any time. Linux only; elsewhere numpy allocates every output and this returns 0.
     """
-def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.typing.NDArray[numpy.float64]:
+def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> numpy.typing.NDArray[numpy.float64]:
     """
     Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.
     """
@@ -1219,11 +1230,11 @@ def rrr3_region_areas(robots: numpy.typing.ArrayLike, phi: typing.SupportsFloat 
     """
     RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.
     """
-def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose', saturate: bool = True) -> tuple:
+def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, saturate: bool = True) -> tuple:
     """
     Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.
     """
-def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
+def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
     """
