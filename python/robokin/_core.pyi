@@ -869,9 +869,10 @@ class RRR3:
         ...
 class IKSolutions:
     """
-    Every closed-form solution of a pose: q (k, dof) and one posture label per row.
+    Every closed-form solution of a pose: q (k, dof), one posture label per row and
+    whether each row is within the joint limits (none is dropped for its limits).
     """
-    def __getstate__(self) -> tuple[int, int, numpy.typing.NDArray[numpy.float64], tuple, bool]:
+    def __getstate__(self) -> tuple[int, int, numpy.typing.NDArray[numpy.float64], tuple, bool, tuple]:
         ...
     def __len__(self) -> int:
         ...
@@ -881,7 +882,11 @@ class IKSolutions:
         ...
     def nearest(self, q: numpy.typing.ArrayLike) -> typing.Any:
         """
-        Index of the solution nearest to q (Euclidean in joint space); None when empty.
+        Index of the solution within the limits nearest to q (Euclidean in joint space); None when none is.
+        """
+    def only_within_limits(self) -> IKSolutions:
+        """
+        The solutions within the joint limits only (an IKSolutions, rows in order).
         """
     @property
     def dof(self) -> int:
@@ -900,6 +905,12 @@ class IKSolutions:
     def singular(self) -> bool:
         """
         True at a singularity (postures coincide, or a joint is free: 0 was chosen).
+        """
+    @property
+    def within_limits(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        (k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);
+        False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).
         """
 class _SphericalWrist6R:
     """

@@ -134,11 +134,10 @@ def _closed_sets(chain: Chain, poses):
     except ValueError:
         is_ur = False
     if is_ur:
-        q, _ = closed.ur_batch(poses, chain)
+        q, _, within = closed.ur_batch(poses, chain)  # within: a solution, within the limits
         names = list(closed.UR_POSTURES)
         sets, labels = [], []
-        for row in q:
-            keep = ~np.isnan(row[:, 0])
+        for row, keep in zip(q, within):
             sets.append(row[keep])
             labels.append([names[k] for k in np.nonzero(keep)[0]])
         return sets, labels
@@ -146,7 +145,8 @@ def _closed_sets(chain: Chain, poses):
         sets, labels = [], []
         g = closed.PUMA560
         for T in poses:
-            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], limits=chain)
+            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"],
+                                          limits=chain).only_within_limits()
             sets.append(s.q)
             labels.append(list(s.postures))
         return sets, labels
