@@ -362,22 +362,23 @@ class RRR3Plan:
     @property
     def alpha(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (K, 3) actuated angles, NaN rows where unreachable.
+        (K, 3) actuated angles, NaN rows where unreachable (feasible is then False).
         """
     @property
     def det_a_norm(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        det A / platform_radius along the path.
+        det A / platform_radius along the path, NaN where unreachable.
         """
     @property
     def det_b_norm(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        det B / l1^3 along the path.
+        det B / l1^3 along the path, NaN where unreachable.
         """
     @property
     def distance(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Distance to parallel singularities (inverse condition number of A) along the path.
+        Distance to parallel singularities (inverse condition number of A) along the path, NaN where
+        unreachable.
         """
     @property
     def feasible(self) -> bool:
