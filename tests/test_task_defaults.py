@@ -74,7 +74,8 @@ def start(chain, seed=0):
 def task_value(chain, q, task):
     """The task's target at q: (4, 4) for "pose", the task's coordinates otherwise."""
     T = chain.fk(q)
-    return {"pose": T, "position": T[:3, 3], "xy": T[:2, 3], "xyphi": np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])}[task]
+    xyphi = np.array([T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])])
+    return {"pose": T, "position": T[:3, 3], "xy": T[:2, 3], "xyphi": xyphi}[task]
 
 
 def same(a, b):

@@ -277,11 +277,12 @@ def ur(target, robot, limits="default") -> IKSolutions:
             ``within_limits`` (every solution is returned).
 
     Returns:
-        IKSolutions (every solution, ``within_limits`` marking those within the limits) labelled ``"shoulder left|right, elbow up|down, wrist no flip|flip"`` (the 8 of
-        :data:`UR_POSTURES`): shoulder left puts the wrist centre (origin of frame 5) on the -x side
-        of frame 1, elbow up the elbow above the line from the shoulder to the origin of frame 4,
-        and wrist no flip the DH angle of joint 5 in ``[0, pi]``. ``singular`` is set, and postures
-        that coincide are returned once, at the shoulder singularity (wrist centre ``|d4|`` from
+        IKSolutions (every solution, ``within_limits`` marking those within the limits) labelled
+        ``"shoulder left|right, elbow up|down, wrist no flip|flip"`` (the 8 of :data:`UR_POSTURES`):
+        shoulder left puts the wrist centre (origin of frame 5) on the -x side of frame 1, elbow up
+        the elbow above the line from the shoulder to the origin of frame 4, and wrist no flip the
+        DH angle of joint 5 in ``[0, pi]``. ``singular`` is set, and postures that coincide are
+        returned once, at the shoulder singularity (wrist centre ``|d4|`` from
         axis 1: "shoulder singular"), the elbow's (q3 = 0 or pi: "elbow straight" / "elbow
         folded") and the wrist's (joint 5 at 0 or pi: axes 2, 3, 4 and 6 parallel, a continuum of
         solutions of which one representative per shoulder and elbow is returned, "wrist

@@ -28,7 +28,8 @@ from ._checks import real_array
 from .ik import ik_batch
 from .pose import from_quaternion
 
-__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "ORIENTATIONS", "MAX_VOXELS", "ReachabilityMap", "grid", "reachability"]
+__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap", "grid",
+           "reachability"]
 
 #: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget);
 #: every other :class:`robokin.IKOptions` field keeps the IK's default.
@@ -111,9 +112,10 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
             None: ``chain.natural_task``.
         q0: IK start for every target, (dof,); None: the middle of each joint's finite limits, 0
             for unlimited joints.
-        ik_options: The other fields of :class:`robokin.IKOptions`, for the batch IK (:func:`robokin.ik_batch`); the defaults are :data:`DEFAULTS`
-            (tolerances 1e-6, 10 restarts, no time budget), the IK's own for the others. A
-            ``timeout`` makes the map depend on the machine's speed.
+        ik_options: The other fields of :class:`robokin.IKOptions`, for the batch IK
+            (:func:`robokin.ik_batch`); the defaults are :data:`DEFAULTS` (tolerances 1e-6,
+            10 restarts, no time budget), the IK's own for the others. A ``timeout`` makes the
+            map depend on the machine's speed.
 
     Returns:
         ReachabilityMap.
