@@ -75,7 +75,7 @@ def main():
     Qb = rng.uniform(-np.pi, np.pi, (n, 6))
     big = ur5.fk(Qb)
     t_batch, _ = once(lambda: rk.closed.ur_batch(big, ur5), repeat=2)
-    q, singular = rk.closed.ur_batch(big[:1000], ur5)
+    q, _, _ = rk.closed.ur_batch(big[:1000], ur5)
     per_pose = np.sum(~np.isnan(q[:, :, 0])) / 1000
     print(f"closed.ur_batch, {n} poses on {os.cpu_count()} cores: {t_batch:.3f} s ({1e9 * t_batch / n:.0f} ns/pose, "
           f"{per_pose:.2f} solutions/pose); {n} single calls would take ~{n * t_closed:.1f} s "
@@ -94,7 +94,7 @@ def main():
     t_plan, _ = once(lambda: rk.track_postures(puma, line, dt, qdot_max=vmax, q0=qs), repeat=3)
     t_greedy, _ = once(lambda: rk.closed.puma560_path(line, qs), repeat=3)
     plan = rk.track_postures(puma, line, dt, qdot_max=vmax, q0=qs)
-    qg, okg = rk.closed.puma560_path(line, qs)
+    qg, okg, _ = rk.closed.puma560_path(line, qs)
     rg = rk.count_reconfigurations(qg, dt, vmax, q0=qs, chain=puma)
     print(f"PUMA 560, {K}-waypoint line: track_postures {1e3 * t_plan:.1f} ms, {len(plan.reconfigurations)} "
           f"reconfiguration(s), motion {plan.motion:.3f} rad; greedy puma560_path {1e3 * t_greedy:.2f} ms, "

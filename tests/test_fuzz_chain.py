@@ -10,7 +10,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import robokin as rk
@@ -24,6 +24,7 @@ COVERS = {
     "Chain.from_urdf",
     "Chain.dof",
     "Chain.joint_types",
+    "Chain.natural_task",
     "Chain.limits",
     "Chain.fk",
     "Chain.jacobian",
@@ -150,6 +151,21 @@ def test_dh_chain_equals_the_numpy_dh_product(case, values, batch, tool):
         np.testing.assert_allclose(p, expected, rtol=0, atol=1e-9)
 
 
+@given(case=dh_chains(), data=st.data())
+def test_natural_task_is_the_rule_on_the_jacobians_rows(case, data):
+    """A planar arm (rows v_z, w_x, w_y of KDL's Jacobian zero, here at a random q: the core reads
+    q = 0) controls "xyphi" with three revolute joints or more, "xy" with fewer; another arm "pose"
+    with six joints or more, "position" with fewer."""
+    chain = case["chain"]
+    q = np.array(data.draw(st.lists(st.floats(-PI, PI), min_size=chain.dof, max_size=chain.dof)))
+    J = chain._jacobian_kdl(q)
+    off = np.max(np.abs(J[2:5])) / max(1.0, np.max(np.abs(J)))
+    assume(not 1e-11 < off < 1e-7)  # clearly planar or clearly not
+    revolute = chain.joint_types.count("R")
+    expected = ("xyphi" if revolute >= 3 else "xy") if off <= 1e-11 else ("pose" if chain.dof >= 6 else "position")
+    assert chain.natural_task == expected, (case["rows"], off)
+
+
 # --- FK, Jacobian, frames, point_in_frame with arbitrary arrays ------------------------------
 
 chains = st.sampled_from(CHAINS)
@@ -167,7 +183,7 @@ def test_fk_jacobian_frames_with_arbitrary_q(chain, q, task):
         is_rigid(T, tol=1e-6)
     J = check_call(lambda: chain.jacobian(q, task=task), "q", "task")
     if J is not None:
-        assert J.shape == shape[:-1] + (len(TASK_ROWS[task]), n)
+        assert J.shape == shape[:-1] + (len(TASK_ROWS[task if task is not None else chain.natural_task]), n)
         assert_finite(J)
     F = check_call(lambda: chain.frames(q), "q")
     if F is not None:

@@ -1,12 +1,14 @@
 """Property tests of the closed-form inverse kinematics (robokin.closed) and its IKSolutions.
 
-Two rules. (1) Any arguments: a call returns an IKSolutions whose every row is finite, within the
-limits and puts the tool on the target (checked with the numpy DH of tests/dh_reference.py), or it
-raises ValueError / TypeError naming an argument. (2) Reported success equals verified success:
-over random targets, reachable (the forward model of random joints within the limits), too far,
-inside the inner hole, and singular (stretched or folded elbow, wrist singular, on the shoulder
-axis), the result is non-empty exactly when the target is reachable, and then holds a solution
-near the joints the target was made from (unless the pose is singular and that joint is free).
+Two rules. (1) Any arguments: a call returns an IKSolutions whose every row is finite and puts the
+tool on the target (checked with the numpy DH of tests/dh_reference.py), marked within the limits
+exactly when whole turns can bring it within them (and then within them), or it raises ValueError /
+TypeError naming an argument. (2) Reported success equals verified success: over random targets,
+reachable (the forward model of random joints within the limits), too far, inside the inner hole,
+and singular (stretched or folded elbow, wrist singular, on the shoulder axis), the result has a
+solution within the limits exactly when the target is reachable within them, and then holds a
+solution near the joints the target was made from (unless the pose is singular and that joint is
+free).
 """
 
 import math
@@ -19,13 +21,14 @@ from hypothesis import strategies as st
 
 import robokin as rk
 from dh_reference import fk_dh
+from limits_reference import turns_fit
 
 COVERS = {
     "closed.planar_rp", "closed.planar_2r", "closed.planar_3r", "closed.anthropomorphic",
     "closed.spherical_wrist_6r", "closed.puma560", "closed.puma560_path", "closed.rpr_self_motion",
     "robots.rpr_self_motion",
     "IKSolutions.q", "IKSolutions.postures", "IKSolutions.singular", "IKSolutions.dof", "IKSolutions.nearest",
-    "IKSolutions.__repr__", "IKSolutions.__len__",
+    "IKSolutions.__repr__", "IKSolutions.__len__", "IKSolutions.within_limits", "IKSolutions.only_within_limits",
 }
 
 #: The tolerance the core verifies every solution to (cpp/src/ik_closed.cpp): tool position within
@@ -83,8 +86,8 @@ def dist(u, v):
     return math.hypot(*(np.asarray(u, dtype=float) - np.asarray(v, dtype=float)))
 
 
-def check_solutions(s, dof, limits, reaches):
-    """IKSolutions invariants, limits and the forward model of every row; returns s."""
+def check_solutions(s, dof, limits, reaches, prismatic=None):
+    """IKSolutions invariants, the within_limits mask and the forward model of every row; returns s."""
     assert isinstance(s, rk.closed.IKSolutions)
     assert s.dof == dof and isinstance(s.singular, bool)
     q = s.q
@@ -92,9 +95,17 @@ def check_solutions(s, dof, limits, reaches):
     assert_finite(q)
     assert len(s.postures) == len(s) and all(isinstance(p, str) and p for p in s.postures)
     assert isinstance(repr(s), str) and repr(s).startswith(f"IKSolutions({len(s)} solution")
+    within = s.within_limits
+    assert within.shape == (len(s),) and within.dtype == np.bool_
+    kept = s.only_within_limits()
+    assert np.array_equal(kept.q, q[within]) and kept.postures == [p for p, w in zip(s.postures, within) if w]
     if isinstance(limits, tuple) and len(limits) == 2:
         lo, hi = (np.asarray(v, dtype=float) for v in limits)
-        assert np.all(q >= lo) and np.all(q <= hi), (q, limits)
+        assert np.all(q[within] >= lo) and np.all(q[within] <= hi), (q, limits)
+        for row in q[~within]:  # outside: no whole turns bring it within
+            assert not turns_fit(row, lo, hi, prismatic or [False] * dof), (row, limits)
+    elif limits is None:
+        assert within.all()
     for row in q:
         assert reaches(row), (row, s.postures)
     return s
@@ -103,12 +114,12 @@ def check_solutions(s, dof, limits, reaches):
 def check_nearest(s, q):
     k = check_call(lambda: s.nearest(q), "q")
     if k is None:
-        if len(s) == 0:
+        if not s.within_limits.any():
             assert s.nearest(np.zeros(s.dof)) is None
         return
     qq = np.asarray(q, dtype=float)
-    d = np.sum((s.q - qq) ** 2, axis=1)
-    assert isinstance(k, int) and 0 <= k < len(s) and d[k] == d.min()
+    d = np.where(s.within_limits, np.sum((s.q - qq) ** 2, axis=1), np.inf)  # among those within the limits
+    assert isinstance(k, int) and 0 <= k < len(s) and s.within_limits[k] and d[k] == d.min()
 
 
 def wrapped(a, b):
@@ -124,7 +135,8 @@ def test_planar_rp_any_arguments(target, limits, q):
         p = np.asarray(target, dtype=float)
         unit = np.abs(p).max() or 1.0  # norms in units of the target: no overflow near 1e308
         check_solutions(s, 2, limits,
-                        lambda row: np.linalg.norm((fk_rp(row) - p) / unit) <= MARGIN * TOL_P * np.linalg.norm(p / unit))
+                        lambda row: np.linalg.norm((fk_rp(row) - p) / unit) <= MARGIN * TOL_P * np.linalg.norm(p / unit),
+                        prismatic=[False, True])
         check_nearest(s, q)
 
 
@@ -227,9 +239,10 @@ def test_puma560_path_any_arguments(targets, q0, limits):
     out = check_call(lambda: rk.closed.puma560_path(targets, q0, limits=limits), "targets", "q0", "limits")
     if out is None:
         return
-    q, ok = out
+    q, ok, reachable = out
     k = len(targets)
     assert q.shape == (k, 6) and ok.shape == (k,) and ok.dtype == np.bool_
+    assert reachable.shape == (k,) and reachable.dtype == np.bool_ and not np.any(ok & ~reachable)
     assert_finite(q)
     lim = PUMA_LIMITS if isinstance(limits, str) else limits
     prev = np.asarray(q0, dtype=float)
@@ -431,10 +444,12 @@ def test_planar_rp_success_is_reachability(q, stroke, back):
     lower = -stroke if back else 0.0
     limits = ([-math.inf, lower], [math.inf, stroke])
     s = check_solutions(rk.closed.planar_rp(p, limits=limits), 2, limits,
-                        lambda row: np.linalg.norm(fk_rp(row) - p) <= MARGIN * TOL_P * np.linalg.norm(p))
+                        lambda row: np.linalg.norm(fk_rp(row) - p) <= MARGIN * TOL_P * np.linalg.norm(p),
+                        prismatic=[False, True])
+    assert len(s) == (2 if np.any(p != 0) else 1)  # both strokes, each marked (one at the origin)
     d = np.linalg.norm(p)
     if abs(d - stroke) > 1e-9:
-        assert (len(s) > 0) == (d <= stroke)
+        assert s.within_limits.any() == (d <= stroke)
     if abs(q[1]) <= stroke and (q[1] >= 0 or back) and d > 0:
         off = np.maximum(np.abs(np.angle(np.exp(1j * (s.q[:, 0] - q[0])))), np.abs(s.q[:, 1] - q[1]))
         assert off.min() < 1e-9, (s, q)
@@ -469,7 +484,7 @@ def test_tiny_and_huge_arms_are_solved(scale):
 def test_planar_rp_near_the_origin_keeps_its_direction():
     """A point 1e-20 from the origin was taken for the origin (theta1 = 0), 100 % off."""
     s = rk.closed.planar_rp((0.0, 1e-20), limits=([-math.inf, 0.0], [math.inf, 1.0]))
-    assert len(s) == 1 and not s.singular
+    assert len(s) == 2 and s.within_limits.tolist() == [True, False] and not s.singular
     assert np.allclose(fk_rp(s.q[0]), (0.0, 1e-20), rtol=1e-12, atol=1e-32)
 
 
@@ -533,6 +548,6 @@ def test_puma560_path_from_a_far_q0_reaches_its_target(q0):
     """Shifted by whole turns towards q0 = 4.2e7 rad the angles carried 7e-9 rad of rounding, and at
     1e17 (ulp 16 rad) nothing of the angle: ok was True for joints that missed the target."""
     T = np.array([[-1.0, 0.0, 0.0, -0.54838059], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
-    q, ok = rk.closed.puma560_path(T[None], np.full(6, q0), limits=None)
+    q, ok, _ = rk.closed.puma560_path(T[None], np.full(6, q0), limits=None)
     assert ok[0] and wrist_reaches(PUMA, T)(q[0])
     assert np.all(np.abs(q[0]) <= 2.0**20) and np.all(np.abs(q[0]) > 2.0**20 - 2 * math.pi)  # as near q0 as allowed

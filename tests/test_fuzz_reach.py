@@ -229,13 +229,13 @@ def test_far_targets_give_a_finite_error_or_a_value_error():
     chain = rk.robots.planar_3r()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", rk.PrecisionWarning)
-        r = rk.reach(chain, [1e200, 1e200], np.zeros(3))
+        r = rk.reach(chain, [1e200, 1e200], np.zeros(3), task="xy")
         assert math.isfinite(r.error) and r.error == pytest.approx(math.sqrt(2) * 1e200) and not r.converged
-        assert rk.track(chain, [[1e160, 0.0]], np.zeros(3)).error[0] == pytest.approx(1e160)
+        assert rk.track(chain, [[1e160, 0.0]], np.zeros(3), task="xy").error[0] == pytest.approx(1e160)
         with pytest.raises(ValueError, match="target: the task error is not finite"):
-            rk.reach(chain, [1.7e308, 1.7e308], np.zeros(3))
+            rk.reach(chain, [1.7e308, 1.7e308], np.zeros(3), task="xy")
         with pytest.raises(ValueError, match="points: the task error is not finite"):
-            rk.track(chain, [[0.0, 0.0], [1.7e308, -1.7e308]], np.zeros(3))
+            rk.track(chain, [[0.0, 0.0], [1.7e308, -1.7e308]], np.zeros(3), task="xy")
 
 
 def test_a_step_that_overflows_q_stops_at_finite_joints():

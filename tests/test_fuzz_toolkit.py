@@ -276,7 +276,7 @@ def test_resolved_rate_realises_a_reachable_twist(case, q, twist):
     q = q[: chain.dof]
     J = chain.jacobian(q)
     reachable = J @ np.linalg.pinv(J) @ twist  # the part of the twist J can produce
-    qd = rk.resolved_rate(chain, q, reachable)
+    qd = rk.resolved_rate(chain, q, reachable, task="pose")
     s = np.linalg.svd(J, compute_uv=False)
     if s[0] > 0 and s[min(J.shape) - 1] / s[0] > 1e-6:  # away from singularities
         np.testing.assert_allclose(J @ qd, reachable, atol=1e-7 * (1 + np.abs(qd).max() * s[0]))

@@ -27,8 +27,9 @@ def anthropomorphic_chain(a2, a3, d1=0.0):
 def test_rp_matches_the_course_formula_and_fk():
     chain = rk.robots.rp(stroke=2.0)
     s = rk.closed.planar_rp((0.3, -0.4), limits=chain)
-    assert len(s) == 1 and s.postures == ["stroke forward"]
+    assert s.postures == ["stroke forward", "stroke backward"] and s.within_limits.tolist() == [True, False]
     assert np.allclose(s.q[0], [math.atan2(-0.4, 0.3), 0.5])
+    assert np.allclose(s.q[1], [math.atan2(0.4, -0.3), -0.5])  # d2 < 0: outside the stroke [0, 2]
     assert np.allclose(chain.fk(s.q[0])[:2, 3], [0.3, -0.4], atol=1e-14)
 
 
@@ -38,7 +39,8 @@ def test_rp_backward_stroke_when_limits_allow_it_and_out_of_stroke():
     assert len(both) == 2
     for q in both.q:
         assert np.allclose(chain.fk(q)[:2, 3], [0.3, 0.4], atol=1e-14)
-    assert len(rk.closed.planar_rp((3.0, 4.0), limits=chain)) == 0  # beyond the stroke
+    beyond = rk.closed.planar_rp((3.0, 4.0), limits=chain)  # beyond the stroke: returned, marked outside
+    assert len(beyond) == 2 and not beyond.within_limits.any() and len(beyond.only_within_limits()) == 0
     origin = rk.closed.planar_rp((0.0, 0.0))
     assert origin.singular and len(origin) == 1
 
@@ -93,12 +95,14 @@ def test_planar_3r_singular_and_unreachable(method):
     assert len(rk.closed.planar_3r((0.1 + 0.5, 0.0, 0.0), 1.0, 0.5, 0.5, method=method)) == 0
 
 
-def test_planar_3r_joint_limits_filter_the_postures():
+def test_planar_3r_joint_limits_mark_the_postures():
     limits = (np.array([-math.pi, 0.0, -math.pi]), np.array([math.pi, math.pi, math.pi]))
     s = rk.closed.planar_3r((1.5, 0.5, 0.3), limits=limits)
-    assert s.postures == ["elbow down"]
+    assert s.postures == ["elbow down", "elbow up"] and s.within_limits.tolist() == [True, False]
+    assert s.q[1, 1] < 0  # elbow up: theta2 < 0, below joint 2's lower limit
+    assert s.only_within_limits().postures == ["elbow down"]
     chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 3, limits=limits)
-    assert rk.closed.planar_3r((1.5, 0.5, 0.3), limits=chain).postures == ["elbow down"]
+    assert rk.closed.planar_3r((1.5, 0.5, 0.3), limits=chain).within_limits.tolist() == [True, False]
 
 
 def test_planar_2r():
@@ -164,11 +168,14 @@ def test_puma560_eight_solutions_by_fk():
             assert np.abs(puma.fk(qq) - T).max() < 1e-10
             assert np.abs(puma._fk_kdl(qq) - T).max() < 1e-10
         assert wrapped_distance(s.q, q).min() < 1e-7
-        # with the PUMA's limits: every solution within them, the start configuration still found
+        # with the PUMA's limits: the same 8, those marked within them within them, the start
+        # configuration among those
         lim = rk.closed.puma560(T)
-        assert 1 <= len(lim) <= 8
-        assert np.all(lim.q >= lo) and np.all(lim.q <= hi)
-        assert wrapped_distance(lim.q, q).min() < 1e-7  # joint 6 spans more than 2 pi: one representative
+        assert lim.postures == s.postures and np.all(wrapped_distance(lim.q, s.q) < 1e-12)
+        inside = lim.only_within_limits()
+        assert 1 <= len(inside) == lim.within_limits.sum()
+        assert np.all(inside.q >= lo) and np.all(inside.q <= hi)
+        assert wrapped_distance(inside.q, q).min() < 1e-7  # joint 6 spans more than 2 pi: one representative
 
 
 def test_puma560_postures_by_geometry():
@@ -263,8 +270,8 @@ def test_puma560_path_keeps_its_branch():
     K = 200
     targets = np.repeat(T0[None], K, axis=0)
     targets[:, 1, 3] += np.linspace(0.0, 0.1, K)
-    q, ok = rk.closed.puma560_path(targets, q_start)
-    assert ok.all()
+    q, ok, reachable = rk.closed.puma560_path(targets, q_start)
+    assert ok.all() and reachable.all()
     for k in range(K):
         assert np.abs(puma.fk(q[k]) - targets[k]).max() < 1e-10
     assert np.abs(np.diff(np.vstack([q_start, q]), axis=0)).max() < 0.05
@@ -277,8 +284,9 @@ def test_puma560_path_keeps_its_branch():
     # an unreachable frame keeps the previous joints and says so
     far = targets.copy()
     far[100, 0, 3] = 3.0
-    q2, ok2 = rk.closed.puma560_path(far, q_start)
+    q2, ok2, reachable2 = rk.closed.puma560_path(far, q_start)
     assert not ok2[100] and ok2.sum() == K - 1 and np.array_equal(q2[100], q2[99])
+    assert np.array_equal(reachable2, ok2)
 
 
 def test_puma560_path_shifts_whole_turns_towards_far_previous_joints():
@@ -290,10 +298,10 @@ def test_puma560_path_shifts_whole_turns_towards_far_previous_joints():
     q = np.array([0.3, 0.4, -0.5, 0.4, 0.5, 0.6])
     T = puma.fk(q)[None]
     turns = np.array([3, -2, 0, 5, 1, -4])
-    path, ok = rk.closed.puma560_path(T, q + 2 * np.pi * turns + 0.01, limits=None)
+    path, ok, _ = rk.closed.puma560_path(T, q + 2 * np.pi * turns + 0.01, limits=None)
     assert ok[0]
     np.testing.assert_allclose(path[0], q + 2 * np.pi * turns, atol=1e-9)
     for q0 in (1e9, 1e17):
-        path, ok = rk.closed.puma560_path(T, np.full(6, q0), limits=None)
+        path, ok, _ = rk.closed.puma560_path(T, np.full(6, q0), limits=None)
         assert ok[0] and np.all(np.abs(path[0]) <= 2.0**20) and np.all(path[0] > 2.0**20 - 2 * np.pi)
         np.testing.assert_allclose(puma.fk(path[0]), T[0], atol=1e-9)

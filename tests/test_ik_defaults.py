@@ -40,7 +40,7 @@ def reachable(chain, count, seed):
 
 def test_the_defaults_are_the_cores_and_written_once():
     d = rk.IK_DEFAULTS
-    assert dict(d) == {"method": "lm", "task": "pose", "tol_p": 1e-9, "tol_r": 1e-9, "max_iter": 100,
+    assert dict(d) == {"method": "lm", "task": None, "tol_p": 1e-9, "tol_r": 1e-9, "max_iter": 100,
                        "restarts": 1_000_000, "timeout": 0.005, "stall_window": 6}
     with pytest.raises(TypeError):
         d["timeout"] = 1.0  # read-only
@@ -54,7 +54,9 @@ def test_the_defaults_are_the_cores_and_written_once():
         assert o.restarts is None and o.timeout is None and o.damping is None
     assert repr(rk.IKSolver(rk.robots.ur5())) == ("IKSolver(method='lm', task='pose', tol_p=1e-09, tol_r=1e-09, "
                                                   "max_iter=100, restarts=None, timeout=None, damping=None, stall_window=6)")
-    assert rk.IKSolver(rk.robots.ur5(), restarts=3).options == rk.IKOptions(restarts=3)
+    # A solver holds its task resolved: task None is the chain's natural task.
+    assert rk.IKSolver(rk.robots.ur5(), restarts=3).options == rk.IKOptions(restarts=3, task="pose")
+    assert rk.IKSolver(rk.robots.rpr()).options.task == "xy" == rk.IKSolver(rk.robots.rpr()).task
 
 
 @pytest.mark.parametrize("name", ARMS)

@@ -124,7 +124,7 @@ def test_joint_limits_do_not_stick(goal, start):
     chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 3, limits=lim)
     target = chain.fk(np.array(goal))
     for method in METHODS:
-        r = rk.ik(chain, target, np.array(start), method=method, max_iter=200, restarts=0)  # one attempt
+        r = rk.ik(chain, target, np.array(start), method=method, task="pose", max_iter=200, restarts=0)  # one attempt
         assert r.success, (method, r)
         assert verified(chain, r.q, target)
         assert np.all(r.q >= lim[0]) and np.all(r.q <= lim[1])
@@ -135,7 +135,7 @@ def test_solution_at_a_limit_is_reached():
     chain = rk.Chain.from_dh([(1.0, 0, 0, 0, "R")] * 3, limits=lim)
     q_goal = np.array([1.0, 0.0, 0.5])  # two joints exactly on a limit
     target = chain.fk(q_goal)
-    r = rk.ik(chain, target, np.array([-0.5, 1.5, -0.5]), restarts=10, seed=0)
+    r = rk.ik(chain, target, np.array([-0.5, 1.5, -0.5]), task="pose", restarts=10, seed=0)
     assert r.success and verified(chain, r.q, target)
 
 

@@ -228,18 +228,18 @@ def test_out_of_reach_is_empty():
     assert len(s) == 0 and s.q.shape == (0, 6)
 
 
-def test_limits_filter(rng):
+def test_limits_mark_the_solutions(rng):
     chain = rk.robots.ur5()
     T = chain.fk(rng.uniform(-P, P, 6))
     full = rk.closed.ur(T, chain, limits=None)
+    assert full.within_limits.all()
     lo, hi = np.full(6, -P), np.full(6, P)
     lo[1], hi[1] = -P, 0.0
-    part = rk.closed.ur(T, chain, limits=(lo, hi))
-    assert len(part) < len(full)
-    assert np.all(part.q[:, 1] <= 0.0)
-    for q, p in zip(part.q, part.postures):
-        assert p in full.postures
-        assert np.min(angle_dist(full.q, q)) < 1e-12
+    marked = rk.closed.ur(T, chain, limits=(lo, hi))
+    assert marked.postures == full.postures and np.all(angle_dist(marked.q, full.q) < 1e-12)
+    part = marked.only_within_limits()
+    assert 0 < len(part) < len(full)
+    assert np.all(part.q[:, 1] <= 0.0) and np.all(marked.q[~marked.within_limits, 1] > 0.0)
 
 
 def test_batch_equals_single_calls(rng):
@@ -248,8 +248,9 @@ def test_batch_equals_single_calls(rng):
     Q[:3, 4] = 0.0  # a few wrist-singular poses
     targets = chain.fk(Q)
     targets[5, 0, 3] = 5.0  # unreachable
-    q, singular = rk.closed.ur_batch(targets, chain)
-    assert q.shape == (300, 8, 6) and singular.shape == (300,)
+    q, singular, within = rk.closed.ur_batch(targets, chain)
+    assert q.shape == (300, 8, 6) and singular.shape == (300,) and within.shape == (300, 8)
+    assert np.array_equal(within, ~np.isnan(q[:, :, 0]))  # the UR5's limits (+-2 pi) hold every solution
     names = list(rk.closed.UR_POSTURES)
     for i in range(300):
         s = rk.closed.ur(targets[i], chain)

@@ -38,9 +38,12 @@ def test_closed_form_solutions_follow_the_rule():
     assert np.all(np.abs(s.q[:, 1]) <= math.pi)  # within joint 2's wide limits: wrapped
 
 
-def test_a_solution_no_shift_brings_within_is_dropped():
-    # Joint 1 limited to [3, 6]: neither -0.18 + 2 pi = 6.11 nor 1.35 (+ 2 pi) is within.
-    assert len(rk.closed.planar_2r([1.2, 0.8], limits=([3.0, -10.0], [6.0, 10.0]))) == 0
+def test_a_solution_no_shift_brings_within_is_marked_outside():
+    # Joint 1 limited to [3, 6]: neither -0.18 + 2 pi = 6.11 nor 1.35 (+ 2 pi) is within. Both are
+    # returned, wrapped to [-pi, pi] (as without limits), marked outside.
+    s = rk.closed.planar_2r([1.2, 0.8], limits=([3.0, -10.0], [6.0, 10.0]))
+    free = rk.closed.planar_2r([1.2, 0.8])
+    assert len(s) == 2 and not s.within_limits.any() and np.array_equal(s.q, free.q)
 
 
 def test_numerical_ik_reports_its_solution_by_the_same_rule():

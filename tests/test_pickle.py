@@ -209,8 +209,11 @@ RESULTS = {
     "IKResult": lambda: on_ur5(lambda c, q: rk.ik(c, c.fk(q[0]), q[1], restarts=2, seed=1)),
     "IKBatchResult": lambda: on_ur5(lambda c, q: rk.ik_batch(c, c.fk(q), q[1], restarts=2, seed=1)),
     "IKSolutions": lambda: on_ur5(lambda c, q: rk.closed.ur(c.fk(q[0]), c)),
-    "ReachResult": lambda: rk.reach(rk.robots.planar_3r(), (1.2, 0.7), np.zeros(3)),
-    "TrackResult": lambda: rk.track(rk.robots.planar_3r(), rk.paths.line((1.2, 0.7), (1.4, 0.7), 0.05), np.zeros(3)),
+    "IKSolutions (some outside the limits)": lambda: rk.closed.puma560(
+        rk.robots.puma560().fk([0.3, 0.4, -0.5, 0.4, 0.5, 0.6])),
+    "ReachResult": lambda: rk.reach(rk.robots.planar_3r(), (1.2, 0.7), np.zeros(3), task="xy"),
+    "TrackResult": lambda: rk.track(rk.robots.planar_3r(), rk.paths.line((1.2, 0.7), (1.4, 0.7), 0.05), np.zeros(3),
+                                    task="xy"),
     "RRR3Newton": lambda: rk.RRR3().ik_newton((0.01, 0.0, 0.0), (np.zeros(3), np.ones(3))),
     "RRR3Fk": lambda: rk.RRR3().fk(rk.RRR3().ik((0.01, 0.0, 0.0)), (0.0, 0.0, 0.0)),
     "RRR3Singularity": lambda: rk.RRR3().singularity((0.0, 0.0, 0.0)),
@@ -243,14 +246,16 @@ def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
     """An IKSolutions holds at most 8 solutions of at most 6 joints (inline, no allocation): a
     state asking for more is refused with ValueError, not written past the end."""
     good = rk.closed.ur(rk.robots.ur5().fk(np.full(6, 0.4)), rk.robots.ur5())
-    version, dof, q, postures, singular = good.__getstate__()
+    version, dof, q, postures, singular, within = good.__getstate__()
     copied = type(good).__new__(type(good))
-    copied.__setstate__((version, dof, q, postures, singular))
+    copied.__setstate__((version, dof, q, postures, singular, within))
     assert np.array_equal(copied.q, good.q) and copied.postures == good.postures
-    nine = (version, 6, np.zeros((9, 6)), ("a",) * 9, False)
-    seven_joints = (version, 7, np.zeros((1, 7)), ("a",), False)
-    ragged = (version, 6, np.zeros((2, 5)), ("a", "b"), False)
-    for state in (nine, seven_joints, ragged):
+    assert np.array_equal(copied.within_limits, good.within_limits)
+    nine = (version, 6, np.zeros((9, 6)), ("a",) * 9, False, (True,) * 9)
+    seven_joints = (version, 7, np.zeros((1, 7)), ("a",), False, (True,))
+    ragged = (version, 6, np.zeros((2, 5)), ("a", "b"), False, (True, True))
+    unflagged = (version, 6, np.zeros((2, 6)), ("a", "b"), False, (True,))
+    for state in (nine, seven_joints, ragged, unflagged):
         with pytest.raises(ValueError, match=r"IKSolutions state: q must have one row of dof \(1 to 6\) values "
-                                             r"per posture, at most 8 rows"):
+                                             r"per posture and per within_limits flag, at most 8 rows"):
             type(good).__new__(type(good)).__setstate__(state)

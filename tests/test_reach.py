@@ -114,11 +114,42 @@ def test_nullspace_lowers_the_joint_limit_cost_at_the_same_accuracy():
     assert avoid.converged.all() and plain.converged.all()
     assert joint_limit_cost(avoid.q).mean() < 0.95 * joint_limit_cost(plain.q).mean()
     assert avoid.error.max() < 1e-5
-    # Stronger gains avoid more; zero gains are the plain minimum-norm path.
-    strong = rk.track(chain, points, Q1, nullspace=5 / (Q_MAX - Q_MIN))
-    assert strong.converged.all()
-    assert joint_limit_cost(strong.q).mean() < joint_limit_cost(avoid.q).mean()
+    # "joint_limits" is the gains W^T W (h = -grad z); zero gains are the plain minimum-norm path.
+    W = 1 / (Q_MAX - Q_MIN)
+    np.testing.assert_array_equal(rk.track(chain, points, Q1, nullspace=W**2).q, avoid.q)
     np.testing.assert_array_equal(rk.track(chain, points, Q1, nullspace=np.zeros(3)).q, plain.q)
+
+
+def best_costs(points):
+    """The least z of each point's self-motion set (the best posture the null space can reach),
+    from a fine sampling of the set in closed form."""
+    best = []
+    for p in points:
+        S = rk.robots.rpr_self_motion(p, num=20001).reshape(-1, 3)
+        best.append(joint_limit_cost(S[~np.isnan(S[:, 0])]).min())
+    return np.array(best)
+
+
+def test_larger_nullspace_gains_lower_the_seeds_cost_toward_the_best_postures():
+    """k x the joint-limit gains: every point still reached within tol, and the mean z falls with
+    k toward the mean of each point's least z. The seed's literal h = W (qbar - q) (gains W, the
+    gradient of another cost) levels off above it however strong."""
+    chain = rk.robots.rpr()
+    points = P1 + np.linspace(0, 1, 2000)[:, None] * (P2 - P1)
+    floor = best_costs(points).mean()
+    W = 1 / (Q_MAX - Q_MIN)
+    means = []
+    for k in (1, 2, 4, 8):
+        tr = rk.track(chain, points, Q1, nullspace=k * W**2)
+        assert tr.converged.all() and tr.error.max() < 1e-5
+        reached = np.array([forward_kinematic(q) for q in tr.q])
+        assert np.max(np.linalg.norm(reached - points, axis=1)) < 1e-5
+        means.append(joint_limit_cost(tr.q).mean())
+    assert all(b < a for a, b in zip(means, means[1:])), means
+    gaps = np.array(means) - floor
+    assert 0 < gaps[0] < 2e-3 * floor and abs(gaps[-1]) < 0.05 * gaps[0], (means, floor)
+    literal = [joint_limit_cost(rk.track(chain, points, Q1, nullspace=k * W).q).mean() for k in (1, 8)]
+    assert min(literal) > floor + 0.03 * floor and abs(literal[1] - literal[0]) < 1e-3 * floor, (literal, floor)
 
 
 def test_joint_limit_cost_is_the_seeds_z(rng):
@@ -137,9 +168,9 @@ def test_track_equals_reach_point_by_point(rng):
     chain = rk.robots.planar_3r(0.5, 0.4, 0.3)
     q = np.array([0.3, 0.6, -0.4])
     points = rk.paths.circle(50, radius=0.05, center=chain.fk(q)[:2, 3] - (0.05, 0))
-    tr = rk.track(chain, points, q)
+    tr = rk.track(chain, points, q, task="xy")
     for k, p in enumerate(points):
-        r = rk.reach(chain, p, q)
+        r = rk.reach(chain, p, q, task="xy")
         np.testing.assert_array_equal(r.q, tr.q[k])
         assert (r.iterations, r.converged, r.error) == (tr.iterations[k], tr.converged[k], tr.error[k])
         q = r.q
@@ -188,8 +219,8 @@ def test_damping_near_a_singularity():
     target = [2.9, 0.05]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", rk.PrecisionWarning)
-        plain = rk.reach(chain, target, q, max_iter=200)
-    damped = rk.reach(chain, target, q, max_iter=200, damping=0.05)
+        plain = rk.reach(chain, target, q, max_iter=200, task="xy")
+    damped = rk.reach(chain, target, q, max_iter=200, damping=0.05, task="xy")
     assert damped.converged and np.all(np.isfinite(plain.q))
 
 
@@ -242,17 +273,19 @@ def test_reach_rejects_bad_options(kwargs, match):
 def test_reach_rejects_bad_targets_and_joints():
     chain = rk.robots.rpr()
     with pytest.raises(ValueError, match=r"target: expected shape \(2,\)"):
-        rk.reach(chain, [1.0, 2.0, 3.0], Q1)
+        rk.reach(chain, [1.0, 2.0, 3.0, 4.0], Q1)
     with pytest.raises(ValueError, match="target: expected a \\(4, 4\\) homogeneous matrix"):
-        rk.reach(chain, [1.0, 2.0], Q1, task="pose")
+        rk.reach(chain, [1.0, 2.0, 3.0, 4.0], Q1, task="pose")
     with pytest.raises(ValueError, match="q: contains NaN or inf"):
         rk.reach(chain, P1, [np.nan, 0, 0])
     with pytest.raises(ValueError, match=r"points: expected shape \(K, 2\)"):
-        rk.track(chain, np.zeros((4, 3)), Q1)
+        rk.track(chain, np.zeros((4, 5)), Q1)
     with pytest.raises(ValueError, match="points: contains NaN or inf"):
         rk.track(chain, [[0, np.inf]], Q1)
     with pytest.raises(ValueError, match="nullspace: joint 0 has no finite limits"):
-        rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], nullspace=[1, 0, 0])
+        rk.reach(rk.robots.planar_3r(), [1, 1], [0, 0.5, 0.5], task="xy", nullspace=[1, 0, 0])
+    with pytest.raises(TypeError, match="task: expected None or a string"):
+        rk.reach(chain, P1, Q1, task=3)
     empty = rk.track(chain, np.zeros((0, 2)), Q1)
     assert empty.q.shape == (0, 3)
 

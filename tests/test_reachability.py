@@ -141,7 +141,8 @@ def test_orientations_are_uniform_rotations():
     (dict(seed=-1), "seed"),
     (dict(seed=2**64), "seed"),
     (dict(task="full"), "task"),
-    (dict(timeout=1.0), "ik_options"),
+    (dict(timeout=-1.0), "timeout"),
+    (dict(stall_window=-1), "stall_window"),
     (dict(q0=np.zeros(5)), "q0"),
 ])
 def test_bad_arguments_are_value_errors_naming_them(kwargs, name):

@@ -33,12 +33,26 @@ def test_nullspace_term_moves_joints_without_moving_the_tool(nullspace):
     twist = RNG.normal(size=6)
     J = ARM7.jacobian(q)
     Jp = np.linalg.pinv(J)
-    weights = 1 / (2.5 - -2.5) * np.ones(7) if nullspace == "joint_limits" else RNG.uniform(0, 3, 7)
-    arg = "joint_limits" if nullspace == "joint_limits" else weights
-    h = weights * (0.0 - q)  # qbar = 0 for limits (-2.5, 2.5)
+    # "joint_limits": h = -grad z = W^T W (qbar - q), W = diag(1 / (q_max - q_min)); gains g: g (qbar - q).
+    gains = (1 / (2.5 - -2.5)) ** 2 * np.ones(7) if nullspace == "joint_limits" else RNG.uniform(0, 3, 7)
+    arg = "joint_limits" if nullspace == "joint_limits" else gains
+    h = gains * (0.0 - q)  # qbar = 0 for limits (-2.5, 2.5)
     qd = rk.resolved_rate(ARM7, q, twist, nullspace=arg)
     np.testing.assert_allclose(qd, Jp @ twist + (np.eye(7) - Jp @ J) @ h, rtol=1e-8, atol=1e-10)
     np.testing.assert_allclose(J @ qd, twist, rtol=1e-9, atol=1e-10)
+
+
+def test_joint_limit_term_descends_the_seeds_cost():
+    """nullspace="joint_limits" is h = -grad z for z = rk.joint_limit_cost (here by central
+    differences), projected on the null space: with no twist the joints lower z to first order."""
+    q = RNG.uniform(-2, 2, 7)
+    J = ARM7.jacobian(q)
+    eps = 1e-6
+    grad = np.array([(rk.joint_limit_cost(ARM7, q + eps * e) - rk.joint_limit_cost(ARM7, q - eps * e)) / (2 * eps)
+                     for e in np.eye(7)])
+    qd = rk.resolved_rate(ARM7, q, np.zeros(6), nullspace="joint_limits")
+    np.testing.assert_allclose(qd, (np.eye(7) - np.linalg.pinv(J) @ J) @ -grad, rtol=1e-6, atol=1e-9)
+    assert grad @ qd < 0
 
 
 def test_nullspace_needs_limits():

@@ -77,7 +77,7 @@ def test_never_worse_than_greedy_on_puma_lines(rng):
         poses = line_poses(chain, q_start, rng.normal(size=3), rng.uniform(0.2, 0.8), 60)
         for dt, vmax in ((0.05, 2.0), (0.02, 1.0)):
             plan = rk.track_postures(chain, poses, dt=dt, qdot_max=vmax, q0=q_start)
-            qg, ok = rk.closed.puma560_path(poses, q_start)
+            qg, ok, _ = rk.closed.puma560_path(poses, q_start)
             assert np.array_equal(ok, plan.success)
             greedy = rk.count_reconfigurations(qg, dt, vmax, q0=q_start, chain=chain)
             assert len(plan.reconfigurations) <= len(greedy)
@@ -94,7 +94,7 @@ def test_demo_line_greedy_reconfigures_more():
 
     chain, poses, q0, dt, vmax = demo_line()
     plan = rk.track_postures(chain, poses, dt=dt, qdot_max=vmax, q0=q0)
-    qg, ok = rk.closed.puma560_path(poses, q0)
+    qg, ok, _ = rk.closed.puma560_path(poses, q0)
     greedy = rk.count_reconfigurations(qg, dt, vmax, q0=q0, chain=chain)
     assert np.all(plan.success)
     assert len(plan.reconfigurations) < len(greedy)

@@ -48,8 +48,8 @@ struct ModeTag {  // the 3-RRR's working mode
 struct SeedTag {
   static constexpr auto name = py::detail::const_name("int | None");
 };
-struct TaskTag {  // task_of
-  static constexpr auto name = py::detail::const_name("typing.Literal['pose', 'position', 'xy', 'xyphi']");
+struct TaskTag {  // task_of: a task's name, or None for the chain's natural task
+  static constexpr auto name = py::detail::const_name("typing.Literal['pose', 'position', 'xy', 'xyphi'] | None");
 };
 struct FrameOrPositionTag {
   static constexpr auto name = py::detail::const_name("typing.Literal['frame', 'position']");

@@ -154,7 +154,7 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
 }
 
 py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj) {
-  const Task task = task_of(task_obj);
+  const Task task = task_of(task_obj, c);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
@@ -246,6 +246,11 @@ void bind_chain(py::module_& m) {
       .def_property_readonly("dof", &Chain::dof, "Number of joints.")
       .def_property_readonly("joint_types", &joint_types, "One letter per joint: 'R' revolute, 'P' prismatic.")
       .def_property_readonly(
+          "natural_task", [](const Chain& c) { return task_name(natural_task(c)); },
+          "The task calls control when given task=None: 'xyphi' for a planar arm (every joint moving the tool\n"
+          "parallel to the base xy plane) with at least three revolute joints, 'xy' for another planar arm,\n"
+          "'pose' for a spatial arm of six joints or more, 'position' for one with fewer.")
+      .def_property_readonly(
           "limits", [](const Chain& c) { return py::make_tuple(to_numpy(c.lower()), to_numpy(c.upper())); },
           "(lower, upper) joint limits; +-inf where a joint is unlimited.")
       .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
@@ -264,7 +269,8 @@ void bind_chain(py::module_& m) {
   add_fast_method(chain, fast_def("jacobian", &jacobian_fast,
                                   q + ", task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) +
                                       "') -> numpy.ndarray",
-                                  "Geometric Jacobian at the tool point in the base frame, rows of the task.\n"));
+                                  "Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)\n"
+                                  "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"));
   // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
 }
 

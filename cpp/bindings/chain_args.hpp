@@ -7,6 +7,7 @@
 
 #include "robokin/chain.hpp"
 #include "robokin/limits.hpp"
+#include "robokin/reach.hpp"
 #include "robokin/task.hpp"
 
 #include <string>
@@ -42,8 +43,9 @@ inline Float64View q_view(py::handle q_obj, Array& holder) {
   return view_of(holder);
 }
 
-// The task's rows of the 6 x n geometric Jacobian.
-inline Task task_of(py::handle obj) {
+// The task named by obj (a string), or for None the chain's natural task (natural_task, task.hpp).
+inline Task task_of(py::handle obj, const Chain& chain) {
+  if (obj.is_none()) return natural_task(chain);
   if (PyUnicode_Check(obj.ptr())) {
     Py_ssize_t len = 0;
     const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
@@ -51,7 +53,20 @@ inline Task task_of(py::handle obj) {
     return parse_task(std::string(s, static_cast<size_t>(len)));  // short: no allocation; throws naming the task
   }
   // Not a string: a TypeError, as pybind11 raised when the argument was typed std::string.
-  throw py::type_error("task: expected a string, one of 'pose', 'position', 'xy', 'xyphi'");
+  throw py::type_error("task: expected None or a string, one of 'pose', 'position', 'xy', 'xyphi'");
+}
+
+// The null-space gains of a Reach or resolved-rate call (reach.hpp): None for none, "joint_limits"
+// for the seed's joint-limit avoidance (joint_limit_gains), or (dof,) gains.
+inline Vector nullspace_gains(const Chain& chain, py::handle nullspace) {
+  if (nullspace.is_none()) return Vector();
+  if (py::isinstance<py::str>(nullspace)) {
+    if (py::cast<std::string>(nullspace) != "joint_limits")
+      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" + py::cast<std::string>(nullspace) +
+           "'");
+    return joint_limit_gains(chain);
+  }
+  return as_vector(nullspace, "nullspace", chain.dof());
 }
 
 // Joint limits: None (none), or a pair (lower, upper) of arrays of dof values (any equal sizes for

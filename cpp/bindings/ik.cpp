@@ -70,7 +70,7 @@ IkOptions options_arg(const py::kwargs& kwargs) {
 
 IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, SeedLike seed, const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
-  const Target t = one_target(o.task, target);
+  const Target t = one_target(chain, o.task_for(chain), target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   const std::uint64_t s = seed_arg(seed);
   // One solver per thread, kept between calls: no workspace allocation per solve.
@@ -91,7 +91,7 @@ IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q
                           const py::kwargs& kwargs) {
   const IkOptions o = options_arg(kwargs);
   const int n = chain.dof();
-  const std::vector<Target> targets = many_targets(o.task, targets_obj, "targets", "N");
+  const std::vector<Target> targets = many_targets(chain, o.task_for(chain), targets_obj, "targets", "N");
   const long count = static_cast<long>(targets.size());
   Array q0 = as_array(q0_obj, "q0");
   long q0_stride;
@@ -127,12 +127,18 @@ struct BoundSolver {
   std::uint64_t seed = 0, calls = 0;
   std::mutex busy;  // the GIL may be released during a solve: one solve at a time
 
+  // The options are kept with their task resolved (task None: the chain's natural task).
   BoundSolver(py::object c, const IkOptions& o, bool seeded_, std::uint64_t seed_, std::uint64_t calls_ = 0)
-      : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o), solver(*chain, o), seeded(seeded_),
-        seed(seed_), calls(calls_) {}
+      : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(resolved(o, *chain)), solver(*chain, options),
+        seeded(seeded_), seed(seed_), calls(calls_) {}
+
+  static IkOptions resolved(IkOptions o, const Chain& chain) {
+    o.task = o.task_for(chain);
+    return o;
+  }
 
   IkResult solve(ArrayLike target, ArrayLike q0_obj) {
-    const Target t = one_target(options.task, target);
+    const Target t = one_target(*chain, *options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
     IkResult r;
@@ -239,8 +245,10 @@ void bind_ik(py::module_& m) {
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
       .def_property_readonly("method", [](const BoundSolver& b) { return name_of(b.options.method); })
-      .def_property_readonly("task", [](const BoundSolver& b) { return task_name(b.options.task); })
-      .def_property_readonly("options", [](const BoundSolver& b) { return b.options; }, "The solver's IKOptions (a copy).")
+      .def_property_readonly("task", [](const BoundSolver& b) { return task_name(*b.options.task); },
+                             "The task solved for (task=None: the chain's natural_task).")
+      .def_property_readonly("options", [](const BoundSolver& b) { return b.options; },
+                             "The solver's IKOptions (a copy), its task resolved (None: the chain's natural_task).")
       .def(py::pickle(  // (version, chain, options, seeded, seed, calls): a copy continues the seed sequence
           [](const BoundSolver& b) {
             return py::make_tuple(kStateVersion, b.owner, b.options, b.seeded, b.seed, b.calls);

@@ -71,15 +71,16 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
   const JointLimits lim = limits_arg(limits, 6);
   py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{6}});
-  py::array_t<bool> ok(static_cast<py::ssize_t>(count));
+  py::array_t<bool> ok(static_cast<py::ssize_t>(count)), reachable(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();
   bool* okd = ok.mutable_data();
+  bool* reachd = reachable.mutable_data();
   PythonProgress progress("spherical wrist path");
   {
     py::gil_scoped_release release;
-    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, &progress);
+    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, &progress);
   }
-  return py::make_tuple(q, ok);
+  return py::make_tuple(q, ok, reachable);
 }
 
 // A spherical-wrist solver with its geometry and limits parsed once (robokin.closed.puma560).
@@ -155,15 +156,17 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
     targets[k] = Rigid::from_matrix(m);
   }
   py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{8}, py::ssize_t{6}});
+  py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
   py::array_t<bool> singular(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();
+  bool* wd = within.mutable_data();
   bool* sd = singular.mutable_data();
   PythonProgress progress("UR closed form");
   {
     py::gil_scoped_release release;
-    ik_ur_batch(arm, chain, targets.data(), count, lim, qd, sd, &progress);
+    ik_ur_batch(arm, chain, targets.data(), count, lim, qd, wd, sd, &progress);
   }
-  return py::make_tuple(q, singular);
+  return py::make_tuple(q, singular, within);
 }
 
 py::tuple ur_geometry(const Chain& chain) {
@@ -179,12 +182,25 @@ py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
   return out;
 }
 
+// The rows within the limits, in order.
+ClosedFormSolutions only_within_limits(const ClosedFormSolutions& s) {
+  ClosedFormSolutions out;
+  out.dof = s.dof;
+  out.singular = s.singular;
+  for (int k = 0; k < s.count(); ++k)
+    if (s.within_limits[k]) out.add(s.row(k), s.postures[k]);
+  return out;
+}
+
 std::string repr(const ClosedFormSolutions& s) {
+  int outside = 0;
+  for (int k = 0; k < s.count(); ++k) outside += s.within_limits[k] ? 0 : 1;
   std::string out = "IKSolutions(" + std::to_string(s.count()) + " solution" + (s.count() == 1 ? "" : "s");
+  if (outside) out += ", " + std::to_string(outside) + " outside the limits";
   if (s.singular) out += ", singular";
   out += s.count() ? ":" : ")";
   for (int k = 0; k < s.count(); ++k) {
-    out += "\n  " + std::string(s.postures[k]) + ": [";
+    out += "\n  " + std::string(s.postures[k]) + (s.within_limits[k] ? "" : " (outside the limits)") + ": [";
     for (int i = 0; i < s.dof; ++i) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.row(k)[i]);
@@ -199,8 +215,20 @@ std::string repr(const ClosedFormSolutions& s) {
 
 void bind_ik_closed(py::module_& m) {
   py::class_<ClosedFormSolutions>(m, "IKSolutions",
-                                  "Every closed-form solution of a pose: q (k, dof) and one posture label per row.")
+                                  "Every closed-form solution of a pose: q (k, dof), one posture label per row and\n"
+                                  "whether each row is within the joint limits (none is dropped for its limits).")
       .def_property_readonly("q", &solutions_q, "(k, dof) joint vectors, one per solution.")
+      .def_property_readonly(
+          "within_limits",
+          [](const ClosedFormSolutions& s) {
+            py::array_t<bool> out(static_cast<py::ssize_t>(s.count()));
+            std::copy(s.within_limits.begin(), s.within_limits.begin() + s.count(), out.mutable_data());
+            return out;
+          },
+          "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
+          "False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).")
+      .def("only_within_limits", &only_within_limits,
+           "The solutions within the joint limits only (an IKSolutions, rows in order).")
       .def_property_readonly(
           "postures",
           [](const ClosedFormSolutions& s) {
@@ -212,14 +240,14 @@ void bind_ik_closed(py::module_& m) {
       .def_readonly("singular", &ClosedFormSolutions::singular,
                     "True at a singularity (postures coincide, or a joint is free: 0 was chosen).")
       .def_readonly("dof", &ClosedFormSolutions::dof)
-      .def(py::pickle(  // (version, dof, q (k, dof), postures, singular)
+      .def(py::pickle(  // (version, dof, q (k, dof), postures, singular, within_limits)
           [](const ClosedFormSolutions& s) {
-            py::list postures;
-            for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k]));
-            return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular);
+            py::list postures, within;
+            for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k])), within.append(py::bool_(s.within_limits[k]));
+            return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular, py::tuple(within));
           },
           [](const py::tuple& t) {
-            check_state(t, 5, "IKSolutions");
+            check_state(t, 6, "IKSolutions");
             // The labels are static strings in a solution: one interned copy of each label read back.
             static std::set<std::string> labels;
             static std::mutex labels_mutex;
@@ -227,14 +255,16 @@ void bind_ik_closed(py::module_& m) {
             s.dof = t[1].cast<int>();
             s.singular = t[4].cast<bool>();
             const Array q = as_array(t[2], "q");
-            const py::sequence postures = t[3].cast<py::sequence>();
+            const py::sequence postures = t[3].cast<py::sequence>(), within = t[5].cast<py::sequence>();
             if (s.dof < 1 || s.dof > ClosedFormSolutions::kMaxDof ||
                 postures.size() > static_cast<size_t>(ClosedFormSolutions::kMaxSolutions) ||
-                q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof)
-              fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture, at most 8 rows");
+                q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof || within.size() != postures.size())
+              fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture and per within_limits "
+                   "flag, at most 8 rows");
             std::lock_guard<std::mutex> lock(labels_mutex);
             for (size_t k = 0; k < postures.size(); ++k)
-              s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str());
+              s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str(),
+                    within[k].cast<bool>());
             return s;
           }))
       .def("__len__", &ClosedFormSolutions::count)
@@ -246,7 +276,8 @@ void bind_ik_closed(py::module_& m) {
             if (k < 0) return py::none();
             return py::int_(k);
           },
-          py::arg("q"), "Index of the solution nearest to q (Euclidean in joint space); None when empty.")
+          py::arg("q"),
+          "Index of the solution within the limits nearest to q (Euclidean in joint space); None when none is.")
       .def("__repr__", &repr);
   py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
       .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, LimitsLike limits) {

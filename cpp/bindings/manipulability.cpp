@@ -24,7 +24,7 @@ Measure measure_of(py::handle obj) {
 
 py::object manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj) {
   const Measure measure = measure_of(measure_obj);
-  const Task task = task_of(task_obj);
+  const Task task = task_of(task_obj, c);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
   const long count = check_q(c, q);
@@ -57,7 +57,7 @@ py::tuple ellipsoid(const Chain& c, ArrayLike q_obj, const std::string& part) {
   return py::make_tuple(to_numpy(axes), to_numpy(Eigen::VectorXd(lengths)));
 }
 
-// Chain.manipulability(q, measure='yoshikawa', task='pose') through fastcall.hpp (a call costs
+// Chain.manipulability(q, measure='yoshikawa', task=None) through fastcall.hpp (a call costs
 // about as much as one Chain.jacobian call, whose dispatch it shares).
 constexpr const char* kMeasure = "yoshikawa";  // Chain.manipulability's default measure
 
@@ -65,13 +65,12 @@ PyObject* manipulability_fast(PyObject* self, PyObject* const* args, Py_ssize_t 
   return guarded([&]() -> py::object {
     static const char* const names[] = {"q", "measure", "task"};
     static PyObject* const measure = interned(kMeasure);  // kept for the process
-    static PyObject* const task = interned(task_name(Task::Pose));
     PyObject* a[3];
     parse_args("manipulability", args, nargs, kwnames, names, 3, 3, a);
     if (!a[0]) missing("manipulability", "q");
     return manipulability(self_of<Chain>(self), py::reinterpret_borrow<ArrayLike>(a[0]),
                           py::reinterpret_borrow<MeasureName>(a[1] ? a[1] : measure),
-                          py::reinterpret_borrow<TaskName>(a[2] ? a[2] : task));
+                          py::reinterpret_borrow<TaskName>(a[2] ? a[2] : Py_None));
   });
 }
 
@@ -83,12 +82,13 @@ void bind_manipulability(py::module_& m) {
       chain_class,
       fast_def("manipulability", &manipulability_fast,
                "(self: robokin._core.Chain, q: " + type_text<ArrayLike>() + ", measure: " + type_text<MeasureName>() +
-                   " = '" + kMeasure + "', task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) +
-                   "') -> float | numpy.typing.NDArray[numpy.float64]",
+                   " = '" + kMeasure + "', task: " + type_text<TaskName>() +
+                   " = None) -> float | numpy.typing.NDArray[numpy.float64]",
                "Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their\n"
                "product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse\n"
                "condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),\n"
-               "an array (N,) for a batch (N, dof) (GIL released, every core).\n"));
+               "an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's\n"
+               "natural_task (a planar arm's 'pose' rows would always give 0).\n"));
   chain_class.attr("ellipsoid") = py::cpp_function(
       &ellipsoid, py::name("ellipsoid"), py::is_method(chain_class), py::sibling(py::getattr(chain_class, "ellipsoid", py::none())),
       py::arg("q"), py::arg("part") = "translation",

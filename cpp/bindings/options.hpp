@@ -61,6 +61,11 @@ struct FieldCodec<std::vector<double>> {
   }
 };
 
+template <class V>
+struct OptionalEnum : std::false_type {};
+template <class E>
+struct OptionalEnum<std::optional<E>> : std::is_enum<E> {};
+
 struct FieldInfo {
   std::string name, kind;
   bool integer;  // an int field: bools are refused, ints too large for it are out of range
@@ -171,13 +176,25 @@ class OptionsClass {
   }
 
   // One field: read-write as its C++ type, an enum by its name (the core's name_of / parse
-  // overloads beside the enum), a type with a FieldCodec as its codec says.
+  // overloads beside the enum; an optional enum: None or a name), a type with a FieldCodec as its
+  // codec says.
   template <class V>
   OptionsClass& field(const char* name, V T::*member, const char* doc) {
     if constexpr (std::is_enum_v<V>) {
       return field_as<std::string>(
           name, [member](const T& o) { return std::string(name_of(o.*member)); },
           [member](T& o, const std::string& v) { parse(v, o.*member); }, doc);
+    } else if constexpr (OptionalEnum<V>::value) {
+      using Name = std::optional<std::string>;
+      return field_as<Name>(
+          name, [member](const T& o) { return o.*member ? Name(name_of(*(o.*member))) : Name(); },
+          [member](T& o, const Name& v) {
+            if (!v) return (o.*member).reset();
+            typename V::value_type e{};
+            parse(*v, e);
+            o.*member = e;
+          },
+          doc);
     } else if constexpr (FieldCodec<V>::defined) {
       using Codec = FieldCodec<V>;
       cls_.def_property(name, [member](const T& o) { return Codec::to_python(o.*member); },

@@ -1,6 +1,7 @@
 // The Reach loop and path tracking (seed 000, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "results.hpp"
@@ -20,22 +21,15 @@ using ReachOptionsClass = OptionsClass<ReachOptions>;
 // The options of one call: the keyword arguments, plus the null-space term the chain gives them.
 ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
   ReachOptions o = ReachOptionsClass::from_kwargs(kwargs);
-  if (py::isinstance<py::str>(nullspace)) {
-    if (py::cast<std::string>(nullspace) != "joint_limits")
-      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" +
-           py::cast<std::string>(nullspace) + "'");
-    o.nullspace_weights = joint_limit_weights(chain);
-  } else if (!nullspace.is_none()) {
-    o.nullspace_weights = as_vector(nullspace, "nullspace", chain.dof());
-  }
+  o.nullspace_gains = nullspace_gains(chain, nullspace);
   o.validate(chain);
   return o;
 }
 
-ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const std::string& task_str,
-                  NullspaceLike nullspace, const py::kwargs& kwargs) {
-  const Task task = parse_task(task_str);
-  const Target t = one_target(task, target);
+ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, TaskName task_obj, NullspaceLike nullspace,
+                  const py::kwargs& kwargs) {
+  const Task task = task_of(task_obj, chain);
+  const Target t = one_target(chain, task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
   Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
   ReachResult r = reacher.reach(t, q);
@@ -44,10 +38,10 @@ ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, const s
   return r;
 }
 
-TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, const std::string& task_str,
-                  NullspaceLike nullspace, const py::kwargs& kwargs) {
-  const Task task = parse_task(task_str);
-  const std::vector<Target> targets = many_targets(task, points, "points");
+TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskName task_obj, NullspaceLike nullspace,
+                  const py::kwargs& kwargs) {
+  const Task task = task_of(task_obj, chain);
+  const std::vector<Target> targets = many_targets(chain, task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
   PythonProgress progress("track");
@@ -77,10 +71,10 @@ void bind_reach(py::module_& m) {
       .array("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
       .array("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
       .done();
-  m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = "xy", py::kw_only(),
+  m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = py::none(), py::kw_only(),
         py::arg("nullspace") = py::none(),
         "One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");
-  m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = "xy", py::kw_only(),
+  m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = py::none(), py::kw_only(),
         py::arg("nullspace") = py::none(),
         "Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.");
   m.def(

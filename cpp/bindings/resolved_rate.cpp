@@ -13,22 +13,11 @@
 namespace robokin::bind {
 namespace {
 
-Vector nullspace_weights(const Chain& chain, NullspaceLike nullspace) {
-  if (nullspace.is_none()) return Vector();
-  if (py::isinstance<py::str>(nullspace)) {
-    if (py::cast<std::string>(nullspace) != "joint_limits")
-      fail("nullspace: expected None, 'joint_limits' or an array of gains, got '" + py::cast<std::string>(nullspace) +
-           "'");
-    return joint_limit_weights(chain);
-  }
-  return as_vector(nullspace, "nullspace", chain.dof());
-}
-
 RateOptions rate_options(const Chain& chain, TaskName task, double damping, NullspaceLike nullspace) {
   RateOptions o;
-  o.task = task_of(task);
+  o.task = task_of(task, chain);
   o.damping = damping;
-  o.nullspace_weights = nullspace_weights(chain, nullspace);
+  o.nullspace_gains = nullspace_gains(chain, nullspace);
   check_rate_options(chain, o);
   return o;
 }
@@ -53,7 +42,7 @@ py::tuple servo(const Chain& chain, ArrayLike poses, ArrayLike q0_obj, double dt
   o.gain = gain;
   o.saturate = saturate;
   check_servo_options(chain, o);
-  const std::vector<Target> targets = many_targets(o.rate.task, poses, "poses");
+  const std::vector<Target> targets = many_targets(chain, o.rate.task, poses, "poses");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   const auto count = static_cast<py::ssize_t>(targets.size()), n = static_cast<py::ssize_t>(chain.dof());
   py::array_t<double> q({count, n}), qdot({count, n}), ep(count), er(count);
@@ -73,10 +62,10 @@ py::tuple servo(const Chain& chain, ArrayLike poses, ArrayLike q0_obj, double dt
 
 void bind_resolved_rate(py::module_& m) {
   m.def("resolved_rate", &resolved_rate, py::arg("chain"), py::arg("q"), py::arg("twist"), py::arg("damping") = 0.0,
-        py::arg("nullspace") = py::none(), py::arg("task") = "pose",
+        py::arg("nullspace") = py::none(), py::arg("task") = py::none(),
         "Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.");
   m.def("servo", &servo, py::arg("chain"), py::arg("poses"), py::arg("q0"), py::arg("dt"), py::arg("gain") = 0.75,
-        py::arg("damping") = 0.0, py::arg("nullspace") = py::none(), py::arg("task") = "pose",
+        py::arg("damping") = 0.0, py::arg("nullspace") = py::none(), py::arg("task") = py::none(),
         py::arg("saturate") = true, "Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.");
 }
 

@@ -158,6 +158,22 @@ void Chain::build_fast_path() {
   }
   links_.back().after = make_fixed(since_motion);
   build_masks();
+  planar_ = moves_in_base_plane();
+}
+
+bool Chain::moves_in_base_plane() const {
+  const Vector zero = Vector::Zero(dof_);
+  Matrix6X J(6, dof_);
+  Rigid T;
+  fk_jacobian(zero.data(), T, J.data());
+  constexpr double kTol = 1e-9;  // relative to the column's own size (a unit axis, times the joint's scale)
+  for (int i = 0; i < dof_; ++i) {
+    const bool off = links_[i].prismatic
+                         ? std::abs(J(2, i)) > kTol * J.col(i).head<3>().norm()                       // v_z
+                         : J.col(i).segment<2>(3).norm() > kTol * J.col(i).tail<3>().norm();           // w_x, w_y
+    if (off) return false;
+  }
+  return true;
 }
 
 // Follows which entries of R can be non-zero along the chain (nz), starting from the base.

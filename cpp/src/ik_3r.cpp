@@ -274,7 +274,8 @@ ClosedFormSolutions ik_3r(const Arm3R& arm, const Chain& chain, const Eigen::Vec
     const double d = det_3r(arm, q[1], q[2]);
     const bool sing = std::abs(d) <= 1e-9 * arm.size * arm.size * arm.size;
     out.singular = out.singular || sing;
-    if (fit_limits(q, 3, limits)) out.add(q, sing ? "singular" : (d > 0 ? "det J > 0" : "det J < 0"));
+    const bool within = fit_limits(q, 3, limits);
+    out.add(q, sing ? "singular" : (d > 0 ? "det J > 0" : "det J < 0"), within);
   }
   return out;
 }

@@ -19,11 +19,18 @@ constexpr double kPi = M_PI;
 constexpr double kCosEps = kClosedCosEps;
 constexpr double kTolP = kClosedTolP, kTolR = kClosedTolR;
 
-// Adds q when it fits the limits and `reaches(q)` (the forward model puts the tool on the target).
+// Adds q when `reaches(q)` (the forward model puts the tool on the target), brought within the
+// limits where it fits them and marked within_limits then (fit_limits). A stroke a hair outside its
+// limit is clamped onto it by fit_limits' tolerance (1e-12 m): for an arm of 1e-30 m that moves the
+// tool off the target, and the solution is then returned as it is, marked outside.
 template <class Reaches>
-void add_if_admissible(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture,
-                       Reaches&& reaches) {
-  if (fit_limits(q, out.dof, lim) && reaches(q)) out.add(q, posture);
+void add_if_reaches(ClosedFormSolutions& out, double* q, const JointLimits& lim, const char* posture,
+                    Reaches&& reaches) {
+  double fitted[ClosedFormSolutions::kMaxDof];
+  std::copy(q, q + out.dof, fitted);
+  if (fit_limits(fitted, out.dof, lim) && reaches(fitted)) return out.add(fitted, posture, true);
+  fit_limits(q, out.dof, JointLimits{{}, {}, lim.prismatic});  // as without limits: revolute angles wrapped
+  if (reaches(q)) out.add(q, posture, false);
 }
 
 // The tip of a planar 2R (links a1, a2) at (t1, t2) is within tol of (x, y).
@@ -275,13 +282,13 @@ ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits
   if (d == 0) {
     double q[2] = {0.0, 0.0};
     out.singular = true;
-    add_if_admissible(out, q, lim, "origin (theta1 free)", reaches);
+    add_if_reaches(out, q, lim, "origin (theta1 free)", reaches);
     return out;
   }
   const double th = std::atan2(py, px);
   double fwd[2] = {th, d}, back[2] = {th + kPi, -d};
-  add_if_admissible(out, fwd, lim, "stroke forward", reaches);
-  add_if_admissible(out, back, lim, "stroke backward", reaches);
+  add_if_reaches(out, fwd, lim, "stroke forward", reaches);
+  add_if_reaches(out, back, lim, "stroke backward", reaches);
   return out;
 }
 
@@ -294,7 +301,7 @@ ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, con
   const char* lab[2];
   const int n = planar_2r_solve(a1, a2, px, py, th, lab, out.singular);
   const auto reaches = [&](const double* q) { return planar_tip_near(a1, a2, q[0], q[1], px, py, kTolP * (a1 + a2)); };
-  for (int k = 0; k < n; ++k) add_if_admissible(out, th[k], limits, lab[k], reaches);
+  for (int k = 0; k < n; ++k) add_if_reaches(out, th[k], limits, lab[k], reaches);
   return out;
 }
 
@@ -322,7 +329,7 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
     const int n = planar_2r_solve(a1, a2, wx, wy, th, lab, out.singular);
     for (int k = 0; k < n; ++k) {
       double q[3] = {th[k][0], th[k][1], phi - th[k][0] - th[k][1]};
-      add_if_admissible(out, q, limits, lab[k], reaches);
+      add_if_reaches(out, q, limits, lab[k], reaches);
     }
     return out;
   }
@@ -352,7 +359,7 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
     const double theta2 = k == 0 ? t2 : -t2;
     const double theta1 = w > 1e-12 ? (k == 0 ? alpha - beta : alpha + beta) : 0.0;
     double q[3] = {theta1, theta2, phi - theta1 - theta2};
-    add_if_admissible(out, q, limits, count == 1 ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"), reaches);
+    add_if_reaches(out, q, limits, count == 1 ? singular_elbow(c2) : (k == 0 ? "elbow down" : "elbow up"), reaches);
   }
   return out;
 }
@@ -367,7 +374,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   };
   ArmSolution arms[4];
   const int n = arm_solve(arm, p, out.singular, arms);
-  for (int k = 0; k < n; ++k) add_if_admissible(out, arms[k].q, limits, arm_label(arms[k].shoulder, arms[k].elbow, 0), reaches);
+  for (int k = 0; k < n; ++k) add_if_reaches(out, arms[k].q, limits, arm_label(arms[k].shoulder, arms[k].elbow, 0), reaches);
   return out;
 }
 
@@ -422,29 +429,29 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   vmath::atan2(y56, x56, q56, 4 * na);
   double q[8][6], angles[48], c[48], s[48];
   const char* posture[8];
-  int n = 0;
-  for (int k = 0; k < 2 * na; ++k) {
+  bool within[8];
+  const int n = 2 * na;
+  for (int k = 0; k < n; ++k) {
     const ArmSolution& a = arms[k / 2];
-    double* v = q[n];
+    double* v = q[k];
     v[0] = a.q[0], v[1] = a.q[1], v[2] = a.q[2], v[3] = q4[k], v[4] = q56[2 * k], v[5] = q56[2 * k + 1];
-    if (!fit_limits(v, 6, limits)) continue;
-    posture[n] = arm_label(a.shoulder, a.elbow, k % 2 ? 2 : 1);
-    std::copy(v, v + 6, angles + 6 * n);
-    ++n;
+    within[k] = fit_limits(v, 6, limits);
+    posture[k] = arm_label(a.shoulder, a.elbow, k % 2 ? 2 : 1);
+    std::copy(v, v + 6, angles + 6 * k);
   }
   vmath::sincos(angles, s, c, 6 * n);
   const double size = arm_size(arm, d6);
   for (int k = 0; k < n; ++k) {
     const Rigid F = wrist_arm_fk(arm, d6, c + 6 * k, s + 6 * k);
     if ((F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
-      out.add(q[k], posture[k]);
+      out.add(q[k], posture[k], within[k]);
   }
   return out;
 }
 
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
-                             Progress* progress) {
+                             bool* reachable, Progress* progress) {
   arm.validate();
   check_length(d6, "d6", false);
   // Angles are shifted at most to |v| <= 2^20 rad (~167,000 turns): there a double holds them to
@@ -472,6 +479,7 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
       }
     const int best = nearest_solution(s, prev);
     ok[k] = best >= 0;
+    reachable[k] = s.count() > 0;
     if (best >= 0) std::copy(s.row(best), s.row(best) + 6, prev);
     std::copy(prev, prev + 6, q_out + 6 * k);
   }
@@ -481,6 +489,7 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
   int best = -1;
   double best_d = 0;
   for (int k = 0; k < s.count(); ++k) {
+    if (!s.within_limits[k]) continue;
     double d = 0;
     for (int i = 0; i < s.dof; ++i) {
       const double e = s.row(k)[i] - q[i];
@@ -734,36 +743,36 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
       cand_slot[m++] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
     }
   }
-  // The candidates within the limits, kept in order, checked by the chain's forward model together.
+  // The candidates brought within the limits where they fit (marked), checked by the chain's forward
+  // model together.
   bool fits[8];
   fit_limits_rows(cand[0], m, 6, limits, fits);
-  int n = 0;
-  for (int k = 0; k < m; ++k) {
-    if (!fits[k]) continue;
-    if (n != k) std::copy(cand[k], cand[k] + 6, cand[n]), posture[n] = posture[k], cand_slot[n] = cand_slot[k];
-    ++n;
-  }
   Rigid F[8];
-  chain.fk_few(cand[0], n, F);
-  for (int k = 0; k < n; ++k) {
+  chain.fk_few(cand[0], m, F);
+  for (int k = 0; k < m; ++k) {
     if (!((F[k].p - T.p).norm() <= kTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
     if (slot) slot[out.count()] = cand_slot[k];
-    out.add(cand[k], posture[k]);
+    out.add(cand[k], posture[k], fits[k]);
   }
   return out;
 }
 
 void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
-                 double* q_out, bool* singular, Progress* progress) {
+                 double* q_out, bool* within_limits, bool* singular, Progress* progress) {
   parallel_for(
       count, 512,
       [&](long begin, long end) {
         int slot[8];
         for (long k = begin; k < end; ++k) {
           double* row = q_out + 48 * k;
+          bool* within = within_limits + 8 * k;
           std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
+          std::fill(within, within + 8, false);
           const ClosedFormSolutions s = ik_ur(arm, chain, targets[k], limits, slot);
-          for (int i = 0; i < s.count(); ++i) std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
+          for (int i = 0; i < s.count(); ++i) {
+            std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
+            within[slot[i]] = s.within_limits[i];
+          }
           singular[k] = s.singular;
         }
       },

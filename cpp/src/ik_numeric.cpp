@@ -119,8 +119,9 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   restarts_ = options.max_restarts();
   timeout_ = options.budget();
   damping_ = options.damping_or_default();
-  tol_r_ = options.task == Task::Pose || options.task == Task::XYPhi ? options.tol_r : INFINITY;
-  const int n = chain.dof(), m = task_rows(options.task);
+  task_ = options.task_for(chain);
+  tol_r_ = task_ == Task::Pose || task_ == Task::XYPhi ? options.tol_r : INFINITY;
+  const int n = chain.dof(), m = task_rows(task_);
   if (n == n_ && m == m_) return;  // the workspace fits already
   n_ = n;
   m_ = m;
@@ -149,7 +150,7 @@ double IkSolver::clamp(int i, double v) const { return nearest_in_limits(v, chai
 
 void IkSolver::errors_of(const Target& target, const Rigid& T, double* e, double& ep, double& er) const {
   task_error(target, T, e);
-  task_error_norms(opt_.task, e, ep, er);
+  task_error_norms(task_, e, ep, er);
 }
 
 void IkSolver::errors(const Target& target, const double* q, double& ep, double& er) const {
@@ -177,7 +178,7 @@ void IkSolver::select_rows(const Matrix6X& J6, Eigen::MatrixXd& J) const {
     J = J6;
     return;
   }
-  const int* rows = task_row_indices(opt_.task);
+  const int* rows = task_row_indices(task_);
   for (int r = 0; r < m_; ++r) J.row(r) = J6.row(rows[r]);
 }
 

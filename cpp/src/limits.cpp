@@ -54,7 +54,9 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
     for (int r = 0; r < rows; ++r) {
       double& v = q[r * n + i];
       const double tol = 1e-12 * std::max(1.0, std::abs(v));
-      ok[r] = settle_into_limits(v, lo, hi, revolute, tol) && ok[r];
+      if (settle_into_limits(v, lo, hi, revolute, tol)) continue;
+      ok[r] = false;  // v is unchanged: reported as without limits
+      if (revolute) v = wrap_angle(v);
     }
   }
 }

@@ -88,13 +88,14 @@ double safe_norm(const V& v) {
   return std::isfinite(n) ? n : v.stableNorm();
 }
 
-// dq += (1 - J^p J) h with h = weights .* (qbar - q): seed 000's homogeneous term (eqs. 5-7), which
-// moves the joints toward the middle of their ranges without moving the tool (to first order).
+// dq += (1 - J^p J) h with h = gains .* (qbar - q): seed 000's homogeneous term (eqs. 5-7), which
+// moves the joints toward the middle of their ranges without moving the tool (to first order); h is
+// -grad of 1/2 sum gains_i (qbar_i - q_i)^2 (joint_limit_gains, reach.hpp: the seed's z).
 // h and correction are workspace of the joints' size.
-template <int M, class JMap, class W, class Q, class V>
-void add_nullspace_term(const JMap& J, double damping, const W& weights, const W& qbar, const Q& q, V& h,
+template <int M, class JMap, class G, class Q, class V>
+void add_nullspace_term(const JMap& J, double damping, const G& gains, const G& qbar, const Q& q, V& h,
                         V& correction, V& dq) {
-  h = weights.cwiseProduct(qbar - q);
+  h = gains.cwiseProduct(qbar - q);
   const Eigen::Matrix<double, M, 1> Jh = J * h;
   min_norm_solve<M>(J, Jh, damping, correction);
   dq += h - correction;

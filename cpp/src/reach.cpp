@@ -28,20 +28,20 @@ void ReachOptions::validate(const Chain& chain) const {
   positive(o.tol, "tol");
   positive(o.gain, "gain");
   positive(o.dt, "dt");
-  check_damping_and_nullspace(chain, o.damping, o.nullspace_weights);
+  check_damping_and_nullspace(chain, o.damping, o.nullspace_gains);
 }
 
-void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& weights) {
+void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& gains) {
   if (!(std::isfinite(damping) && damping >= 0))
     throw std::invalid_argument("damping: must be a finite number >= 0");
-  if (weights.size() != 0) {
-    if (weights.size() != chain.dof())
+  if (gains.size() != 0) {
+    if (gains.size() != chain.dof())
       throw std::invalid_argument("nullspace: expected " + std::to_string(chain.dof()) +
-                                  " gains, got " + std::to_string(weights.size()));
-    if (!weights.allFinite())
+                                  " gains, got " + std::to_string(gains.size()));
+    if (!gains.allFinite())
       throw std::invalid_argument("nullspace: gains must be finite");
     for (int i = 0; i < chain.dof(); ++i)
-      if (weights(i) != 0 && !(std::isfinite(chain.lower()(i)) && std::isfinite(chain.upper()(i))))
+      if (gains(i) != 0 && !(std::isfinite(chain.lower()(i)) && std::isfinite(chain.upper()(i))))
         throw std::invalid_argument("nullspace: joint " + std::to_string(i) +
                                     " has no finite limits to stay away from; give it a zero gain");
   }
@@ -55,6 +55,8 @@ Vector joint_limit_weights(const Chain& chain) {
   }
   return w;
 }
+
+Vector joint_limit_gains(const Chain& chain) { return joint_limit_weights(chain).array().square(); }
 
 Vector joint_middles(const Chain& chain) {
   Vector qbar = 0.5 * (chain.lower() + chain.upper());
@@ -92,7 +94,7 @@ int Reacher::run_rows(const Target& target, double& error) {
       qbar(qbar_.data(), n_);
   Eigen::Map<RowsVector> e(e_);
   const int* rows = task_row_indices(task_);
-  const bool use_nullspace = opt_.nullspace_weights.size() != 0;
+  const bool use_nullspace = opt_.nullspace_gains.size() != 0;
   const double step = opt_.gain / opt_.dt;
   task_error(target, T_, e_);
   error = safe_norm(e);
@@ -107,8 +109,8 @@ int Reacher::run_rows(const Target& target, double& error) {
       // it on every iteration leaves a residual of order |dt dq_H|^2 that never drops below tol.
       // It is applied on the first iteration of each Reach only: the following iterations are the
       // seed's minimum-norm corrections, which remove that residual.
-      const Eigen::Map<const JointVector> weights(opt_.nullspace_weights.data(), n_);
-      add_nullspace_term<M>(J, opt_.damping, weights, qbar, q, h, correction, dq);
+      const Eigen::Map<const JointVector> gains(opt_.nullspace_gains.data(), n_);
+      add_nullspace_term<M>(J, opt_.damping, gains, qbar, q, h, correction, dq);
     }
     dq *= opt_.dt;
     // An absurd gain or target: stop at the last finite joints (q + dq may overflow too).

@@ -10,7 +10,7 @@
 namespace robokin {
 
 void check_rate_options(const Chain& chain, const RateOptions& o) {
-  check_damping_and_nullspace(chain, o.damping, o.nullspace_weights);
+  check_damping_and_nullspace(chain, o.damping, o.nullspace_gains);
 }
 
 void check_servo_options(const Chain& chain, const ServoOptions& o) {
@@ -37,10 +37,9 @@ void RateController::solve(const double* q, const double* rhs_data, double* qdot
   const Eigen::Matrix<double, M, 1> rhs = Eigen::Map<const Eigen::Matrix<double, M, 1>>(rhs_data);
   Eigen::Map<Vector> qdot(qdot_data, n_), h(h_.data(), n_), correction(correction_.data(), n_);
   min_norm_solve<M>(J, rhs, opt_.damping, qdot);
-  if (opt_.nullspace_weights.size() != 0) {
-    const Eigen::Map<const Vector> weights(opt_.nullspace_weights.data(), n_), qbar(qbar_.data(), n_),
-        qv(q, n_);
-    add_nullspace_term<M>(J, opt_.damping, weights, qbar, qv, h, correction, qdot);
+  if (opt_.nullspace_gains.size() != 0) {
+    const Eigen::Map<const Vector> gains(opt_.nullspace_gains.data(), n_), qbar(qbar_.data(), n_), qv(q, n_);
+    add_nullspace_term<M>(J, opt_.damping, gains, qbar, qv, h, correction, qdot);
   }
 }
 

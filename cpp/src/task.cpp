@@ -38,6 +38,13 @@ int task_rows(Task task) {
   return 0;
 }
 
+Task natural_task(const Chain& chain) {
+  if (!chain.planar()) return chain.dof() >= 6 ? Task::Pose : Task::Position;
+  int revolute = 0;
+  for (int i = 0; i < chain.dof(); ++i) revolute += chain.prismatic(i) ? 0 : 1;
+  return revolute >= 3 ? Task::XYPhi : Task::XY;
+}
+
 // The rotation vector (angle * axis) of R: from the skew part, sin(angle) * axis, and the trace,
 // without the quaternion detour of Eigen::AngleAxis (which remains the route near angle = pi).
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R) {

@@ -81,16 +81,18 @@ class Chain:
         """
         Frames (dof + 1, 4, 4): base, then the frame after each joint.
         """
-    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.ndarray:
+    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose') -> numpy.ndarray:
         """
-        Geometric Jacobian at the tool point in the base frame, rows of the task.
+        Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)
+        by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.
         """
-    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> float | numpy.typing.NDArray[numpy.float64]:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
         """
         Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
         product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
         condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),
-        an array (N,) for a batch (N, dof) (GIL released, every core).
+        an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's
+        natural_task (a planar arm's 'pose' rows would always give 0).
         """
     def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -136,6 +138,13 @@ class Chain:
         The names of the dof + 1 links whose frames frames(q) gives: the base link, the link each of
         joints 1 .. dof-1 moves, and the chain's last link (the tip, after any fixed joints: a flange,
         tool0). A URDF chain's are the file's; base, link1 .. linkn for a DH or segment chain.
+        """
+    @property
+    def natural_task(self) -> str:
+        """
+        The task calls control when given task=None: 'xyphi' for a planar arm (every joint moving the tool
+        parallel to the base xy plane) with at least three revolute joints, 'xy' for another planar arm,
+        'pose' for a spatial arm of six joints or more, 'position' for one with fewer.
         """
 class ReachOptions:
     """
@@ -396,22 +405,23 @@ class RRR3Plan:
     @property
     def alpha(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (K, 3) actuated angles, NaN rows where unreachable.
+        (K, 3) actuated angles, NaN rows where unreachable (feasible is then False).
         """
     @property
     def det_a_norm(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        det A / platform_radius along the path.
+        det A / platform_radius along the path, NaN where unreachable.
         """
     @property
     def det_b_norm(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        det B / l1^3 along the path.
+        det B / l1^3 along the path, NaN where unreachable.
         """
     @property
     def distance(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Distance to parallel singularities (inverse condition number of A) along the path.
+        Distance to parallel singularities (inverse condition number of A) along the path, NaN where
+        unreachable.
         """
     @property
     def feasible(self) -> bool:
@@ -801,7 +811,7 @@ class RRR3LoopOptions:
         ...
 class RRR3:
     """
-    The planar 3-RRR parallel robot (seed 002, geometry of DESIGN.md).
+    The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).
     """
     modes: typing.ClassVar[tuple] = ((1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1), (-1, 1, 1), (-1, 1, -1), (-1, -1, 1), (-1, -1, -1))
     def __eq__(self, arg0: RRR3) -> bool:
@@ -903,9 +913,10 @@ class RRR3:
         ...
 class IKSolutions:
     """
-    Every closed-form solution of a pose: q (k, dof) and one posture label per row.
+    Every closed-form solution of a pose: q (k, dof), one posture label per row and
+    whether each row is within the joint limits (none is dropped for its limits).
     """
-    def __getstate__(self) -> tuple[int, int, numpy.typing.NDArray[numpy.float64], tuple, bool]:
+    def __getstate__(self) -> tuple[int, int, numpy.typing.NDArray[numpy.float64], tuple, bool, tuple]:
         ...
     def __len__(self) -> int:
         ...
@@ -915,7 +926,11 @@ class IKSolutions:
         ...
     def nearest(self, q: numpy.typing.ArrayLike) -> typing.Any:
         """
-        Index of the solution nearest to q (Euclidean in joint space); None when empty.
+        Index of the solution within the limits nearest to q (Euclidean in joint space); None when none is.
+        """
+    def only_within_limits(self) -> IKSolutions:
+        """
+        The solutions within the joint limits only (an IKSolutions, rows in order).
         """
     @property
     def dof(self) -> int:
@@ -934,6 +949,12 @@ class IKSolutions:
     def singular(self) -> bool:
         """
         True at a singularity (postures coincide, or a joint is free: 0 was chosen).
+        """
+    @property
+    def within_limits(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        (k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);
+        False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).
         """
 class _SphericalWrist6R:
     """
@@ -959,7 +980,7 @@ class IKOptions:
     """
     __hash__: typing.ClassVar[None] = None
     fields: typing.ClassVar[tuple] = ('method', 'task', 'tol_p', 'tol_r', 'max_iter', 'restarts', 'timeout', 'damping', 'stall_window')
-    kinds: typing.ClassVar[tuple] = ('str', 'str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
+    kinds: typing.ClassVar[tuple] = ('str', 'None or str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
     def __eq__(self, arg0: typing.Any) -> bool:
         ...
     def __getstate__(self) -> dict:
@@ -1017,12 +1038,12 @@ class IKOptions:
     def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
-    def task(self) -> str:
+    def task(self) -> str | None:
         """
-        'pose', 'position', 'xy' or 'xyphi'.
+        'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.
         """
     @task.setter
-    def task(self, arg1: str) -> None:
+    def task(self, arg1: str | None) -> None:
         ...
     @property
     def timeout(self) -> float | None:
@@ -1158,11 +1179,13 @@ class IKSolver:
     @property
     def options(self) -> IKOptions:
         """
-        The solver's IKOptions (a copy).
+        The solver's IKOptions (a copy), its task resolved (None: the chain's natural_task).
         """
     @property
     def task(self) -> str:
-        ...
+        """
+        The task solved for (task=None: the chain's natural_task).
+        """
 class UrdfJoint:
     """
     One joint of a URDF: its name, type and the links it joins.
@@ -1307,7 +1330,7 @@ def pose_rpy(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
     (roll, pitch, yaw) of rotations. Use robokin.pose.rpy.
     """
-def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
+def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
     """
     One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
     """
@@ -1323,7 +1346,7 @@ def release_output_memory() -> int:
     frames on one thread: 24 -> 15 ms here). The kernel may take kept memory back under memory
     pressure at any time. Linux only; elsewhere numpy allocates every output and this returns 0.
     """
-def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose') -> numpy.typing.NDArray[numpy.float64]:
+def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> numpy.typing.NDArray[numpy.float64]:
     """
     Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.
     """
@@ -1335,11 +1358,11 @@ def rrr3_region_areas(robots: numpy.typing.ArrayLike, phi: typing.SupportsFloat 
     """
     RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.
     """
-def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] = 'pose', saturate: bool = True) -> tuple:
+def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, saturate: bool = True) -> tuple:
     """
     Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.
     """
-def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: str = 'xy', *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
+def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
     """

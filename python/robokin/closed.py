@@ -1,12 +1,21 @@
 """Closed-form inverse kinematics (seed 003): every solution of a pose, labelled by its posture.
 
-Each function returns an :class:`IKSolutions` (``q`` of shape ``(k, dof)``, ``postures``, ``singular``),
-filtered by the joint limits, and empty (``len(s) == 0``, never an exception) when the pose is out
-of reach. Revolute angles are wrapped to ``(-pi, pi]`` and shifted by ``2 pi`` into the limits when
-that fits. The solvers run in the C++ core, and every solution is checked against the forward model
-before it is returned: the tool within 1e-9 x the arm's size (the sum of its lengths) of the target
-position, rotation-matrix entries within 1e-8 (a pose a hair out of reach, where a cosine is clamped
-to 1, is therefore returned only when the stretched arm really is that close).
+Each function returns an :class:`IKSolutions` (``q`` of shape ``(k, dof)``, ``postures``,
+``within_limits``, ``singular``) holding **every** solution of the pose, and empty (``len(s) == 0``,
+never an exception) when the pose is out of reach. The joint limits hide none: ``within_limits[k]``
+says whether solution ``k`` is within them (``s.only_within_limits()``, or ``s.q[s.within_limits]``,
+keeps those). Revolute angles are wrapped to ``(-pi, pi]`` and shifted by ``2 pi`` into the limits
+when that fits; a solution that does not fit keeps its wrapped angles. ``limits`` defaults to the
+chain's own where the arm is a chain (:func:`puma560`, :func:`ur`, :func:`general_3r`), to none
+where it is given by its lengths (every ``within_limits`` True). The batch and path variants
+follow the same rule: :func:`ur_batch` returns a ``within_limits`` mask beside its solutions, and
+:func:`puma560_path`, which must stay within the limits, says where a frame was reachable only
+outside them.
+
+The solvers run in the C++ core, and every solution is checked against the forward model before it
+is returned: the tool within 1e-9 x the arm's size (the sum of its lengths) of the target position,
+rotation-matrix entries within 1e-8 (a pose a hair out of reach, where a cosine is clamped to 1, is
+therefore returned only when the stretched arm really is that close).
 """
 
 from __future__ import annotations
@@ -55,10 +64,12 @@ def planar_rp(target, limits=None) -> IKSolutions:
 
     Args:
         target: Tip position (x, y).
-        limits: ``(lower, upper)`` for ``(theta1, d2)``, or a Chain (e.g. :func:`robokin.robots.rp`).
+        limits: ``(lower, upper)`` for ``(theta1, d2)``, or a Chain (e.g. :func:`robokin.robots.rp`),
+            for ``within_limits``; None: every solution within.
 
     Returns:
-        The forward stroke and, when the limits allow ``d2 < 0``, the backward one.
+        The forward stroke (``d2 >= 0``) and the backward one (``d2 < 0``, outside limits such as
+        :func:`robokin.robots.rp`'s ``0 <= d2``).
     """
     return _core.ik_planar_rp(target, _limits(limits))
 
@@ -70,7 +81,7 @@ def planar_2r(target, a1: float = 1.0, a2: float = 1.0, limits=None) -> IKSoluti
         target: Tip position (x, y).
         a1: Length of link 1.
         a2: Length of link 2.
-        limits: ``(lower, upper)`` or a Chain.
+        limits: ``(lower, upper)`` or a Chain, for ``within_limits``; None: none.
 
     Returns:
         "elbow down" (``theta2`` in ``(0, pi)``) and "elbow up"; one solution when ``sin theta2 = 0``.
@@ -89,7 +100,8 @@ def planar_3r(target, a1: float = 1.0, a2: float = 1.0, a3: float = 1.0, method:
         a3: Length of link 3.
         method: ``"algebraic"`` (``c2``, ``s2 = +-sqrt(1 - c2^2)``, then ``s1``, ``c1``) or
             ``"geometric"`` (law of cosines, ``theta1 = alpha -+ beta``).
-        limits: ``(lower, upper)`` or a Chain (e.g. :func:`robokin.robots.planar_3r`).
+        limits: ``(lower, upper)`` or a Chain (e.g. :func:`robokin.robots.planar_3r`), for
+            ``within_limits``; None: none.
 
     Returns:
         "elbow down" and "elbow up"; one solution ("elbow straight" / "elbow folded", ``singular``)
@@ -108,7 +120,7 @@ def anthropomorphic(target, a2: float, a3: float, d1: float = 0.0, limits=None) 
         a2: Upper arm length.
         a3: Forearm length.
         d1: Shoulder height.
-        limits: ``(lower, upper)`` or a Chain.
+        limits: ``(lower, upper)`` or a Chain, for ``within_limits``; None: none.
 
     Returns:
         Up to 4 postures: shoulder right / left x elbow up / down.
@@ -124,7 +136,7 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     Args:
         target: Tool frame (4, 4).
         a2, a3, d3, d4, d1, d6: The DH lengths above.
-        limits: ``(lower, upper)`` or a Chain.
+        limits: ``(lower, upper)`` or a Chain, for ``within_limits``; None: none.
 
     Returns:
         Up to 8 solutions: shoulder right / left x elbow up / down x wrist no flip / flip. At the
@@ -142,7 +154,8 @@ def _puma560_solver(default_limits: bool):
 
 
 def puma560(target, limits="default") -> IKSolutions:
-    """All (up to 8) solutions of :func:`robokin.robots.puma560` for the tool frame ``target``.
+    """All (up to 8) solutions of :func:`robokin.robots.puma560` for the tool frame ``target``,
+    each marked within the joint limits or not (``within_limits``).
 
     Args:
         target: Tool frame (4, 4).
@@ -155,9 +168,10 @@ def puma560(target, limits="default") -> IKSolutions:
 
 
 def puma560_path(targets, q0, limits="default"):
-    """Follows a path of tool frames with the closed form: at each frame, the solution nearest to
-    the previous joints (``q0`` for the first), angles shifted by ``2 pi`` towards the previous
-    ones within the limits. The posture never jumps to another branch unless the path forces it.
+    """Follows a path of tool frames with the closed form: at each frame, the solution within the
+    limits nearest to the previous joints (``q0`` for the first), angles shifted by ``2 pi`` towards
+    the previous ones within the limits. The posture never jumps to another branch unless the path
+    forces it.
 
     Angles are shifted at most to ``|q| <= 2**20`` rad (about 167,000 turns), where a double still
     holds them to 1.2e-10 rad, so that the joints reach each frame within the verified tolerance;
@@ -170,8 +184,10 @@ def puma560_path(targets, q0, limits="default"):
         limits: As :func:`puma560`.
 
     Returns:
-        ``(q, ok)``: (K, 6) joints and (K,) booleans; where a frame has no solution, ``ok`` is
-        False and the row repeats the previous joints.
+        ``(q, ok, reachable)``: (K, 6) joints and two (K,) boolean arrays. Where a frame has no
+        solution within the limits, ``ok`` is False and the row repeats the previous joints;
+        ``reachable`` is True where the frame has a solution, within the limits or not (so
+        ``reachable & ~ok`` marks the frames the limits alone exclude).
     """
     if isinstance(limits, str) and limits == "default":
         limits = _robots.PUMA560_LIMITS
@@ -183,7 +199,8 @@ def puma560_path(targets, q0, limits="default"):
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
     """The seed-000 RPR's self-motion set (redundant: infinitely many solutions); see
-    :func:`robokin.robots.rpr_self_motion`, which this is."""
+    :func:`robokin.robots.rpr_self_motion`, which this is: a fixed-shape (2, K, 3) table whose NaN
+    rows, by design, are the samples of t1 where a branch has no solution within the limits."""
     from .robots import rpr_self_motion as _sm
 
     return _sm(point, t1, num)
@@ -256,14 +273,16 @@ def ur(target, robot, limits="default") -> IKSolutions:
         target: Tool frame (4, 4).
         robot: A Chain such as :func:`robokin.robots.ur5`, or a dict ``{"d1", "a2", "a3", "d4",
             "d5", "d6"}`` (the UR table; no limits).
-        limits: ``"default"`` for the chain's limits, ``None`` for none, or ``(lower, upper)``.
+        limits: ``"default"`` for the chain's limits, ``None`` for none, or ``(lower, upper)``: for
+            ``within_limits`` (every solution is returned).
 
     Returns:
-        IKSolutions labelled ``"shoulder left|right, elbow up|down, wrist no flip|flip"`` (the 8 of
-        :data:`UR_POSTURES`): shoulder left puts the wrist centre (origin of frame 5) on the -x side
-        of frame 1, elbow up the elbow above the line from the shoulder to the origin of frame 4,
-        and wrist no flip the DH angle of joint 5 in ``[0, pi]``. ``singular`` is set, and postures
-        that coincide are returned once, at the shoulder singularity (wrist centre ``|d4|`` from
+        IKSolutions (every solution, ``within_limits`` marking those within the limits) labelled
+        ``"shoulder left|right, elbow up|down, wrist no flip|flip"`` (the 8 of :data:`UR_POSTURES`):
+        shoulder left puts the wrist centre (origin of frame 5) on the -x side of frame 1, elbow up
+        the elbow above the line from the shoulder to the origin of frame 4, and wrist no flip the
+        DH angle of joint 5 in ``[0, pi]``. ``singular`` is set, and postures that coincide are
+        returned once, at the shoulder singularity (wrist centre ``|d4|`` from
         axis 1: "shoulder singular"), the elbow's (q3 = 0 or pi: "elbow straight" / "elbow
         folded") and the wrist's (joint 5 at 0 or pi: axes 2, 3, 4 and 6 parallel, a continuum of
         solutions of which one representative per shoulder and elbow is returned, "wrist
@@ -285,10 +304,12 @@ def ur_batch(targets, robot, limits="default"):
         robot, limits: As :func:`ur`.
 
     Returns:
-        ``(q, singular)``: ``q`` (N, 8, 6), solution ``k`` in row ``k`` of ``q[i]`` for posture
-        ``UR_POSTURES[k]`` and NaN rows where that posture has no solution (unreachable, out of the
-        limits; a singular case keeps its one solution in the first slot of the postures that
-        coincide), and ``singular`` (N,) booleans.
+        ``(q, singular, within_limits)``: ``q`` (N, 8, 6), solution ``k`` in row ``k`` of ``q[i]``
+        for posture ``UR_POSTURES[k]``; ``singular`` (N,) booleans; ``within_limits`` (N, 8)
+        booleans, True where the slot holds a solution within the limits. A fixed-shape table:
+        a slot without a solution is a NaN row (``within_limits`` False), by design: the pose is
+        out of reach, or, at a singularity, its posture coincides with another (the one solution
+        is kept in the first slot of the postures that coincide). No row is NaN for its limits.
     """
     return _ur_solver(robot, limits).solve_batch(targets)
 
@@ -308,7 +329,7 @@ def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
     Args:
         target: Tool point (3,).
         chain: A 3-joint revolute chain (e.g. ``Chain.from_dh`` of three "R" rows).
-        limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``.
+        limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``, for ``within_limits``.
 
     Returns:
         IKSolutions labelled by the sign of det J ("det J > 0", "det J < 0", "singular");

@@ -21,6 +21,8 @@ Interrupting (Ctrl-C) a computation started here cancels its tasks on the cluste
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional
+
 import numpy as np
 
 try:
@@ -72,8 +74,8 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
     """:func:`robokin.ik_batch` over chunks of ``targets`` ((N, 4, 4) frames for ``task="pose"``,
     (N, rows) otherwise; numpy or dask), one start ``q0`` (dof,) for all. Target ``k`` uses
     ``seed + k`` whatever chunk it is in: with ``restarts`` given the arrays are the one-machine
-    call's, bit for bit. ``options``: ``method``, ``task``, ``tol_p``, ``tol_r``, ``max_iter``,
-    ``restarts``, ``timeout``, ``damping`` as for robokin.ik_batch (``path`` is sequential: not here).
+    call's, bit for bit. ``options``: every field of :class:`robokin.IKOptions`, as for
+    robokin.ik_batch (``task`` None: ``chain.natural_task``; ``path`` is sequential: not here).
 
     Returns:
         IKBatchArrays of dask arrays (``.compute()`` for numpy).
@@ -92,11 +94,12 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
                          packed[:, n + 2].astype(np.int32), packed[:, n + 3], packed[:, n + 4])
 
 
-def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50, seed: int = 0, task: str = "pose",
-                 q0=None, chunks: int = _BLOCK, **ik_options) -> ReachabilityMap:
+def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
+                 task: Optional[str] = None, q0=None, chunks: int = _BLOCK, **ik_options) -> ReachabilityMap:
     """:func:`robokin.reachability.reachability` with the voxels cut into chunks of ``chunks``
     voxels, computed with Dask (the active ``distributed.Client`` when there is one). The same
-    arguments and the same map, bit for bit, whatever the chunking and the workers."""
+    arguments (``task`` None: ``chain.natural_task``; ``ik_options``: any other IKOptions field) and
+    the same map, bit for bit, whatever the chunking and the workers."""
     plan = _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options)
     if isinstance(chunks, bool) or not isinstance(chunks, (int, np.integer)) or chunks < 1:
         raise ValueError(f"chunks: expected a positive int (voxels per chunk), got {chunks!r}")

@@ -129,7 +129,7 @@ def main(argv=None) -> int:
             parser.error(f"{flag}: expected a file name, got {path!r}")
     ext = os.path.splitext(args.out)[1][1:].lower()
     chain, poses, q0, dt, vmax = demo_line()
-    qg, ok = closed.puma560_path(poses, q0)
+    qg, ok, _ = closed.puma560_path(poses, q0)
     rg = count_reconfigurations(qg, dt, vmax, q0=q0, chain=chain)
     plan = track_postures(chain, poses, dt, qdot_max=vmax, q0=q0)
     print(f"PUMA 560: straight line of {len(poses)} tool frames, dt = {dt} s, qdot_max = {vmax} rad/s")

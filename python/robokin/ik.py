@@ -27,7 +27,8 @@ For many calls with the same options, ``IKSolver(chain, method=..., ...)`` binds
 options once; ``solver.solve(target, q0)`` then costs only the solve.
 
 Defaults (``IK_DEFAULTS``, read from the C++ core's ``IkOptions``, the one place they are written):
-``lm``, tolerances 1e-9 m and 1e-9 rad, 100 iterations per attempt, and, with neither ``restarts``
+``lm``, the chain's natural task (``task`` None: ``chain.natural_task``), tolerances 1e-9 m and
+1e-9 rad, 100 iterations per attempt, and, with neither ``restarts``
 nor ``timeout`` given, restarts from random configurations within the limits until a solution is
 found or the time budget of ``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
 that a busy machine does not cut the search short) runs out. A reachable target is then
@@ -59,13 +60,16 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
     Args:
         chain: The serial chain; its joint limits are respected.
         target: ``task="pose"``: a (4, 4) frame; ``"position"``: (x, y, z); ``"xy"``: (x, y);
-            ``"xyphi"``: (x, y, phi).
+            ``"xyphi"``: (x, y, phi). A target shaped for another task names it: ``target (3,) is
+            a position (x, y, z): pass task="position" (task 'pose' takes a (4, 4) frame)``.
         q0: Start configuration, shape (dof,).
         seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
             None draws one. (With a time budget, how many restarts fit depends on the machine.)
         **options: Keyword-only, the fields of :class:`IKOptions`:
             ``method``: ``"lm"``, ``"gn"``, ``"nr"`` or ``"halley"`` (see the module docstring).
-            ``task``: which part of the tool pose is solved for.
+            ``task``: which part of the tool pose is solved for; None (the default):
+            ``chain.natural_task`` (``"pose"`` for arms of six joints or more, ``"position"`` for
+            fewer, ``"xyphi"`` / ``"xy"`` for planar arms).
             ``tol_p``: position tolerance (m).
             ``tol_r``: orientation tolerance (rad): the rotation angle between the frames (pose),
             the planar angle (xyphi); unused for the other tasks.
@@ -105,7 +109,8 @@ def ik_batch(chain: _core.Chain, targets, q0, *, seed: Optional[int] = None, pat
 
     Args:
         chain: The serial chain.
-        targets: ``(N, 4, 4)`` frames for ``task="pose"``, ``(N, rows)`` otherwise.
+        targets: ``(N, 4, 4)`` frames for ``task="pose"``, ``(N, rows)`` otherwise (``task`` None:
+            ``chain.natural_task``).
         q0: ``(dof,)`` start for every target, or ``(N, dof)`` one start per target.
         seed: Target ``k`` uses ``seed + k``: the results do not depend on the threads.
         path: The targets are a path: each starts from the previous solution (warm start, no
@@ -117,6 +122,7 @@ def ik_batch(chain: _core.Chain, targets, q0, *, seed: Optional[int] = None, pat
 
     Returns:
         IKBatchResult with read-only arrays ``q`` (N, dof), ``success``, ``iterations``,
-        ``attempts``, ``error_p``, ``error_r`` (N,).
+        ``attempts``, ``error_p``, ``error_r`` (N,). Every row is finite: a target not solved
+        has ``success`` False and its row holds the best point found (no NaN rows).
     """
     return _core.ik_batch(chain, targets, q0, seed=seed, path=path, **options)

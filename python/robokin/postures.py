@@ -134,11 +134,10 @@ def _closed_sets(chain: Chain, poses):
     except ValueError:
         is_ur = False
     if is_ur:
-        q, _ = closed.ur_batch(poses, chain)
+        q, _, within = closed.ur_batch(poses, chain)  # within: a solution, within the limits
         names = list(closed.UR_POSTURES)
         sets, labels = [], []
-        for row in q:
-            keep = ~np.isnan(row[:, 0])
+        for row, keep in zip(q, within):
             sets.append(row[keep])
             labels.append([names[k] for k in np.nonzero(keep)[0]])
         return sets, labels
@@ -146,14 +145,15 @@ def _closed_sets(chain: Chain, poses):
         sets, labels = [], []
         g = closed.PUMA560
         for T in poses:
-            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], limits=chain)
+            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"],
+                                          limits=chain).only_within_limits()
             sets.append(s.q)
             labels.append(list(s.postures))
         return sets, labels
     return None
 
 
-def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont):
+def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont, ik_options: dict):
     from .ik import ik_batch
 
     n = chain.dof
@@ -164,7 +164,7 @@ def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont):
     rng = np.random.default_rng(seed)
     K = len(poses)
     q0 = rng.uniform(lo_s, hi_s, (K * starts, n))
-    res = ik_batch(chain, np.repeat(poses, starts, axis=0), q0, seed=seed)
+    res = ik_batch(chain, np.repeat(poses, starts, axis=0), q0, seed=seed, **ik_options)
     sets = []
     for k in range(K):
         sl = slice(k * starts, (k + 1) * starts)
@@ -177,8 +177,28 @@ def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont):
     return sets
 
 
+def _ik_options(method: str, ik_options: dict) -> dict:
+    """The numerical IK's options of ``track_postures(method=...)``: ``method`` an IK method or
+    "numerical" (the IK's default), ``ik_options`` checked by the core's IKOptions; the task is the
+    tool frames' ("pose")."""
+    task = ik_options.get("task")
+    if task is not None and task != "pose":
+        raise ValueError(f"task: track_postures follows tool frames: expected None or 'pose', got {task!r}")
+    options = {**ik_options, "task": "pose"}
+    if method != "numerical":
+        options["method"] = method
+    try:
+        _core.IKOptions(**options).validate()
+    except ValueError as exc:
+        if str(exc).startswith("method:"):
+            raise ValueError(f"method: expected 'closed', 'numerical' or an IK method ('lm', 'gn', 'nr', 'halley'), "
+                             f"got {method!r}") from None
+        raise
+    return options
+
+
 def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str = "closed", q0=None,
-                   starts: int = 32, seed: int = 0) -> TrackPosturesResult:
+                   starts: int = 32, seed: int = 0, **ik_options) -> TrackPosturesResult:
     """Follows the tool frames ``poses`` with the fewest reconfigurations, then the least joint motion.
 
     Args:
@@ -188,11 +208,15 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         dt: Time between waypoints (s).
         qdot_max: Joint speed limit (rad/s, m/s), a scalar or (n,): a step moving some joint more
             than ``qdot_max * dt`` is a reconfiguration.
-        method: ``"closed"`` or ``"numerical"`` (:func:`robokin.ik_batch` from ``starts`` random starts
-            per waypoint, seeded by ``seed``, duplicates within 1e-6 rad merged).
+        method: ``"closed"``, or numerical IK (:func:`robokin.ik_batch` from ``starts`` random
+            starts per waypoint, seeded by ``seed``, duplicates within 1e-6 rad merged) with the IK's
+            default method (``"numerical"``) or the one named (``"lm"``, ``"gn"``, ``"nr"``,
+            ``"halley"``: IKOptions' ``method``).
         q0: Optional (n,) joints before the path: the step to the first waypoint counts too.
             Without it the plan starts in whichever posture is best.
-        starts, seed: For ``method="numerical"``.
+        starts, seed: For the numerical IK.
+        **ik_options: For the numerical IK: the other fields of :class:`robokin.IKOptions`
+            (``task``: None or ``"pose"``, the waypoints being tool frames).
 
     Returns:
         TrackPosturesResult (``q``, ``success``, ``reconfigurations``, ``motion``, ``solutions``,
@@ -209,8 +233,11 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         raise ValueError("poses: contains NaN or inf")
     step_dt = _dt(dt)
     vmax = _speed(qdot_max, n)
-    if method not in ("closed", "numerical"):
-        raise ValueError(f"method: expected 'closed' or 'numerical', got {method!r}")
+    if not isinstance(method, str):
+        raise ValueError(f"method: expected 'closed', 'numerical' or an IK method, got {method!r}")
+    if method == "closed" and ik_options:
+        raise ValueError(f"ik_options: {sorted(ik_options)} apply to the numerical IK only (method='closed')")
+    options = None if method == "closed" else _ik_options(method, ik_options)
     if not isinstance(starts, (int, np.integer)) or isinstance(starts, bool) or not 1 <= starts <= 10_000:
         raise ValueError(f"starts: expected an integer in [1, 10000], got {starts!r}")
     if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool):
@@ -224,7 +251,7 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
             raise ValueError("method: 'closed' needs a UR-layout arm or the PUMA 560; use method='numerical'")
         sets, labels = got
     else:
-        sets = _numerical_sets(chain, P, int(starts), int(seed), cont)
+        sets = _numerical_sets(chain, P, int(starts), int(seed), cont, options)
     K = len(sets)
     success = np.array([len(s) > 0 for s in sets])
     layers = np.nonzero(success)[0]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import warnings
-from typing import Union
+from typing import Optional, Union
 
 import numpy as np
 
@@ -17,7 +17,8 @@ Nullspace = Union[None, str, np.ndarray]
 
 
 @with_options(_core.ReachOptions)
-def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspace = None, **options) -> _core.ReachResult:
+def reach(chain: _core.Chain, target, q, task: Optional[str] = None, *, nullspace: Nullspace = None,
+          **options) -> _core.ReachResult:
     """Moves the joints ``q`` so that the tool reaches a nearby ``target``.
 
     Each iteration takes the seed's damped step ``dq = J^p d (target - p) / dt`` with the
@@ -30,11 +31,18 @@ def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspa
         target: For ``task="xy"`` (x, y); ``"position"`` (x, y, z); ``"xyphi"`` (x, y, phi);
             ``"pose"`` a (4, 4) frame.
         q: Start joints, shape (dof,); the target should be close to the tool at q.
-        task: Which rows of the geometric Jacobian are controlled.
-        nullspace: ``"joint_limits"`` adds the homogeneous term ``(1 - J^p J) h`` with
-            ``h = W (qbar - q)``, ``W = diag(1 / (q_max - q_min))`` (seed eqs. 5-7), on the first
-            iteration of each call; the remaining iterations are minimum-norm corrections, so the
-            tolerance is still met. An array of ``dof`` gains replaces ``W``'s diagonal.
+        task: Which rows of the geometric Jacobian are controlled; None: ``chain.natural_task``
+            (``"xy"`` for the seed's RPR, ``"xyphi"`` for a planar 3R, ``"pose"`` for a 6-joint
+            arm, ``"position"`` for a spatial arm of fewer joints).
+        nullspace: ``"joint_limits"`` adds the homogeneous term ``(1 - J^p J) h`` (seed eqs. 5-7)
+            with ``h = -grad z = W^T W (qbar - q)``, the descent direction of the seed's
+            joint-limit cost ``z = 1/2 |W (qbar - q)|^2``, ``W = diag(1 / (q_max - q_min))``
+            (:func:`robokin.joint_limit_cost`), on the first iteration of each call; the remaining
+            iterations are minimum-norm corrections, so the tolerance is still met. An array of
+            ``dof`` gains ``g`` gives ``h = g * (qbar - q)``, the descent direction of
+            ``1/2 sum g_i (qbar_i - q_i)^2`` (``"joint_limits"`` is ``g = 1 / (q_max - q_min)^2``;
+            ``k`` times those gains pulls ``k`` times harder toward the least cost, 0 for a joint
+            that should not be pulled).
         **options: Keyword-only, the fields of :class:`ReachOptions` (defaults the seed's):
             ``max_iter`` iterations at most (the seed's n = 25, in [1, 100000]); ``tol`` on the norm
             of the task error (metres for positions; the seed's 1e-5); ``gain`` the seed's d;
@@ -45,7 +53,9 @@ def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspa
         ReachResult with ``q``, ``converged``, ``iterations`` and ``error``.
 
     Raises:
-        ValueError: An option out of range, a target or joints of the wrong shape, NaN or inf.
+        ValueError: An option out of range, a target or joints of the wrong shape, NaN or inf (a
+            target shaped for another task names it: ``target (3,) is a position (x, y, z): pass
+            task="position" (task 'pose' takes a (4, 4) frame)``).
         TypeError: An unknown option, or one of the wrong kind.
 
     Warns:
@@ -64,14 +74,16 @@ def reach(chain: _core.Chain, target, q, task: str = "xy", *, nullspace: Nullspa
 
 
 @with_options(_core.ReachOptions)
-def track(chain: _core.Chain, points, q0, task: str = "xy", *, nullspace: Nullspace = None, **options) -> _core.TrackResult:
+def track(chain: _core.Chain, points, q0, task: Optional[str] = None, *, nullspace: Nullspace = None,
+          **options) -> _core.TrackResult:
     """Follows a path: one Reach per point, each starting from the joints the previous one left.
 
     Args:
         chain: The serial chain.
         points: (K, rows) targets for the task ((K, 4, 4) frames for ``"pose"``), close together.
         q0: Joints at the start of the path, shape (dof,).
-        task, nullspace, **options: As for :func:`reach` (options keyword-only, :class:`ReachOptions`).
+        task, nullspace, **options: As for :func:`reach` (options keyword-only, :class:`ReachOptions`);
+            task None: ``chain.natural_task``.
 
     Returns:
         TrackResult with read-only arrays ``q`` (K, dof), ``error`` (K,), ``converged`` (K,),

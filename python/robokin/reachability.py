@@ -7,18 +7,19 @@ Determinism: target ``g = voxel * K + j`` (voxel in C order of the grid, j the o
 its orientation from a counter-based generator of ``(seed, g)`` and its IK restarts from
 ``seed + g``. Any split of the grid into blocks (threads, chunks, Dask workers) therefore gives
 the same bits. The IK runs with an explicit number of restarts and no time budget, so nothing
-depends on the machine's speed.
+depends on the machine's speed (unless a ``timeout`` is asked for).
 
 Tasks: ``"pose"`` (3-D grid, K random rotations, uniform on SO(3)), ``"position"`` (3-D grid,
 orientation free: K must be 1), ``"xyphi"`` (planar arms: 2-D grid, K angles phi uniform in
-[-pi, pi)), ``"xy"`` (2-D grid, K = 1).
+[-pi, pi)), ``"xy"`` (2-D grid, K = 1); by default the chain's natural task
+(``chain.natural_task``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
@@ -27,10 +28,14 @@ from ._checks import real_array
 from .ik import ik_batch
 from .pose import from_quaternion
 
-__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ReachabilityMap", "grid", "reachability"]
+__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap", "grid",
+           "reachability"]
 
-#: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget).
+#: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget);
+#: every other :class:`robokin.IKOptions` field keeps the IK's default.
 DEFAULTS = {"method": "lm", "tol_p": 1e-6, "tol_r": 1e-6, "max_iter": 100, "restarts": 10}
+#: Orientations sampled per voxel by default, for the tasks with an orientation ("pose", "xyphi").
+ORIENTATIONS = 50
 #: Voxels per batch IK call of :func:`reachability` (bounds the memory, not the result).
 BLOCK = 2048
 #: The largest grid accepted (voxels) and the most orientations per voxel.
@@ -90,8 +95,8 @@ def grid(bounds, resolution) -> Tuple[np.ndarray, ...]:
     return tuple((lo + hi) / 2 + (np.arange(int(n)) - (n - 1) / 2) * h for (lo, hi), n in zip(b, counts))
 
 
-def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50, seed: int = 0, task: str = "pose",
-                 q0=None, **ik_options) -> ReachabilityMap:
+def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
+                 task: Optional[str] = None, q0=None, **ik_options) -> ReachabilityMap:
     """The reachability map of ``chain`` over a grid.
 
     Args:
@@ -99,22 +104,26 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: int = 50,
         bounds: ``((x_lo, x_hi), (y_lo, y_hi), (z_lo, z_hi))`` (m); ``((x_lo, x_hi), (y_lo, y_hi))``
             for the planar tasks.
         resolution: Voxel edge (m).
-        orientations: K, the tool orientations sampled per voxel (1 for ``"position"``, ``"xy"``).
+        orientations: K, the tool orientations sampled per voxel (must be 1 for ``"position"``,
+            ``"xy"``); None: :data:`ORIENTATIONS` (50) for ``"pose"`` and ``"xyphi"``, 1 for the
+            others.
         seed: Seed of the orientations and of the IK restarts (an int in ``[0, 2**64)``).
-        task: ``"pose"``, ``"position"``, ``"xyphi"`` or ``"xy"`` (see the module docstring).
+        task: ``"pose"``, ``"position"``, ``"xyphi"`` or ``"xy"`` (see the module docstring);
+            None: ``chain.natural_task``.
         q0: IK start for every target, (dof,); None: the middle of each joint's finite limits, 0
             for unlimited joints.
-        ik_options: ``method``, ``tol_p``, ``tol_r``, ``max_iter``, ``restarts``, ``damping`` of
-            :func:`robokin.ik_batch`; the defaults are :data:`DEFAULTS` (tolerances 1e-6,
-            10 restarts). A time budget (``timeout``) is refused: it would make the map depend
-            on the machine's speed.
+        ik_options: The other fields of :class:`robokin.IKOptions`, for the batch IK
+            (:func:`robokin.ik_batch`); the defaults are :data:`DEFAULTS` (tolerances 1e-6,
+            10 restarts, no time budget), the IK's own for the others. A ``timeout`` makes the
+            map depend on the machine's speed.
 
     Returns:
         ReachabilityMap.
 
     Raises:
-        ValueError: For bad bounds, resolution, orientations, seed, task, q0 or IK options (the
-            message names the argument).
+        ValueError: For bad bounds, resolution, orientations, seed, task, q0 or IK option values
+            (the message names the argument).
+        TypeError: For a keyword that is no IKOptions field (the message lists them).
     """
     plan = _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options)
     count = plan.voxels
@@ -169,21 +178,21 @@ class _Plan:
 def _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options) -> _Plan:
     if not isinstance(chain, _core.Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    if task is None:
+        task = chain.natural_task
     if not isinstance(task, str) or task not in _TASKS:
-        raise ValueError(f"task: expected one of {_TASKS}, got {task!r}")
+        raise ValueError(f"task: expected None or one of {_TASKS}, got {task!r}")
     axes = grid(bounds, resolution)
     if len(axes) != (2 if task in _PLANAR else 3):
         raise ValueError(f"bounds: task {task!r} takes {2 if task in _PLANAR else 3} (lo, hi) pairs, got {len(axes)}")
-    K = _whole(orientations, "orientations", 1, MAX_ORIENTATIONS)
-    if task in ("position", "xy") and K != 1:
+    free = task in ("position", "xy")  # the orientation is left free: one target per voxel
+    K = (1 if free else ORIENTATIONS) if orientations is None else _whole(orientations, "orientations", 1,
+                                                                         MAX_ORIENTATIONS)
+    if free and K != 1:
         raise ValueError(f"orientations: task {task!r} leaves the orientation free: expected 1, got {K}")
     s = _whole(seed, "seed", 0, 2**64 - 1)
-    unknown = set(ik_options) - set(DEFAULTS) - {"damping"}
-    if unknown:
-        raise ValueError(f"ik_options: unknown or refused option(s) {sorted(unknown)} (a time budget would make "
-                         "the map depend on the machine)" if "timeout" in unknown else
-                         f"ik_options: unknown option(s) {sorted(unknown)}")
     options = {**DEFAULTS, **ik_options}
+    _core.IKOptions(**options).validate()  # every IKOptions field, checked by the core (names, kinds, ranges)
     if q0 is None:  # the middle of finite limits, else the finite one, else 0
         lo, hi = chain.limits
         q0 = np.zeros(chain.dof)

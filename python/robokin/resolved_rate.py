@@ -5,7 +5,7 @@ the Reach loop (cpp/src/dls.hpp)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
+from typing import Optional, Union
 
 import numpy as np
 
@@ -18,12 +18,12 @@ Nullspace = Union[None, str, np.ndarray]
 
 
 def resolved_rate(chain: _core.Chain, q, twist, damping: float = 0.0, nullspace: Nullspace = None,
-                  task: str = "pose") -> np.ndarray:
+                  task: Optional[str] = None) -> np.ndarray:
     """Joint velocities that move the tool with ``twist`` (resolved-rate control).
 
     ``qd = J^p twist + (1 - J^p J) h`` with the damped least-squares pseudoinverse
     ``J^p = J^T (J J^T + damping^2 I)^-1`` (the minimum-norm pseudoinverse when ``damping = 0``) and
-    the null-space term of seed 000: ``h = W (qbar - q)``.
+    the null-space term of seed 000, ``h = -grad z`` (see ``nullspace``).
 
     Args:
         chain: The serial chain.
@@ -31,9 +31,10 @@ def resolved_rate(chain: _core.Chain, q, twist, damping: float = 0.0, nullspace:
         twist: Task velocity, the task's rows of ``(v_x, v_y, v_z, w_x, w_y, w_z)`` in the base frame
             (6 for ``"pose"``, 3 for ``"position"``, 2 for ``"xy"``, 3 for ``"xyphi"``).
         damping: lambda of the damped least squares (>= 0), for use near singularities.
-        nullspace: None; ``"joint_limits"`` (``W = diag(1 / (q_max - q_min))``, the seed's
-            joint-limit avoidance, as :func:`robokin.reach`); or (dof,) gains as ``W``'s diagonal.
-        task: Which rows of the Jacobian are controlled.
+        nullspace: None; ``"joint_limits"`` (the seed's joint-limit avoidance,
+            ``h = W^T W (qbar - q)``, ``W = diag(1 / (q_max - q_min))``, as :func:`robokin.reach`);
+            or (dof,) gains ``g``: ``h = g * (qbar - q)``.
+        task: Which rows of the Jacobian are controlled; None: ``chain.natural_task``.
 
     Returns:
         (dof,) joint velocities.
@@ -62,7 +63,7 @@ class ServoResult:
 
 
 def servo(chain: _core.Chain, poses, q0, dt: float, gain: float = 0.75, damping: float = 0.0,
-          nullspace: Nullspace = None, task: str = "pose", saturate: bool = True) -> ServoResult:
+          nullspace: Nullspace = None, task: Optional[str] = None, saturate: bool = True) -> ServoResult:
     """Follows a sampled Cartesian trajectory with resolved-rate control, one step per target.
 
     At step k the tool's error ``e_k`` toward ``poses[k]`` is measured (and reported), then
@@ -78,7 +79,8 @@ def servo(chain: _core.Chain, poses, q0, dt: float, gain: float = 0.75, damping:
         q0: Joints at the start, shape (dof,).
         dt: Control period (s).
         gain: Feedback gain, >= 0 (0: feed-forward only).
-        damping, nullspace, task: As for :func:`resolved_rate`.
+        damping, nullspace, task: As for :func:`resolved_rate` (task None: ``chain.natural_task``;
+            poses shaped for another task name it, as for :func:`robokin.reach`).
         saturate: Clamp the joints to their limits after every step.
 
     Returns:

@@ -164,6 +164,13 @@ def size_of(chain: rk.Chain, q) -> float:
 def posture_solver(name: str, chain: rk.Chain, q) -> Optional[Callable]:
     """``solve(T) -> IKSolutions``: every closed-form posture of the tool frame T within the
     limits (robokin.closed), or None when the arm has no closed form."""
+    solve = _closed_form(name, chain, q)
+    return None if solve is None else (lambda T: solve(T).only_within_limits())
+
+
+def _closed_form(name: str, chain: rk.Chain, q) -> Optional[Callable]:
+    """``solve(T) -> IKSolutions``: every closed-form posture of T (robokin.closed, each marked
+    within the limits or not), or None when the arm has no closed form."""
     if name == "puma560":
         return rk.closed.puma560
     if name == "planar_3r":

@@ -100,6 +100,11 @@ class Chain {
   const Vector& lower() const { return lower_; }
   const Vector& upper() const { return upper_; }
   bool prismatic(int joint) const { return links_[joint].prismatic; }
+  // Every joint moves the tool in planes parallel to the base xy plane: revolute axes along the
+  // base z axis, prismatic axes perpendicular to it (rows v_z, w_x, w_y of the Jacobian zero; read
+  // at q = 0, which decides for every q: turns about z keep the axes' angles with z). natural_task
+  // (task.hpp) reads it.
+  bool planar() const { return planar_; }
   // The limits as the closed forms take them (lower, upper and which joints are prismatic).
   JointLimits limits() const {
     JointLimits lim{lower_, upper_, {}};
@@ -175,6 +180,7 @@ class Chain {
   void fk_few_lanes(const double* q, int count, Rigid* out) const;
   void fk_few_avx2(const double* q, int count, Rigid* out) const;
   void build_fast_path();
+  bool moves_in_base_plane() const;  // planar(), from the Jacobian at q = 0
 
   KDL::Chain kdl_;
   std::vector<SegmentRecord> records_;
@@ -184,6 +190,7 @@ class Chain {
   Vector lower_, upper_;
   Rigid base_;  // fixed frame before the first joint's motion
   std::vector<Link> links_;
+  bool planar_ = false;
 };
 
 }  // namespace robokin

@@ -40,7 +40,7 @@ constexpr double kDefaultIkTimeout = 5e-3;
 // catalogue's arms, benchmarks/bench_ik_defaults.py); an unreachable one costs the whole budget.
 struct IkOptions {
   IkMethod method = IkMethod::LM;
-  Task task = Task::Pose;
+  std::optional<Task> task;  // unset: the chain's natural_task (task.hpp)
   double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
   double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
   int max_iter = 100;      // iterations per attempt
@@ -63,7 +63,7 @@ struct IkOptions {
   template <class Visit>
   static void fields(Visit&& field) {
     field("method", &IkOptions::method, "'lm', 'gn', 'nr' or 'halley'.");
-    field("task", &IkOptions::task, "'pose', 'position', 'xy' or 'xyphi'.");
+    field("task", &IkOptions::task, "'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.");
     field("tol_p", &IkOptions::tol_p, "Position tolerance (m).");
     field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.");
     field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
@@ -81,6 +81,7 @@ struct IkOptions {
   int max_restarts() const { return restarts ? *restarts : kMaxRestarts; }
   double budget() const { return timeout ? *timeout : (restarts ? 0.0 : kDefaultIkTimeout); }  // 0: none
   double damping_or_default() const { return damping ? *damping : default_damping(method); }
+  Task task_for(const Chain& chain) const { return task ? *task : natural_task(chain); }
   // A path warm-starts each target from the previous solution: a random restart could land on
   // another branch (a jump of the joints between neighbouring points), so unless restarts are given
   // it does not restart (and has no budget unless a timeout is given).
@@ -142,7 +143,9 @@ class IkSolver {
 
   const Chain* chain_ = nullptr;
   IkOptions opt_;
-  // opt_ resolved: restarts, time budget (0: none), damping, tol_r (inf for tasks without orientation).
+  // opt_ resolved: the task, restarts, time budget (0: none), damping, tol_r (inf for tasks without
+  // orientation).
+  Task task_ = Task::Pose;
   int restarts_ = 0;
   double timeout_ = 0.0, damping_ = 0.0, tol_r_ = 0.0;
   int n_ = -1, m_ = -1;

@@ -1,6 +1,8 @@
 // Closed-form inverse kinematics (seed 003): every solution of a pose, each labelled by its
-// posture, filtered by the joint limits. An empty set (never an exception) when out of reach;
-// std::invalid_argument naming a length that is not finite (a1, a2, a2 of an arm: not positive).
+// posture and marked within the joint limits or not (none is dropped for its limits: a solution is
+// shifted by 2 pi into them where that fits, and marked outside otherwise). An empty set (never an
+// exception) when out of reach; std::invalid_argument naming a length that is not finite (a1, a2,
+// a2 of an arm: not positive).
 #pragma once
 
 #include "robokin/chain.hpp"
@@ -26,22 +28,26 @@ constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
 // of a closed form's arm that is not.
 void check_length(double value, const char* name, bool positive = false);
 
-// A set of solutions: row k of q is one joint vector, postures[k] its label. Held inline (no
-// allocation: a closed form returns at most kMaxSolutions of at most kMaxDof joints).
+// A set of solutions: row k of q is one joint vector, postures[k] its label, within_limits[k]
+// whether it is within the joint limits (fit_limits, limits.hpp: true for every row without
+// limits). Held inline (no allocation: a closed form returns at most kMaxSolutions of at most
+// kMaxDof joints).
 struct ClosedFormSolutions {
   static constexpr int kMaxSolutions = 8, kMaxDof = 6;
   int dof = 0;
   std::array<double, kMaxSolutions * kMaxDof> q{};  // row-major: the first count() rows of dof values
   std::array<const char*, kMaxSolutions> postures{};  // static strings: no allocation per label
+  std::array<bool, kMaxSolutions> within_limits{};
   bool singular = false;  // the pose is at a singularity (coinciding or infinitely many solutions)
 
   int count() const { return n_; }
   const double* row(int k) const { return q.data() + k * dof; }
   double* row(int k) { return q.data() + k * dof; }
   // Appends a solution; throws std::length_error beyond kMaxSolutions rows or kMaxDof joints.
-  void add(const double* joints, const char* posture) {
+  void add(const double* joints, const char* posture, bool within = true) {
     if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: at most 8 solutions of 1 to 6 joints");
     std::copy(joints, joints + dof, row(n_));
+    within_limits[n_] = within;
     postures[n_++] = posture;
   }
 
@@ -85,15 +91,17 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits);
 
-// Along a path of tool frames: for each, the spherical-wrist solution nearest to the previous
-// joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value within the
-// limits and |q| <= 2^20 rad (where a double still holds an angle to 1.2e-10 rad): no branch jumps.
-// ok[k] false (row k = previous joints) where the frame has no solution.
+// Along a path of tool frames: for each, the spherical-wrist solution within the limits nearest to
+// the previous joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value
+// within the limits and |q| <= 2^20 rad (where a double still holds an angle to 1.2e-10 rad): no
+// branch jumps. ok[k] false (row k = previous joints) where the frame has no solution within the
+// limits; reachable[k] true where it has one, within the limits or not (ok implies reachable).
 void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
-                             Progress* progress = nullptr);
+                             bool* reachable, Progress* progress = nullptr);
 
-// Row of `solutions` nearest to q (Euclidean distance between joint vectors); -1 when empty.
+// Row of `solutions` nearest to q among those within the limits (Euclidean distance between joint
+// vectors); -1 when none is.
 int nearest_solution(const ClosedFormSolutions& solutions, const double* q);
 
 // ---------------------------------------------------------------------------------------------
@@ -119,7 +127,7 @@ URArm ur_arm(const Chain& chain);
 extern const char* const kURPostures[8];
 
 // Every solution of the tool frame T (up to 8), in joint variables of `chain` (the arm of `arm`),
-// each checked by chain.fk and filtered by the limits. slot[k] (when given, size 8) is row k's
+// each checked by chain.fk and marked within the limits or not. slot[k] (when given, size 8) is row k's
 // slot. Singular cases, flagged: at the shoulder (wrist centre at distance |d4| from axis 1) and
 // the elbow (q3 = 0 or pi) two postures coincide and one is returned ("shoulder singular", "elbow
 // straight" / "elbow folded"); at the wrist (joint 5 at 0 or pi) axes 2, 3, 4 and 6 are parallel,
@@ -129,8 +137,10 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
                           int* slot = nullptr);
 
 // A batch of frames: q_out (count, 8, 6) row-major, solution in its slot, NaN where the slot has
-// none; singular (count,). Runs on every core (parallel_for); callers release the GIL.
+// none (the pose out of reach, or the posture coinciding with another at a singularity);
+// within_limits (count, 8), false where the slot has none; singular (count,). Runs on every core
+// (parallel_for); callers release the GIL.
 void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
-                 double* q_out, bool* singular, Progress* progress = nullptr);
+                 double* q_out, bool* within_limits, bool* singular, Progress* progress = nullptr);
 
 }  // namespace robokin

@@ -24,10 +24,10 @@ void validate_limits(int dof, const Eigen::VectorXd& lower, const Eigen::VectorX
 
 // Brings each joint of a solution q (n joints) within `lim` by settle_into_limits, with a hair of
 // tolerance (1e-12 relative) so that a solution at a limit is not lost to rounding; false when a
-// joint cannot be brought within its limits. The closed forms' filter.
+// joint cannot be brought within its limits (that joint is then left as it is, a revolute one
+// wrapped to [-pi, pi]; the others are still brought within theirs). The closed forms' mask.
 bool fit_limits(double* q, int n, const JointLimits& lim);
-// fit_limits on each of `rows` solutions (row-major, n joints each): ok[r] is its result for row r
-// (the values of a row that does not fit are left unspecified).
+// fit_limits on each of `rows` solutions (row-major, n joints each): ok[r] is its result for row r.
 void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok);
 
 // Brings v within [lo, hi], as it is when it is within (to tol, then clamped onto the limit), a

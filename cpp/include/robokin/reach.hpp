@@ -21,9 +21,10 @@ struct ReachOptions {
   double dt = 0.025;      // dt
   bool saturate = true;   // clamp to the joint limits after every step
   double damping = 0.0;   // lambda: J^T (J J^T + lambda^2 I)^-1; 0 is the seed's pseudoinverse
-  // Null-space term h = W (qbar - q). Empty: none. Otherwise the diagonal of W (for the seed's
-  // joint-limit avoidance, 1 / (q_max - q_min), 0 where a joint is unlimited).
-  Vector nullspace_weights;
+  // Null-space term h = G (qbar - q), G = diag(nullspace_gains): -grad z_G for the cost
+  // z_G = 1/2 (qbar - q)^T G (qbar - q). Empty: none. joint_limit_gains gives the seed's joint-limit
+  // avoidance, G = W^T W (z_G is then the seed's z).
+  Vector nullspace_gains;
 
   // The options Python sets by keyword, with their docs, in order (the bindings bind exactly these;
   // the null-space weights come from rk.reach's `nullspace` argument).
@@ -57,13 +58,21 @@ struct TrackResult {
 };
 
 // The damping and null-space checks of ReachOptions::validate, shared with resolved-rate control.
-void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& nullspace_weights);
+void check_damping_and_nullspace(const Chain& chain, double damping, const Vector& nullspace_gains);
 
 // The middle of each joint's range (the seed's qbar); 0 for an unlimited joint (its weight is 0).
 Vector joint_middles(const Chain& chain);
 
-// The seed's weights for joint-limit avoidance: 1 / (q_max - q_min), 0 for unlimited joints.
+// The seed's weights W = diag(1 / (q_max - q_min)) of its joint-limit cost z, 0 for unlimited joints.
 Vector joint_limit_weights(const Chain& chain);
+
+// The null-space gains of the seed's joint-limit avoidance: W^T W's diagonal, 1 / (q_max - q_min)^2
+// (0 for unlimited joints), so that h = W^T W (qbar - q) = -grad z. The seed writes h = W (qbar - q)
+// and calls it -grad z; that is the gradient of another cost, 1/2 (qbar - q)^T W (qbar - q), whose
+// minimum on the self-motion set is not z's: along seed 000's line (the demo) its term levels off
+// 4 % above the mean of each point's least z however strong it is made, while the gradient's term
+// comes within 0.1 % and nearer as its gain grows (tests/test_reach.py).
+Vector joint_limit_gains(const Chain& chain);
 
 // The seed's joint-limit cost z = 1/2 |W (qbar - q)|^2 (eqs. 6-7), W from joint_limit_weights and
 // qbar the middle of each limited joint's range.

@@ -12,7 +12,7 @@ namespace robokin {
 struct RateOptions {
   Task task = Task::Pose;
   double damping = 0.0;     // lambda of J^T (J J^T + lambda^2 I)^-1; 0: the minimum-norm pseudoinverse
-  Vector nullspace_weights;  // empty: none; else h = W (qbar - q), W = diag(weights) (reach.hpp)
+  Vector nullspace_gains;  // empty: none; else h = diag(gains) (qbar - q) (ReachOptions, reach.hpp)
 };
 
 struct ServoOptions {

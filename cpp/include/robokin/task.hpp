@@ -17,6 +17,18 @@ inline void parse(const std::string& name, Task& task) { task = parse_task(name)
 inline const char* name_of(Task task) { return task_name(task); }
 int task_rows(Task task);  // 6, 3, 2, 3
 
+// The task a call controls when it is given none (task=None in Python), from the chain's geometry:
+//   a planar arm (Chain::planar: every joint moves the tool parallel to the base xy plane):
+//     "xyphi" with at least three revolute joints, "xy" otherwise;
+//   any other arm: "pose" with at least six joints, "position" otherwise.
+// A planar arm's tool angle phi is the sum of its revolute angles (a prismatic joint slides the tool,
+// it never turns it): three revolute joints set the tip and phi together (seed 003's planar 3R), while
+// an arm with fewer positions its tip, a prismatic stroke making the reach (seed 003's RP; seed 000's
+// RPR, redundant for the tip point). A spatial arm with fewer than six joints cannot follow a
+// general pose: it positions its tool point. (Catalogue: planar_3r "xyphi"; rp, rpr "xy"; prr,
+// planar in the base xz plane, "position"; the 6- and 7-joint arms "pose".)
+Task natural_task(const Chain& chain);
+
 // A target for a task: pose -> a rigid frame; position -> (x, y, z); xy -> (x, y); xyphi -> (x, y, phi).
 struct Target {
   Task task = Task::XY;
