@@ -1,5 +1,5 @@
 """Closed-form inverse kinematics, checked by forward kinematics (KDL chains from the DH tables),
-by the solution counts of seed 003 and at the singular configurations."""
+by the solution counts of the IK course and at the singular configurations."""
 
 import math
 
@@ -22,7 +22,7 @@ def anthropomorphic_chain(a2, a3, d1=0.0):
     return rk.Chain.from_dh([(0.0, math.pi / 2, d1, 0.0, "R"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R")])
 
 
-# --- seed 003, example 1: planar RP -----------------------------------------------------------
+# --- the IK course, example 1: planar RP -----------------------------------------------------------
 
 def test_rp_matches_the_course_formula_and_fk():
     chain = rk.robots.rp(stroke=2.0)
@@ -45,7 +45,7 @@ def test_rp_backward_stroke_when_limits_allow_it_and_out_of_stroke():
     assert origin.singular and len(origin) == 1
 
 
-# --- seed 003, example 2: planar 3R with phi --------------------------------------------------
+# --- the IK course, example 2: planar 3R with phi --------------------------------------------------
 
 @pytest.mark.parametrize("method", ["algebraic", "geometric"])
 def test_planar_3r_two_postures_reach_the_pose(method):
@@ -61,7 +61,7 @@ def test_planar_3r_two_postures_reach_the_pose(method):
             got = planar_pose(chain, qq)
             assert np.allclose(got[:2], pose[:2], atol=1e-12)
             assert abs(math.remainder(got[2] - pose[2], 2 * math.pi)) < 1e-12
-            # seed 003: elbow down is theta2 in (0, pi), elbow up theta2 in (-pi, 0)
+            # the IK course: elbow down is theta2 in (0, pi), elbow up theta2 in (-pi, 0)
             assert (qq[1] > 0) == (label == "elbow down")
         assert wrapped_distance(s.q, q).min() < 1e-8  # the configuration we started from is one of them
 

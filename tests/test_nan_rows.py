@@ -69,7 +69,7 @@ def test_rrr3_plan_nan_rows_are_the_unreachable_poses():
 
 
 def rpr_solutions(point, t1):
-    """The RPR (seed 000) joints (t2, t3) for t1 putting the tip at point, within the limits, by the
+    """The RPR study's joints (t2, t3) for t1 putting the tip at point, within the limits, by the
     law of cosines: s = L1 + t2 solves |point - s u(t1)| = L3 (the shorter s first)."""
     L1, L3 = rk.robots.RPR_L1, rk.robots.RPR_L3
     lo, hi = rk.robots.RPR_LIMITS

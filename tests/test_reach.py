@@ -1,4 +1,4 @@
-"""The Reach loop (seed 000, Algorithm 1), path tracking, null-space joint-limit avoidance and the
+"""The Reach loop (the RPR study, Algorithm 1), path tracking, null-space joint-limit avoidance and the
 RPR's self-motion set, against the seed's algorithm written literally in numpy."""
 
 import inspect

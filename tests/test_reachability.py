@@ -1,5 +1,5 @@
-"""Reachability maps (issue 16): the index of a planar 3R against the closed-form reachable set
-(seed 003's wrist point) for the very orientations sampled, and against a brute-force estimate from
+"""Reachability maps: the index of a planar 3R against the closed-form reachable set
+(the IK course's wrist point) for the very orientations sampled, and against a brute-force estimate from
 forward kinematics alone; zero outside the reach sphere; the same bits for any thread count and
 any block size; ValueErrors naming the argument; the figure."""
 

@@ -11,8 +11,8 @@ import pytest
 import robokin as rk
 
 #: The catalogue's arms and the task each controls by default: the seeds' planar arms their tip
-#: (rp, and the redundant RPR of seed 000) or tip and angle (seed 003's 3R), the spatial arms their
-#: tool pose with six joints or more, their tool point with fewer (seed 004's PRR moves in its base
+#: (rp, and the redundant RPR of the RPR study) or tip and angle (the IK course's 3R), the spatial arms their
+#: tool pose with six joints or more, their tool point with fewer (the DH exercise's PRR moves in its base
 #: xz plane: not planar in the base xy plane).
 NATURAL = {
     "gen3": "pose", "iiwa14": "pose", "irb120": "pose", "panda": "pose", "puma560": "pose",

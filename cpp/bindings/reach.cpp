@@ -1,4 +1,4 @@
-// The Reach loop and path tracking (seed 000, Algorithm 1).
+// The Reach loop and path tracking (the RPR study, Algorithm 1).
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
@@ -57,7 +57,7 @@ TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskNa
 }  // namespace
 
 void bind_reach(py::module_& m) {
-  ReachOptionsClass(m, "ReachOptions", "The options of one Reach (seed 000, Algorithm 1); the seed's values by default.")
+  ReachOptionsClass(m, "ReachOptions", "The options of one Reach (the RPR study, Algorithm 1); the seed's values by default.")
       .fields();
   ResultClass<ReachResult>(m, "ReachResult", "What one Reach call did.", false)
       .value("converged", &ReachResult::converged, "True when the task error is below tol.")
@@ -73,7 +73,7 @@ void bind_reach(py::module_& m) {
       .done();
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = py::none(), py::kw_only(),
         py::arg("nullspace") = py::none(),
-        "One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");
+        "One Reach call (the RPR study, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");
   m.def("track", &track, py::arg("chain"), py::arg("points"), py::arg("q0"), py::arg("task") = py::none(), py::kw_only(),
         py::arg("nullspace") = py::none(),
         "Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.");

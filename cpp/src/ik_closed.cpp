@@ -1,4 +1,4 @@
-// Closed-form inverse kinematics: the planar arms of seed 003, the PUMA-type 6R arm and the UR family.
+// Closed-form inverse kinematics: the planar arms of the IK course, the PUMA-type 6R arm and the UR family.
 #include "robokin/ik_closed.hpp"
 #include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
@@ -315,7 +315,7 @@ ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, dou
   // phi as the forward model sees it, through its cosine and sine: for a huge phi (1e300),
   // remainder by the double 2 pi and cos/sin's exact reduction disagree.
   phi = std::atan2(std::sin(phi), std::cos(phi));
-  // The wrist point W, origin of frame 2 (seed 003): p_W = p - a3 (cos phi, sin phi).
+  // The wrist point W, origin of frame 2 (the IK course): p_W = p - a3 (cos phi, sin phi).
   const double wx = px - a3 * std::cos(phi), wy = py - a3 * std::sin(phi);
   const auto reaches = [&](const double* q) {
     const double t = q[0] + q[1] + q[2];

@@ -2,7 +2,7 @@
 // (the damped steps below, the numerical IK's normal equations, Yoshikawa's measure in
 // manipulability.cpp); the damped least-squares (minimum-norm) step with its singular fallback,
 // shared by the Reach loop (reach.cpp), resolved-rate control (resolved_rate.cpp) and the numerical
-// IK's Newton steps (ik_numeric.cpp); seed 000's homogeneous term; the overflow-safe norm of an error.
+// IK's Newton steps (ik_numeric.cpp); the RPR study's homogeneous term; the overflow-safe norm of an error.
 #pragma once
 
 #include <Eigen/Dense>
@@ -88,7 +88,7 @@ double safe_norm(const V& v) {
   return std::isfinite(n) ? n : v.stableNorm();
 }
 
-// dq += (1 - J^p J) h with h = gains .* (qbar - q): seed 000's homogeneous term (eqs. 5-7), which
+// dq += (1 - J^p J) h with h = gains .* (qbar - q): the RPR study's homogeneous term (eqs. 5-7), which
 // moves the joints toward the middle of their ranges without moving the tool (to first order); h is
 // -grad of 1/2 sum gains_i (qbar_i - q_i)^2 (joint_limit_gains, reach.hpp: the seed's z).
 // h and correction are workspace of the joints' size.

@@ -148,7 +148,7 @@ class Chain:
         """
 class ReachOptions:
     """
-    The options of one Reach (seed 000, Algorithm 1); the seed's values by default.
+    The options of one Reach (the RPR study, Algorithm 1); the seed's values by default.
     """
     __hash__: typing.ClassVar[None] = None
     fields: typing.ClassVar[tuple] = ('max_iter', 'tol', 'gain', 'dt', 'saturate', 'damping')
@@ -1332,7 +1332,7 @@ def pose_rpy(T: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
 def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
     """
-    One Reach call (seed 000, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
+    One Reach call (the RPR study, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
     """
 def release_output_memory() -> int:
     """

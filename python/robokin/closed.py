@@ -1,4 +1,4 @@
-"""Closed-form inverse kinematics (seed 003): every solution of a pose, labelled by its posture.
+"""Closed-form inverse kinematics (the IK course): every solution of a pose, labelled by its posture.
 
 Each function returns an :class:`IKSolutions` (``q`` of shape ``(k, dof)``, ``postures``,
 ``within_limits``, ``singular``) holding **every** solution of the pose, and empty (``len(s) == 0``,
@@ -60,7 +60,7 @@ def _limits(limits):
 
 
 def planar_rp(target, limits=None) -> IKSolutions:
-    """Planar RP arm (seed 003, example 1): ``theta1 = atan2(p_y, p_x)``, ``d2 = sqrt(p_x^2 + p_y^2)``.
+    """Planar RP arm (the IK course, example 1): ``theta1 = atan2(p_y, p_x)``, ``d2 = sqrt(p_x^2 + p_y^2)``.
 
     Args:
         target: Tip position (x, y).
@@ -91,7 +91,7 @@ def planar_2r(target, a1: float = 1.0, a2: float = 1.0, limits=None) -> IKSoluti
 
 def planar_3r(target, a1: float = 1.0, a2: float = 1.0, a3: float = 1.0, method: str = "algebraic",
               limits=None) -> IKSolutions:
-    """Planar 3R arm with the tool orientation (seed 003, example 2).
+    """Planar 3R arm with the tool orientation (the IK course, example 2).
 
     Args:
         target: ``(x, y, phi)``, the tip position and the angle of the last link to the x axis.
@@ -198,7 +198,7 @@ def puma560_path(targets, q0, limits="default"):
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
-    """The seed-000 RPR's self-motion set (redundant: infinitely many solutions); see
+    """The RPR study's arm's self-motion set (redundant: infinitely many solutions); see
     :func:`robokin.robots.rpr_self_motion`, which this is: a fixed-shape (2, K, 3) table whose NaN
     rows, by design, are the samples of t1 where a branch has no solution within the limits."""
     from .robots import rpr_self_motion as _sm

@@ -1,4 +1,4 @@
-"""The Reach loop of seed 000 (Algorithm 1) and path tracking; the loops run in the C++ core."""
+"""The Reach loop of the RPR study (Algorithm 1) and path tracking; the loops run in the C++ core."""
 
 from __future__ import annotations
 

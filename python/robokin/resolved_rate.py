@@ -23,7 +23,7 @@ def resolved_rate(chain: _core.Chain, q, twist, damping: float = 0.0, nullspace:
 
     ``qd = J^p twist + (1 - J^p J) h`` with the damped least-squares pseudoinverse
     ``J^p = J^T (J J^T + damping^2 I)^-1`` (the minimum-norm pseudoinverse when ``damping = 0``) and
-    the null-space term of seed 000, ``h = -grad z`` (see ``nullspace``).
+    the null-space term of the RPR study, ``h = -grad z`` (see ``nullspace``).
 
     Args:
         chain: The serial chain.

@@ -1,4 +1,4 @@
-// Closed-form inverse kinematics (seed 003): every solution of a pose, each labelled by its
+// Closed-form inverse kinematics (the IK course): every solution of a pose, each labelled by its
 // posture and marked within the joint limits or not (none is dropped for its limits: a solution is
 // shifted by 2 pi into them where that fits, and marked outside otherwise). An empty set (never an
 // exception) when out of reach; std::invalid_argument naming a length that is not finite (a1, a2,
@@ -55,7 +55,7 @@ struct ClosedFormSolutions {
   int n_ = 0;
 };
 
-// Planar RP (seed 003, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the
+// Planar RP (the IK course, example 1): tip d2 (cos theta1, sin theta1). Solutions (theta1, d2): the
 // stroke forward (d2 >= 0) and, when the limits allow a negative stroke, the one backwards.
 // At the origin theta1 is free: one solution theta1 = 0, d2 = 0, flagged singular.
 ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits);
@@ -63,7 +63,7 @@ ClosedFormSolutions ik_planar_rp(double px, double py, const JointLimits& limits
 // Planar 2R with links a1, a2: tip position (px, py). Elbow down (theta2 in (0, pi)) and elbow up.
 ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, const JointLimits& limits);
 
-// Planar 3R with links a1..a3 and tool orientation phi (seed 003, example 2), by the algebraic
+// Planar 3R with links a1..a3 and tool orientation phi (the IK course, example 2), by the algebraic
 // method (c2, s2 = +-sqrt(1 - c2^2), s1, c1) or the geometric one (law of cosines, alpha +- beta).
 // When s2 = 0 the two postures coincide: one solution, flagged singular.
 ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, double py, double phi,

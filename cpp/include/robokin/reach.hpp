@@ -1,4 +1,4 @@
-// The "Reach" loop of seed 000 (Algorithm 1): damped steps of the minimum-norm pseudoinverse toward
+// The "Reach" loop of the RPR study (Algorithm 1): damped steps of the minimum-norm pseudoinverse toward
 // a nearby target, saturated at the joint limits, optionally with a null-space term that moves the
 // joints away from their limits without moving the tool.
 #pragma once
@@ -69,7 +69,7 @@ Vector joint_limit_weights(const Chain& chain);
 // The null-space gains of the seed's joint-limit avoidance: W^T W's diagonal, 1 / (q_max - q_min)^2
 // (0 for unlimited joints), so that h = W^T W (qbar - q) = -grad z. The seed writes h = W (qbar - q)
 // and calls it -grad z; that is the gradient of another cost, 1/2 (qbar - q)^T W (qbar - q), whose
-// minimum on the self-motion set is not z's: along seed 000's line (the demo) its term levels off
+// minimum on the self-motion set is not z's: along the RPR study's line (the demo) its term levels off
 // 4 % above the mean of each point's least z however strong it is made, while the gradient's term
 // comes within 0.1 % and nearer as its gain grows (tests/test_reach.py).
 Vector joint_limit_gains(const Chain& chain);

@@ -1,5 +1,5 @@
 // Velocity-level inverse kinematics: resolved-rate control with the damped least-squares
-// pseudoinverse and seed 000's null-space term (the same step as the Reach loop, linalg.hpp), and a
+// pseudoinverse and the RPR study's null-space term (the same step as the Reach loop, linalg.hpp), and a
 // servo loop that follows a sampled Cartesian trajectory with feed-forward and error feedback.
 #pragma once
 

@@ -22,8 +22,8 @@ int task_rows(Task task);  // 6, 3, 2, 3
 //     "xyphi" with at least three revolute joints, "xy" otherwise;
 //   any other arm: "pose" with at least six joints, "position" otherwise.
 // A planar arm's tool angle phi is the sum of its revolute angles (a prismatic joint slides the tool,
-// it never turns it): three revolute joints set the tip and phi together (seed 003's planar 3R), while
-// an arm with fewer positions its tip, a prismatic stroke making the reach (seed 003's RP; seed 000's
+// it never turns it): three revolute joints set the tip and phi together (the IK course's planar 3R), while
+// an arm with fewer positions its tip, a prismatic stroke making the reach (the IK course's RP; the RPR study's
 // RPR, redundant for the tip point). A spatial arm with fewer than six joints cannot follow a
 // general pose: it positions its tool point. (Catalogue: planar_3r "xyphi"; rp, rpr "xy"; prr,
 // planar in the base xz plane, "position"; the 6- and 7-joint arms "pose".)
