@@ -7,12 +7,12 @@
 * Cartesian jog: the arrows and ``pageup`` / ``pagedown`` move the tool by :data:`MOVE_STEP` per
   step along the base's x, y and z; with ``shift`` they turn it by :data:`TURN_STEP` about those
   axes (through the tool point). Each step is one resolved-rate step of the core
-  (``rk.resolved_rate``: damped least squares, the damping growing near singularities, with seed
-  000's null-space joint-limit term on redundant arms) followed by the core's Reach loop from
+  (``rk.resolved_rate``: damped least squares, the damping growing near singularities, with the
+  RPR study's null-space joint-limit term on redundant arms) followed by the core's Reach loop from
   there to the commanded pose (``rk.reach``, gain 1, to 1e-11), so the tool lands on the commanded
   pose and the rest of the pose does not drift. A step the arm cannot take (a joint limit, the
   workspace boundary, a singularity that would make the joints jump) is refused: the arm stays and
-  the panel says why. Arms with fewer than 6 joints control fewer rows (:func:`serial_model.task_of`).
+  the panel says why. The rows controlled are the arm's natural task (``chain.natural_task``).
 * ``n``: the next closed-form posture (``robokin.closed``) of the current tool pose, reached along a
   joint-space quintic (``rk.traj.quintic``), animated. Keys acting on the arm pressed during such a
   move (or an approach) are queued and applied after it, in order: ``n`` pressed 9 times shows 9
@@ -134,12 +134,12 @@ class SerialScene(Scene):
         self.lower, self.upper = (np.asarray(v, dtype=float) for v in chain.limits)
         self.q_start = model.start_posture(chain) if q0 is None else np.clip(
             np.asarray(q0, dtype=float), self.lower, self.upper)
+        self.solver = model.posture_solver(name, chain, self.q_start)
         self.planar = model.is_planar(chain)
-        self.task = model.task_of(chain, self.planar)
+        self.task = chain.natural_task
         self.redundant = self.dof > len(TASK_DIRECTIONS[self.task])
         self.size = model.size_of(chain, self.q_start)
         self.w_ref = model.reference_manipulability(chain)
-        self.solver = model.posture_solver(name, chain, self.q_start)
         self.floor_start = self.floor = model.floor_height(chain, self.q_start, self.size)
         # Planar arms: the disc of their reach from above; others: the start posture's frame
         # origins and the pedestal's foot, from the iso view (and fitting every preset view).

@@ -99,16 +99,6 @@ def is_planar(chain: rk.Chain, seed: int = 0) -> bool:
     return bool(np.max(np.abs(jac[:, 2:5, :])) < 1e-12 and np.max(np.abs(origins)) < 1e-12)
 
 
-def task_of(chain: rk.Chain, planar: bool) -> str:
-    """The rows the jog and the paths control: the whole pose for 6 joints or more; x, y (and phi
-    with 3 joints) for planar arms; the position otherwise."""
-    if chain.dof >= 6:
-        return "pose"
-    if planar:
-        return "xyphi" if chain.dof >= 3 else "xy"
-    return "position"
-
-
 def sample(chain: rk.Chain, n: int, seed: int = 0) -> np.ndarray:
     """(n, dof) postures drawn uniformly within the limits (unlimited: [-pi, pi] or [-1, 1] m)."""
     lower, upper = (np.asarray(v, dtype=float) for v in chain.limits)
