@@ -279,7 +279,7 @@ def test_puma560_path_keeps_its_branch():
     starts = rk.closed.puma560(T0, limits=None).q
     assert len(starts) == 8
     for start in starts:
-        q, ok = rk.closed.puma560_path(targets[:20], start, limits=None)
+        q, ok, _ = rk.closed.puma560_path(targets[:20], start, limits=None)
         assert ok.all() and np.abs(np.diff(np.vstack([start, q]), axis=0)).max() < 0.05, start
     # an unreachable frame keeps the previous joints and says so
     far = targets.copy()

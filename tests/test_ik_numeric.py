@@ -175,7 +175,7 @@ def test_path_warm_start_has_no_branch_jumps():
     for k in range(1, steps, 9):
         assert np.array_equal(rk.ik(chain, targets[k], res.q[k - 1], restarts=0).q, res.q[k])
     # From the other postures of the first target the path stays in that posture too.
-    for start in rk.closed.puma560(targets[0], limits="default").q:
+    for start in rk.closed.puma560(targets[0]).only_within_limits().q:
         res = rk.ik_batch(chain, targets[:30], start, path=True)
         assert res.success.all() and np.abs(np.diff(np.vstack([start, res.q]), axis=0)).max() < 0.05
 

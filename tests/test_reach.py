@@ -80,7 +80,9 @@ def test_reach_equals_the_literal_seed_algorithm(rng):
 @pytest.mark.parametrize("gain", [1.0, 5.0])
 def test_reach_with_the_nullspace_term_equals_the_literal_seed_algorithm(rng, gain):
     chain = rk.robots.rpr()
-    weights = gain / (Q_MAX - Q_MIN)
+    # h = g (qbar - q); the "joint_limits" preset is g = W^T W, W = diag(1 / (q_max - q_min)), which
+    # makes h minus the gradient of the study's cost z.
+    weights = gain / (Q_MAX - Q_MIN) ** 2
     changed = 0
     for _ in range(200):
         q = rng.uniform(Q_MIN, Q_MAX)
