@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from robokin import plots, traj
-from robokin._atomic import AtomicPath
+from robokin.files import AtomicPath
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "traj.png"
 

@@ -1,4 +1,4 @@
-"""Files are written whole or not at all (robokin._atomic.AtomicPath): an interrupted write, or an
+"""Files are written whole or not at all (robokin.files.AtomicPath): an interrupted write, or an
 interrupted simulator run, leaves neither a truncated file under the requested name nor a
 temporary file behind; an interrupted overwrite keeps the old file."""
 
@@ -11,7 +11,7 @@ from PIL import Image
 from sim_helpers import run_sim
 
 import robokin.demo
-from robokin._atomic import AtomicPath
+from robokin.files import AtomicPath
 from robokin_sim import __main__ as sim_main
 from robokin_sim.csvlog import CsvLog
 from robokin_sim.recording import Recorder

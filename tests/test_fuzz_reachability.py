@@ -19,7 +19,7 @@ from robokin.plots_reachability import plot_reachability
 
 R = sys.modules["robokin.reachability"]
 
-COVERS = {"reachability", "reachability.grid", "reachability.reachability", "plots_reachability.plot_reachability",
+COVERS = {"reachability", "reachability.grid", "reachability.plan", "reachability.reachability", "plots_reachability.plot_reachability",
           "dask.fk", "dask.ik_batch", "dask.reachability", "dask.region_areas", "dask.best_l2",
           "dask.area_vs_platform_radius"}
 
@@ -59,6 +59,14 @@ def test_reachability_with_arbitrary_arguments(chain, bounds, resolution, orient
     d = rkd.reachability(chain, bounds, resolution, orientations=orientations, seed=seed, task=task, restarts=1,
                          max_iter=20, chunks=1)
     assert d.index.tobytes() == m.index.tobytes() and d.manipulability.tobytes() == m.manipulability.tobytes()
+    # The plan's blocks, three voxels each, computed last block first: the same bits.
+    p = R.plan(chain, bounds, resolution, orientations=orientations, seed=seed, task=task, restarts=1, max_iter=20)
+    index, manip = np.empty(p.voxels), np.empty(p.voxels)
+    for first in reversed(range(0, p.voxels, 3)):
+        count = min(3, p.voxels - first)
+        index[first:first + count], manip[first:first + count] = p.block(first, count)
+    b = p.result(index, manip)
+    assert b.index.tobytes() == m.index.tobytes() and b.manipulability.tobytes() == m.manipulability.tobytes()
 
 
 MAP = rk.reachability(rk.robots.ur5(), ((-0.8, 0.8), (-0.8, 0.8), (0.0, 0.4)), 0.4, orientations=2, restarts=1)

@@ -35,7 +35,7 @@ from . import _core, rrr3_design
 from ._checks import real_array
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK as _BLOCK
-from .reachability import ReachabilityMap, _plan
+from .reachability import ReachabilityMap, plan
 
 __all__ = ["IKBatchArrays", "area_vs_platform_radius", "best_l2", "fk", "ik_batch", "reachability",
            "region_areas"]
@@ -100,14 +100,14 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
     voxels, computed with Dask (the active ``distributed.Client`` when there is one). The same
     arguments (``task`` None: ``chain.natural_task``; ``ik_options``: any other IKOptions field) and
     the same map, bit for bit, whatever the chunking and the workers."""
-    plan = _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options)
+    p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
     if isinstance(chunks, bool) or not isinstance(chunks, (int, np.integer)) or chunks < 1:
         raise ValueError(f"chunks: expected a positive int (voxels per chunk), got {chunks!r}")
-    voxels = da.arange(plan.voxels, chunks=int(chunks), dtype=np.int64)
-    out = voxels.map_blocks(_reach_block, plan, new_axis=1, chunks=(voxels.chunks[0], (2,)), dtype=np.float64,
+    voxels = da.arange(p.voxels, chunks=int(chunks), dtype=np.int64)
+    out = voxels.map_blocks(_reach_block, p, new_axis=1, chunks=(voxels.chunks[0], (2,)), dtype=np.float64,
                             meta=np.empty((0, 2)))
     (table,) = _compute(out)
-    return plan.result(table[:, 0].copy(), table[:, 1].copy())
+    return p.result(table[:, 0].copy(), table[:, 1].copy())
 
 
 def region_areas(robots, phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: float = 1e-3, chunks="auto"):
@@ -144,11 +144,11 @@ def _ik_block(targets: np.ndarray, chain: _core.Chain, q0, seed: int, options: d
     return np.column_stack((r.q, r.success, r.iterations, r.attempts, r.error_p, r.error_r))
 
 
-def _reach_block(voxels: np.ndarray, plan) -> np.ndarray:
+def _reach_block(voxels: np.ndarray, p) -> np.ndarray:
     if not len(voxels):
         return np.empty((0, 2))
     first = int(voxels[0])
-    index, manip = plan.block(first, len(voxels))
+    index, manip = p.block(first, len(voxels))
     return np.column_stack((index, manip))
 
 

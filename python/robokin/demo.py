@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from . import paths, robots
-from ._atomic import AtomicPath
+from .files import AtomicPath
 from ._core import joint_limit_cost
 from .reach import track
 

@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from . import closed, robots
-from ._atomic import AtomicPath
+from .files import AtomicPath
 from .postures import count_reconfigurations, track_postures
 
 #: The demo's line: start joints, direction and length of the tool's straight move, waypoints,

@@ -9,19 +9,10 @@ import numpy as np
 from . import robots
 from ._checks import planar_points, real_array
 from ._core import Chain, TrackResult, joint_limit_cost
+from ._figures import new_figure
 
 __all__ = ["ISO_VIEW", "MAX_DRAWN", "MAX_FRAMES", "animate_chain", "draw_planar_chain", "joint_axes", "plot_chain",
            "rpr_line_figure", "trajectory_figure"]
-
-
-def _new_figure(**kwargs):
-    """A Figure outside pyplot's global state (no display needed; save it with fig.savefig)."""
-    try:
-        from matplotlib.figure import Figure
-        from mpl_toolkits import mplot3d  # type: ignore[import-untyped]  # noqa: F401  (registers 3-D)
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError("robokin.plots needs matplotlib: pip install 'robokin[plot]'") from exc
-    return Figure(**kwargs)
 
 
 def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> None:
@@ -79,7 +70,7 @@ def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_
     chain = robots.rpr()
     lower, upper = chain.limits
     colors = ["tab:green", "tab:blue", "tab:red", "tab:purple"]
-    fig = _new_figure(figsize=(13, 10), layout="constrained")
+    fig = new_figure(figsize=(13, 10), layout="constrained")
     grid = fig.add_gridspec(2, 2)
 
     ax = fig.add_subplot(grid[0, 0], projection="3d")
@@ -154,7 +145,7 @@ def trajectory_figure(trajectory, names=None, title: Optional[str] = None):
     labels = [f"q_{i}" for i in range(n)] if names is None else [str(s) for s in names]
     if len(labels) != n:
         raise ValueError(f"names: expected {n} labels, got {len(labels)}")
-    fig = _new_figure(figsize=(6.4, 5.6), layout="constrained")
+    fig = new_figure(figsize=(6.4, 5.6), layout="constrained")
     axes = fig.subplots(3, 1, sharex=True)
     for ax, values, unit in zip(axes, parts, ("position (rad, m)", "velocity (rad/s, m/s)", "acceleration (rad/s², m/s²)")):
         for i in range(n):
@@ -281,7 +272,7 @@ def plot_chain(chain: Chain, q, ax=None):
     """
     q = _chain_q(chain, q)
     if ax is None:
-        fig = _new_figure(figsize=(6, 6), layout="constrained")
+        fig = new_figure(figsize=(6, 6), layout="constrained")
         ax = fig.add_subplot(projection="3d")
         ax.view_init(*ISO_VIEW)
     elif getattr(ax, "name", "") != "3d":
@@ -314,7 +305,7 @@ def animate_chain(chain: Chain, Q, path, fps: float = 30.0, size=(480, 480)) -> 
     """
     import os
 
-    from ._atomic import AtomicPath
+    from .files import AtomicPath
 
     if not isinstance(chain, Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
@@ -341,7 +332,7 @@ def animate_chain(chain: Chain, Q, path, fps: float = 30.0, size=(480, 480)) -> 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     scale = max(_arm_size(chain.frames(q)) for q in Q[:: max(1, len(Q) // 50)])
-    fig = _new_figure(figsize=(width / 100, height / 100), dpi=100)
+    fig = new_figure(figsize=(width / 100, height / 100), dpi=100)
     canvas = FigureCanvasAgg(fig)
     ax = fig.add_subplot(projection="3d")
     images = []

@@ -7,8 +7,8 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from ._atomic import AtomicPath
-from .plots import _new_figure
+from ._figures import new_figure
+from .files import AtomicPath
 from .reachability import ReachabilityMap
 
 __all__ = ["plot_reachability"]
@@ -39,7 +39,7 @@ def plot_reachability(rmap: ReachabilityMap, path=None, axis: str = "z", slices:
         panels = [(f"{axis} = {coords[i]:.3g} m", np.take(rmap.index, i, axis=k), [j for j in range(3) if j != k])
                   for i in picks]
         panels.append((f"projection along {axis} (max)", rmap.index.max(axis=k), [j for j in range(3) if j != k]))
-    fig = _new_figure(figsize=(3.2 * len(panels) + 0.8, 3.4), layout="constrained")
+    fig = new_figure(figsize=(3.2 * len(panels) + 0.8, 3.4), layout="constrained")
     axs = fig.subplots(1, len(panels), squeeze=False)[0]
     extent = rmap.extent
     image = None

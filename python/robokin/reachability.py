@@ -28,8 +28,8 @@ from ._checks import real_array
 from .ik import ik_batch
 from .pose import from_quaternion
 
-__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap", "grid",
-           "reachability"]
+__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap",
+           "ReachabilityPlan", "grid", "plan", "reachability"]
 
 #: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget);
 #: every other :class:`robokin.IKOptions` field keeps the IK's default.
@@ -125,20 +125,22 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
             (the message names the argument).
         TypeError: For a keyword that is no IKOptions field (the message lists them).
     """
-    plan = _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options)
-    count = plan.voxels
+    p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
+    count = p.voxels
     index = np.empty(count)
     manip = np.empty(count)
     for v0 in range(0, count, BLOCK):
         n = min(BLOCK, count - v0)
-        index[v0:v0 + n], manip[v0:v0 + n] = plan.block(v0, n)
-    return plan.result(index, manip)
+        index[v0:v0 + n], manip[v0:v0 + n] = p.block(v0, n)
+    return p.result(index, manip)
 
-
-# --- what robokin.dask shares: the checked arguments and one block of voxels ---------------------
 
 @dataclass(frozen=True)
-class _Plan:
+class ReachabilityPlan:
+    """A reachability map's checked arguments, computable block by block in any order and on any
+    worker (:func:`robokin.dask.reachability` does so): ``result`` of the blocks covering
+    ``0 .. voxels - 1`` is :func:`reachability`'s map, bit for bit. Made by :func:`plan`."""
+
     chain: _core.Chain
     axes: Tuple[np.ndarray, ...]
     resolution: float
@@ -175,7 +177,11 @@ class _Plan:
                                self.orientations, self.seed, self.task)
 
 
-def _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options) -> _Plan:
+def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
+         task: Optional[str] = None, q0=None, **ik_options) -> ReachabilityPlan:
+    """The plan of :func:`reachability`'s map (same arguments, same checks), to compute its blocks
+    with a scheduler of your own: ``p.block(first, count)`` gives the voxels ``first .. first +
+    count - 1`` (C order) as (index, best manipulability), ``p.result(index, manip)`` the map."""
     if not isinstance(chain, _core.Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
     if task is None:
@@ -200,7 +206,7 @@ def _plan(chain, bounds, resolution, orientations, seed, task, q0, ik_options) -
         with np.errstate(invalid="ignore"):  # inf - inf where unlimited: not used
             q0 = np.where(np.isfinite(lo) & np.isfinite(hi), (lo + hi) / 2, q0)
     h = _resolution(resolution)
-    return _Plan(chain, axes, h, K, s, task, q0, options)
+    return ReachabilityPlan(chain, axes, h, K, s, task, q0, options)
 
 
 def _targets(task: str, centres: np.ndarray, u: np.ndarray) -> np.ndarray:

@@ -82,7 +82,7 @@ def _report_stop(stop, result) -> int:
 
 def _remove_own_temporaries(config) -> None:
     """Temporary files of this process's outputs that a stopped run had not yet removed."""
-    from robokin._atomic import remove_own
+    from robokin.files import remove_own
 
     for path in (config.log, config.record, config.screenshot):
         if path:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import csv
 from typing import Optional, Sequence
 
-from robokin._atomic import AtomicPath
+from robokin.files import AtomicPath
 
 from .outputs import OutputError, reason_of
 

@@ -2,7 +2,7 @@
 
 A full disk, a file too large for the file system or a directory that cannot be written turns
 into ``robokin-sim: error: cannot write FILE: REASON`` and exit status 1 (see ``__main__``). The
-file is written under a temporary name first (:class:`robokin._atomic.AtomicPath`), so a file
+file is written under a temporary name first (:class:`robokin.files.AtomicPath`), so a file
 that was there before keeps its content.
 """
 
@@ -39,7 +39,7 @@ def save_png(pygame, surface, path: str) -> str:
     """Saves ``surface`` as a PNG at ``path`` (atomically); OutputError when it cannot. (Pillow
     writes it: SDL's libpng would also print its complaint on stderr.)"""
     from PIL import Image
-    from robokin._atomic import AtomicPath
+    from robokin.files import AtomicPath
 
     rgb = pygame.surfarray.array3d(surface).swapaxes(0, 1)
     try:

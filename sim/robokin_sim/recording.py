@@ -18,7 +18,7 @@ import zlib
 from typing import List, Optional
 
 import numpy as np
-from robokin._atomic import AtomicPath
+from robokin.files import AtomicPath
 
 from .outputs import OutputError, reason_of
 

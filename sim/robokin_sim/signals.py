@@ -8,7 +8,7 @@ closed properly), and ``robokin-sim`` names them on one line and exits with stat
 signal's number (130, 143, 129). A signal that comes earlier (while pygame or the scene starts)
 raises :class:`Stopped` at once: nothing had been written yet. Later signals are ignored while the
 run finishes. Only SIGKILL can lose the outputs; its temporary files are removed by the next run
-(:mod:`robokin._atomic`). SDL's own handlers, which turn SIGINT and SIGTERM into a quit event, are
+(:mod:`robokin.files`). SDL's own handlers, which turn SIGINT and SIGTERM into a quit event, are
 turned off by the loop.
 """
 

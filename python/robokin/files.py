@@ -6,7 +6,8 @@ The temporary file is named ``.NAME.PID.RANDOM.partEXT`` (PID: the writing proce
 killed outright (SIGKILL, a power cut) cannot remove it; the next AtomicPath for the same target
 removes the temporary files of that target whose process is gone, and only those.
 
-Used by :mod:`robokin.demo` (its figure) and the simulator (recordings, CSV logs, screenshots).
+Used by robokin's figures and demos and by the simulator (recordings, CSV logs, screenshots); a
+program of your own that writes results can use it the same way.
 """
 
 from __future__ import annotations
@@ -14,6 +15,8 @@ from __future__ import annotations
 import os
 import re
 import tempfile
+
+__all__ = ["AtomicPath", "remove_own", "remove_stale"]
 
 
 class AtomicPath:
@@ -119,11 +122,3 @@ def remove_own(path) -> list:
     directory = os.path.dirname(os.path.abspath(path))
     stem, ext = os.path.splitext(os.path.basename(path))
     return _remove_parts(directory, _part_pattern(stem, str(os.getpid()), ext), lambda pid: True)
-    for name in names:
-        if pattern.match(name):
-            try:
-                os.remove(os.path.join(directory, name))
-                removed.append(os.path.join(directory, name))
-            except OSError:
-                pass
-    return removed
