@@ -206,7 +206,7 @@ def test_non_cuspidal_arms_never_have_two_solutions_in_one_aspect(rng):
 def test_bad_arguments():
     with pytest.raises(ValueError, match="chain"):
         rk.cuspidal(rk.robots.ur5())
-    with pytest.raises(ValueError, match="chain"):
+    with pytest.raises(TypeError, match="chain: expected a robokin.Chain, got str"):
         rk.cuspidal("arm")
     with pytest.raises(ValueError, match="resolution"):
         rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), resolution=3)

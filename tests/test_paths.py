@@ -31,7 +31,7 @@ def test_circle_and_clover_follow_their_formulas():
         (lambda: rk.paths.line([0, 0], [1, 1], 0), "step: must be a positive finite number"),
         (lambda: rk.paths.line([0, 0], [1, 1, 1], 0.1), "p2: expected the dimension of p1"),
         (lambda: rk.paths.line([0, np.nan], [1, 1], 0.1), "p1: contains NaN or inf"),
-        (lambda: rk.paths.circle(0), "n: expected a positive integer"),
+        (lambda: rk.paths.circle(0), r"n: expected an int in \[1, 10000000\] \(points\), got 0"),
         (lambda: rk.paths.circle(10, radius=-1), "radius: must be a positive finite number"),
         (lambda: rk.paths.clover(10, center=(0, 0, 0)), r"center: expected \(x, y\)"),
     ],

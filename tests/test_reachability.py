@@ -145,10 +145,13 @@ def test_orientations_are_uniform_rotations():
     (dict(stall_window=-1), "stall_window"),
     (dict(q0=np.zeros(5)), "q0"),
 ])
-def test_bad_arguments_are_value_errors_naming_them(kwargs, name):
+def test_bad_arguments_are_errors_naming_them(kwargs, name):
     args = dict(bounds=((0, 0.5), (0, 0.5), (0, 0.5)), resolution=0.25)
     args.update(kwargs)
-    error = TypeError if isinstance(kwargs.get("bounds"), str) else ValueError  # a string is the wrong kind
+    # A value of the wrong kind is a TypeError, one out of range a ValueError.
+    wrong_kind = (isinstance(kwargs.get("bounds"), str) or isinstance(kwargs.get("resolution"), str)
+                  or isinstance(kwargs.get("orientations"), (float, bool)))
+    error = TypeError if wrong_kind else ValueError
     with pytest.raises(error, match=name):
         rk.reachability(rk.robots.ur5(), **args)
 

@@ -139,7 +139,7 @@ def test_bad_arguments():
         rk.track_postures(chain, np.zeros((3, 3, 3)), 0.1)
     with pytest.raises(ValueError, match="method"):
         rk.track_postures(rk.robots.planar_3r(1, 1, 1), np.zeros((1, 4, 4)), 0.1)
-    with pytest.raises(ValueError, match="chain"):
+    with pytest.raises(TypeError, match="chain: expected a robokin.Chain, got str"):
         rk.track_postures("ur5", poses, 0.1)
 
 

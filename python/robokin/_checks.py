@@ -31,6 +31,36 @@ def number(value, name: str, *, minimum: float = -math.inf, positive: bool = Fal
     return v
 
 
+def chain(value, name: str = "chain"):
+    """A robokin.Chain, as given."""
+    from ._core import Chain  # the core is loaded by then; imported here to keep this module light
+
+    if not isinstance(value, Chain):
+        raise TypeError(f"{name}: expected a robokin.Chain, got {type(value).__name__}")
+    return value
+
+
+def whole(value, name: str, lo: int, hi: int, what: str = "") -> int:
+    """An integer (a Python or numpy int; not a bool) in ``[lo, hi]`` as an int; ``what`` says in
+    the message what it counts.
+
+    Raises:
+        TypeError: not an integer.
+        ValueError: outside ``[lo, hi]``.
+    """
+    unit = f" ({what})" if what else ""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an int{unit}, got {value!r}")
+    if not lo <= int(value) <= hi:
+        raise ValueError(f"{name}: expected an int in [{lo}, {hi}]{unit}, got {value}")
+    return int(value)
+
+
+def seed(value, name: str = "seed") -> int:
+    """A random seed: an int in ``[0, 2**64)``, the range of the core's generators."""
+    return whole(value, name, 0, 2**64 - 1, "a random seed")
+
+
 def real_array(value, name: str) -> np.ndarray:
     """``value`` as a float array; complex numbers, strings, None and ragged lists are refused by name."""
     try:

@@ -21,6 +21,8 @@ from typing import Optional
 import numpy as np
 
 from . import _core
+from ._checks import chain as check_chain
+from ._checks import whole
 from ._core import Chain
 
 __all__ = ["Cuspidality", "cuspidal"]
@@ -139,10 +141,8 @@ def cuspidal(chain: Chain, resolution: int = 256) -> Cuspidality:
         grids), a sentence of ``evidence`` and, for a cuspidal arm, a ``point`` with two solutions in
         one aspect and a ``path`` of joint configurations between them that meets no singularity.
     """
-    if not isinstance(chain, Chain):
-        raise ValueError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)):
-        raise ValueError(f"resolution: expected an integer in [16, 4096], got {resolution!r}")
+    check_chain(chain)
+    whole(resolution, "resolution", 16, 4096, "grid points per joint")
     r = _core.cuspidal_3r(chain, int(resolution))
     n = int(resolution)
     grid = -math.pi + (np.arange(n) + _OFFSET) * 2 * math.pi / n

@@ -32,7 +32,9 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
     raise ImportError("robokin.dask needs dask: pip install 'robokin[dask]'") from exc
 
 from . import _core, rrr3_design
-from ._checks import real_array
+from ._checks import chain as check_chain
+from ._checks import real_array, whole
+from ._checks import seed as check_seed
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK as _BLOCK
 from .reachability import ReachabilityMap, plan
@@ -63,7 +65,7 @@ def fk(chain: _core.Chain, q, chunks="auto"):
     """Tool poses (N, 4, 4) of configurations ``q`` (N, dof) as a dask array, chunk by chunk with
     ``chain.fk`` (GIL released). ``q``: a numpy or dask array; ``chunks``: rows per chunk when
     ``q`` is not already a dask array."""
-    _check_chain(chain)
+    check_chain(chain)
     qd = _rows(q, "q", chunks)
     chain.fk(np.empty((0,) + qd.shape[1:]))  # the one-machine call's checks (shape), before any work
     return qd.map_blocks(_fk_block, chain, chunks=(qd.chunks[0], (4,), (4,)), new_axis=2, dtype=np.float64,
@@ -80,11 +82,10 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
     Returns:
         IKBatchArrays of dask arrays (``.compute()`` for numpy).
     """
-    _check_chain(chain)
+    check_chain(chain)
     if "path" in options:
         raise ValueError("options: path=True is sequential (each target starts from the previous): use robokin.ik_batch")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
-        raise ValueError(f"seed: expected an int in [0, 2**64) (a random seed would differ per chunk), got {seed!r}")
+    check_seed(seed)  # an int, not None: a random seed would differ per chunk
     td = _rows(targets, "targets", chunks)
     _ik_batch(chain, np.empty((0,) + td.shape[1:]), q0, seed=int(seed), **options)  # the one-machine checks
     n = chain.dof
@@ -101,8 +102,7 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
     arguments (``task`` None: ``chain.natural_task``; ``ik_options``: any other IKOptions field) and
     the same map, bit for bit, whatever the chunking and the workers."""
     p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
-    if isinstance(chunks, bool) or not isinstance(chunks, (int, np.integer)) or chunks < 1:
-        raise ValueError(f"chunks: expected a positive int (voxels per chunk), got {chunks!r}")
+    whole(chunks, "chunks", 1, 2**63 - 1, "voxels per chunk")
     voxels = da.arange(p.voxels, chunks=int(chunks), dtype=np.int64)
     out = voxels.map_blocks(_reach_block, p, new_axis=1, chunks=(voxels.chunks[0], (2,)), dtype=np.float64,
                             meta=np.empty((0, 2)))
@@ -164,11 +164,6 @@ def _distributed_areas(chunks):
 
 
 # --- helpers ------------------------------------------------------------------------------------------
-
-def _check_chain(chain) -> None:
-    if not isinstance(chain, _core.Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-
 
 def _rows(a, name: str, chunks):
     """``a`` as a float64 dask array chunked along its first axis only (whole rows per chunk)."""

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._checks import number, real_array
+from ._checks import number, real_array, whole
 
 __all__ = ["MAX_POINTS", "line", "circle", "clover"]
 
@@ -25,11 +25,7 @@ def _point(value, name: str) -> np.ndarray:
 
 
 def _count(n, name: str = "n") -> int:
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"{name}: expected a positive integer, got {n!r}")
-    if n > MAX_POINTS:
-        raise ValueError(f"{name}: at most {MAX_POINTS} points, got {n}")
-    return int(n)
+    return whole(n, name, 1, MAX_POINTS, "points")
 
 
 def line(p1, p2, step: float) -> np.ndarray:

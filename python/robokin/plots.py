@@ -7,7 +7,8 @@ from typing import Dict, Optional
 import numpy as np
 
 from . import robots
-from ._checks import planar_points, real_array
+from ._checks import chain as check_chain
+from ._checks import planar_points, real_array, whole
 from ._core import Chain, TrackResult, joint_limit_cost
 from ._figures import new_figure
 
@@ -27,9 +28,7 @@ MAX_DRAWN = 1000
 
 
 def _count(n, name: str) -> int:
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_DRAWN:
-        raise ValueError(f"{name}: expected a whole number in [1, {MAX_DRAWN}], got {n!r}")
-    return int(n)
+    return whole(n, name, 1, MAX_DRAWN)
 
 
 def _line_figure_arguments(points, tracks):
@@ -200,8 +199,7 @@ def joint_axes(chain: Chain, q) -> np.ndarray:
 
 
 def _chain_q(chain, q, name: str = "q") -> np.ndarray:
-    if not isinstance(chain, Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     a = real_array(q, name)
     if a.shape != (chain.dof,):
         raise ValueError(f"{name}: expected shape ({chain.dof},), got {a.shape}")
@@ -307,8 +305,7 @@ def animate_chain(chain: Chain, Q, path, fps: float = 30.0, size=(480, 480)) -> 
 
     from .files import AtomicPath
 
-    if not isinstance(chain, Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     Q = real_array(Q, "Q")
     if Q.ndim != 2 or Q.shape[1] != chain.dof or not 1 <= len(Q) <= MAX_FRAMES:
         raise ValueError(f"Q: expected shape (K, {chain.dof}) with 1 <= K <= {MAX_FRAMES}, got {Q.shape}")

@@ -21,7 +21,9 @@ from typing import List, Optional
 import numpy as np
 
 from . import _core, closed
-from ._checks import real_array
+from ._checks import chain as check_chain
+from ._checks import real_array, whole
+from ._checks import seed as check_seed
 from ._core import Chain
 
 __all__ = ["TrackPosturesResult", "track_postures", "count_reconfigurations"]
@@ -223,8 +225,7 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         ``postures``). Joints whose limits span a whole turn step the short way round (and the path
         keeps them continuous, shifted by whole turns within the limits).
     """
-    if not isinstance(chain, Chain):
-        raise ValueError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     n = chain.dof
     P = real_array(poses, "poses")
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
@@ -238,10 +239,8 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     if method == "closed" and ik_options:
         raise ValueError(f"ik_options: {sorted(ik_options)} apply to the numerical IK only (method='closed')")
     options = None if method == "closed" else _ik_options(method, ik_options)
-    if not isinstance(starts, (int, np.integer)) or isinstance(starts, bool) or not 1 <= starts <= 10_000:
-        raise ValueError(f"starts: expected an integer in [1, 10000], got {starts!r}")
-    if not isinstance(seed, (int, np.integer)) or isinstance(seed, bool):
-        raise ValueError(f"seed: expected an integer, got {seed!r}")
+    whole(starts, "starts", 1, 10_000, "IK starts per waypoint")
+    check_seed(seed)
     start = None if q0 is None else _vector(q0, n, "q0")
     cont = _continuous(chain)
     labels = None

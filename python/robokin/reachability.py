@@ -24,7 +24,9 @@ from typing import Optional, Tuple
 import numpy as np
 
 from . import _core
-from ._checks import real_array
+from ._checks import chain as check_chain
+from ._checks import number, real_array, whole
+from ._checks import seed as check_seed
 from .ik import ik_batch
 from .pose import from_quaternion
 
@@ -88,7 +90,7 @@ def grid(bounds, resolution) -> Tuple[np.ndarray, ...]:
     at ``resolution`` (m): ``ceil((hi - lo) / resolution)`` voxels per axis (one for ``lo == hi``),
     centred on the interval."""
     b = _bounds(bounds)
-    h = _resolution(resolution)
+    h = number(resolution, "resolution", positive=True)
     counts = [max(1.0, math.ceil((hi - lo) / h - 1e-9)) for lo, hi in b]
     if math.prod(counts) > MAX_VOXELS:
         raise ValueError(f"resolution: the grid would have {math.prod(counts):.3g} voxels (at most {MAX_VOXELS})")
@@ -182,8 +184,7 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     """The plan of :func:`reachability`'s map (same arguments, same checks), to compute its blocks
     with a scheduler of your own: ``p.block(first, count)`` gives the voxels ``first .. first +
     count - 1`` (C order) as (index, best manipulability), ``p.result(index, manip)`` the map."""
-    if not isinstance(chain, _core.Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     if task is None:
         task = chain.natural_task
     if not isinstance(task, str) or task not in _TASKS:
@@ -192,11 +193,11 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     if len(axes) != (2 if task in _PLANAR else 3):
         raise ValueError(f"bounds: task {task!r} takes {2 if task in _PLANAR else 3} (lo, hi) pairs, got {len(axes)}")
     free = task in ("position", "xy")  # the orientation is left free: one target per voxel
-    K = (1 if free else ORIENTATIONS) if orientations is None else _whole(orientations, "orientations", 1,
-                                                                         MAX_ORIENTATIONS)
+    K = (1 if free else ORIENTATIONS) if orientations is None else whole(orientations, "orientations", 1,
+                                                                        MAX_ORIENTATIONS)
     if free and K != 1:
         raise ValueError(f"orientations: task {task!r} leaves the orientation free: expected 1, got {K}")
-    s = _whole(seed, "seed", 0, 2**64 - 1)
+    s = check_seed(seed)
     options = {**DEFAULTS, **ik_options}
     _core.IKOptions(**options).validate()  # every IKOptions field, checked by the core (names, kinds, ranges)
     if q0 is None:  # the middle of finite limits, else the finite one, else 0
@@ -205,7 +206,7 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
         q0 = np.where(np.isfinite(lo), lo, np.where(np.isfinite(hi), hi, q0))
         with np.errstate(invalid="ignore"):  # inf - inf where unlimited: not used
             q0 = np.where(np.isfinite(lo) & np.isfinite(hi), (lo + hi) / 2, q0)
-    h = _resolution(resolution)
+    h = number(resolution, "resolution", positive=True)
     return ReachabilityPlan(chain, axes, h, K, s, task, q0, options)
 
 
@@ -254,19 +255,3 @@ def _bounds(bounds) -> np.ndarray:
         raise ValueError("bounds: coordinates beyond 1e6 m")
     return b
 
-
-def _resolution(resolution) -> float:
-    if isinstance(resolution, (bool, str)) or not isinstance(resolution, (int, float, np.integer, np.floating)):
-        raise ValueError(f"resolution: expected a positive number (m), got {resolution!r}")
-    h = float(resolution)
-    if not (math.isfinite(h) and h > 0):
-        raise ValueError(f"resolution: must be a positive finite length (m), got {h}")
-    return h
-
-
-def _whole(value, name: str, lo: int, hi: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise ValueError(f"{name}: expected an int, got {value!r}")
-    if not lo <= int(value) <= hi:
-        raise ValueError(f"{name}: expected an int in [{lo}, {hi}], got {value}")
-    return int(value)
