@@ -1,7 +1,7 @@
 // The hottest single calls (Chain.fk, Chain.jacobian, ik) bound without pybind11's dispatcher:
 // CPython's METH_FASTCALL | METH_KEYWORDS convention, the arguments read where CPython passes them.
-// The dispatcher's own work was about a fifth of a ~1 us call here: an argument vector and a
-// function record per call, type lookups, a bound method object per call. What stays as before:
+// The dispatcher's own work (an argument vector and a function record per call, type lookups, a
+// bound method object per call) was a large part of a microsecond call. What stays as before:
 // the same argument names, defaults and conversions (the functions' bodies are unchanged), C++
 // exceptions translated by pybind11's registered translators as the dispatcher does, and a
 // docstring whose first line is the signature pybind11 writes (help(), the generated stubs).

@@ -3,8 +3,8 @@
 //
 // numpy takes an array's memory from malloc, and glibc gives a large block back to the kernel when
 // it is freed (always above 32 MB, its largest mmap threshold). The next such output then comes
-// back as fresh pages, which the kernel faults in and zeroes on the calling thread: 13-15 ms of the
-// 24 ms that 1e6 RPR frames (128 MB) took on one thread here. With the freed block kept, a loop of
+// back as fresh pages, which the kernel faults in and zeroes on the calling thread: more than half
+// of a large batch FK's time. With the freed block kept, a loop of
 // calls of one size (the previous result freed when the next is assigned) writes into pages it
 // already has.
 //

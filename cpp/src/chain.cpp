@@ -292,7 +292,7 @@ ROBOKIN_KERNEL void Chain::run_lanes(Lanes<N>& L, const double* q, long stride, 
   // Up to kAtOnce lanes x joints (one configuration of up to 32 joints, fk_few's 8 of up to 32):
   // the sines and cosines of all revolute joints first, in one vectorised pass (they do not depend
   // on the chain product, which then runs without waiting for them); a value gives the same bits
-  // in any pass. (Batch blocks too measured no faster: 16.5 against 16.3 ns per RPR point.)
+  // in any pass. (Batch blocks measured no faster this way: benchmarks/README.md.)
   constexpr int kAtOnce = 256;
   double v1[kAtOnce], s1[kAtOnce], c1[kAtOnce];
   const bool all_at_once = N * dof_ <= kAtOnce && N <= Chain::kFkFew && stride != kJointMajor;
@@ -413,8 +413,7 @@ __attribute__((target("avx512f"), always_inline)) inline __m512d odd_pairs(__m51
 }
 // block_to_4x4_avx2 with AVX-512, 8 lanes at a time: lane k's rows 0 and 1 in one 64-byte store,
 // rows 2 and 3 in another (an 8 x 8 transpose of R's rows 0, 1 and p's; a 4 x 8 one completed by
-// the constant row). 1e6 RPR frames on one thread 25.1 -> 24.8 ms (best of 5 interleaved runs).
-// The same bits, moved.
+// the constant row). The same bits, moved in fewer, wider stores.
 __attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>& L, double* m) {
   static_assert(kBlock % 8 == 0, "whole vectors of lanes");
   const __m512d row3 = _mm512_set_pd(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // (0 0 0 1) unpacked, gathered
@@ -464,9 +463,7 @@ const int kBlockIsa = lanes_isa();
 
 // The joint values of a batch block (kBlock configurations of dof joints at q) joint by joint:
 // qT[j * kBlock + k] = q[k * dof + j], 8 lanes per gather. Read with a stride of dof, run_lanes
-// loaded them one value at a time. 1e6 RPR configurations on one thread, medians of 5 or 6 runs
-// of the two builds in turn: positions 7.1 -> 6.8 ms, frames 20.9 -> 19.6 ms; UR5 3e5 frames
-// 8.3 -> 8.0 ms.
+// loaded them one value at a time (the gain is in benchmarks/README.md).
 constexpr int kGatherJoints = 16;
 __attribute__((target("avx512f"))) void gather_block_avx512(const double* q, int dof, double* qT) {
   const long d = dof;
@@ -567,11 +564,8 @@ void populate_for_writing(double* begin, double* end) {
 // A large frame output is faulted in a 2 MB page at a time (numpy's huge pages, else 512 small
 // ones with one call), one page ahead of the stores, so that they find lines the kernel zeroed
 // shortly before. Faulting in the whole output first, then streaming the frames past the cache,
-// wrote it to memory twice: 17.5 ms against 14.1 ms for 128 MB here. Best of 5 interleaved runs,
-// 1e6 RPR frames on one thread: one page ahead 22.8-23.0 ms; chunks of 256 KB (a new page
-// faulted in whenever a chunk crossed into it) 24.4 ms; each page faulted in only as its first
-// frame is written 24.9 ms; two pages ahead 24.0 ms. Why one page ahead beats just in time was
-// not isolated.
+// writes it to memory twice. One page ahead measured faster than chunks, than just in time and
+// than two pages ahead (benchmarks/README.md); why it beats just in time was not isolated.
 constexpr std::uintptr_t kFaultAhead = std::uintptr_t{1} << 21;
 
 // The first configuration after `upto` whose frame lies wholly beyond the next 2 MB boundary from
@@ -613,10 +607,9 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
 #endif
     if (populate) {
       // The next block's output lines fetched while this one is computed: the kernel's zeroing
-      // leaves them out of the first-level caches, and each store waited for its line (1e6 RPR
-      // frames on one thread 32-34 -> 26-28 ms). A part is asked for before the chain and a part
-      // after each joint: all at once, the requests beyond the cache's few outstanding misses
-      // stalled the block (25.2 against 25.9 ms); fetching two blocks ahead measured slower.
+      // leaves them out of the first-level caches, and each store waited for its line. A part is
+      // asked for before the chain and a part after each joint: all at once, the requests beyond
+      // the cache's few outstanding misses stalled the block; two blocks ahead measured slower.
       // Written here, not in a helper: GCC deletes calls to a function whose only effect is a prefetch.
       const long next_end = std::min(end, b + 2 * kBlock);
       fault_in(next_end);
@@ -699,8 +692,8 @@ void Chain::fk_few(const double* q, int count, Rigid* out) const {
   }
   if (count <= 0) return;
 #ifdef ROBOKIN_AVX2
-  // AVX2 (4 lanes per vector): a UR closed-form call 1.03 us against 1.08-1.11 with the baseline's
-  // 2; an AVX-512 build of the same kernel measured 1.09-1.12 (Sapphire Rapids), so none is made.
+  // AVX2 (4 lanes per vector) measured faster than the baseline's 2 for a UR closed-form call; an
+  // AVX-512 build of the same kernel did not, so none is made (benchmarks/README.md).
   if (lanes_isa() >= 1) return fk_few_avx2(q, count, out);
 #endif
   fk_few_lanes(q, count, out);

@@ -48,11 +48,10 @@ Isa isa() {
   return best;
 }
 
-// Arrays of at least this many values go through AVX-512 where the CPU has it (Sapphire Rapids:
-// 1.8 against 2.8 ns per sine and cosine on 1,000 values; batch FK's blocks, 32 lanes a joint,
-// 1e6 RPR frames on one thread 37 -> 33.5 ms, positions 11.1 -> 8.7 ms); shorter ones, a single
-// call's few, through AVX2 (AVX-512 for every length measured slower there: numerical IK on the
-// UR5 6.2 -> 6.8 us a call, one fk 255 -> 280 ns).
+// Arrays of at least this many values (batch FK's blocks: 32 lanes a joint) go through AVX-512
+// where the CPU has it; shorter ones, a single call's few, through AVX2, because AVX-512 for every
+// length made the single calls slower (the measurements, and the CPUs they were made on, are in
+// benchmarks/README.md).
 constexpr long kWide = 32;
 
 }  // namespace
