@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 
 import numpy as np
 
@@ -221,41 +222,47 @@ def _ur_chain(robot) -> Chain:
         raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
     if not all(math.isfinite(v) for v in key):
         raise ValueError("robot: the lengths must be finite")
-    if key not in _UR_CHAINS:
-        d1, a2, a3, d4, d5, d6 = key
-        p = math.pi
-        rows = [(0.0, p / 2, d1, 0.0, "R"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R"),
-                (0.0, p / 2, d4, 0.0, "R"), (0.0, -p / 2, d5, 0.0, "R"), (0.0, 0.0, d6, 0.0, "R")]
-        if len(_UR_CHAINS) > 64:
-            _UR_CHAINS.clear()
-        _UR_CHAINS[key] = Chain.from_dh(rows)
-    return _UR_CHAINS[key]
+    with _UR_LOCK:
+        chain = _UR_CHAINS.get(key)
+        if chain is None:
+            d1, a2, a3, d4, d5, d6 = key
+            p = math.pi
+            rows = [(0.0, p / 2, d1, 0.0, "R"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R"),
+                    (0.0, p / 2, d4, 0.0, "R"), (0.0, -p / 2, d5, 0.0, "R"), (0.0, 0.0, d6, 0.0, "R")]
+            if len(_UR_CHAINS) > 64:
+                _UR_CHAINS.clear()
+            chain = _UR_CHAINS[key] = Chain.from_dh(rows)
+    return chain
 
 
+# The caches of the UR solvers are shared by every thread: they change only under _UR_LOCK, and the
+# last call's entry is one tuple replaced whole, so a reader that took it sees one call's robot,
+# limits and solver together, never one call's robot with another's solver.
+_UR_LOCK = threading.Lock()
 _UR_SOLVERS: dict = {}
-
-
-_UR_LAST: list = [None, None, None]  # (robot, limits, solver) of the last cached call
+_ur_last = (None, None, None)  # (robot, limits, solver) of the last cached call
 
 
 def _ur_solver(robot, limits):
     """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
     used last; a chain is held by its entry, so its id cannot be reused while cached. The same
     Chain with the same "default" / None limits as the call before is answered first."""
-    last = _UR_LAST
+    global _ur_last
+    last = _ur_last
     if robot is last[0] and limits is last[1]:
         return last[2]
     chain = _ur_chain(robot)
     if not (limits is None or (isinstance(limits, str) and limits == "default")):
         return _core._URSolver(chain, limits)
     key = (id(chain), limits)
-    hit = _UR_SOLVERS.get(key)
-    if hit is None or hit[0] is not chain:
-        if len(_UR_SOLVERS) >= 16:
-            _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
-        hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
-    if robot is chain:  # a Chain (a dict's chain is looked up by value each time)
-        last[:] = [chain, limits, hit[1]]
+    with _UR_LOCK:
+        hit = _UR_SOLVERS.get(key)
+        if hit is None or hit[0] is not chain:
+            if len(_UR_SOLVERS) >= 16:
+                _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
+            hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
+        if robot is chain:  # a Chain (a dict's chain is looked up by value each time)
+            _ur_last = (chain, limits, hit[1])
     return hit[1]
 
 
@@ -289,7 +296,7 @@ def ur(target, robot, limits="default") -> IKSolutions:
         1e-3 of the wrist's singularity, where q2 + q3 + q4 is known only to ~1e-16 / |sin q5|, an
         elbow within that rounding of straight or folded is returned straight or folded.
     """
-    last = _UR_LAST  # _ur_solver's first test, inline: the same Chain and limits as the call before
+    last = _ur_last  # _ur_solver's first test, inline: the same Chain and limits as the call before
     if robot is last[0] and limits is last[1]:
         return last[2].solve(target)
     return _ur_solver(robot, limits).solve(target)

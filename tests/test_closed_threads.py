@@ -1,0 +1,82 @@
+"""The closed forms shared across threads: several threads call them at once on different arms
+(catalogue chains, URDF-like dict arms, the PUMA, limits and none), each answer equal, bit for bit,
+to the same call made alone. closed.py keeps its bound solvers between calls; no thread may be
+handed another arm's solver."""
+
+import sys
+import threading
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+ARMS = [rk.robots.ur3(), rk.robots.ur5(), rk.robots.ur10(), rk.robots.ur5e(), rk.robots.ur16e(),
+        {"d1": 0.2, "a2": -0.5, "a3": -0.4, "d4": 0.12, "d5": 0.1, "d6": 0.09},
+        {"d1": 0.1, "a2": -0.3, "a3": -0.25, "d4": 0.11, "d5": 0.09, "d6": 0.08}]
+LIMITS = ["default", None]
+
+
+def _chain_of(arm):
+    """The arm as a chain: a catalogue chain, or the UR table of a dict (standard DH)."""
+    if isinstance(arm, rk.Chain):
+        return arm
+    p = np.pi
+    return rk.Chain.from_dh([(0.0, p / 2, arm["d1"], 0.0, "R"), (arm["a2"], 0.0, 0.0, 0.0, "R"),
+                             (arm["a3"], 0.0, 0.0, 0.0, "R"), (0.0, p / 2, arm["d4"], 0.0, "R"),
+                             (0.0, -p / 2, arm["d5"], 0.0, "R"), (0.0, 0.0, arm["d6"], 0.0, "R")])
+
+
+def _calls(rng, count):
+    """``count`` (description, call) pairs over every arm, both limits and the PUMA."""
+    out = []
+    for _ in range(count):
+        k = int(rng.integers(len(ARMS) + 1))
+        limits = LIMITS[int(rng.integers(2))]
+        if k == len(ARMS):
+            T = rk.robots.puma560().fk(rng.uniform(-2, 2, 6))
+            out.append((lambda T=T, limits=limits: rk.closed.puma560(T, limits=limits)))
+            continue
+        arm = ARMS[k]
+        T = _chain_of(arm).fk(rng.uniform(-3, 3, 6))  # reachable: every call has solutions
+        out.append((lambda T=T, arm=arm, limits=limits: rk.closed.ur(T, arm, limits=limits)))
+    return out
+
+
+def _answer(solutions):
+    return (np.asarray(solutions.q).tobytes(), tuple(solutions.postures), np.asarray(solutions.within_limits).tobytes(),
+            bool(solutions.singular))
+
+
+@pytest.fixture
+def fast_switching():
+    before = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # threads interleave between nearly every bytecode
+    yield
+    sys.setswitchinterval(before)
+
+
+def test_closed_forms_from_eight_threads_match_the_calls_made_alone(fast_switching):
+    rng = np.random.default_rng(7)
+    calls = [_calls(rng, 3000) for _ in range(8)]
+    alone = [[_answer(c()) for c in thread_calls] for thread_calls in calls]
+    got = [None] * 8
+    errors = []
+    start = threading.Barrier(8)
+
+    def work(i):
+        try:
+            start.wait()
+            got[i] = [_answer(c()) for c in calls[i]]
+        except Exception as exc:  # noqa: BLE001 - reported below, with the thread
+            errors.append((i, repr(exc)))
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    for i in range(8):
+        wrong = [j for j, (a, b) in enumerate(zip(got[i], alone[i])) if a != b]
+        assert not wrong, f"thread {i}: {len(wrong)} of {len(alone[i])} answers differ from the call alone"
