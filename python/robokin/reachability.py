@@ -123,9 +123,10 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
         ReachabilityMap.
 
     Raises:
-        ValueError: For bad bounds, resolution, orientations, seed, task, q0 or IK option values
-            (the message names the argument).
-        TypeError: For a keyword that is no IKOptions field (the message lists them).
+        ValueError: For bounds, resolution, orientations, seed, task, q0 or IK option values out of
+            range (the message names the argument).
+        TypeError: For a value of the wrong kind (a string for a number, a float for a count),
+            or a keyword that is no IKOptions field (the message lists them).
     """
     p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
     count = p.voxels
