@@ -3,6 +3,7 @@ float64 C-contiguous arrays) against KDL's solvers, and the binding's argument c
 input route. Nothing here times anything: speed is measured in benchmarks/."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -131,6 +132,22 @@ def test_bad_q_raises_value_error_naming_q(method, bad):
     chain = rk.robots.ur5()
     with pytest.raises(ValueError, match="q"):
         getattr(chain, method)(bad)
+
+
+def test_complex_numbers_in_a_list_are_refused_not_cast():
+    """A list of complex scalars makes a complex array: casting it to float64 would drop the
+    imaginary parts with only numpy's warning, and compute a wrong answer."""
+    chain = rk.robots.rpr()
+    for bad in ([np.complex128(0.5 + 1j), 0.0, 0.0], [0.5 + 0j, 0, 0], [[0.1j, 0, 0]]):
+        with pytest.raises(ValueError, match="q: expected real numbers, got a complex array"):
+            chain.fk(bad)
+    with pytest.raises(ValueError, match="target: expected real numbers, got a complex array"):
+        rk.reach(chain, [np.complex128(0.5 + 1j), 0.5], np.zeros(3))
+    # Refused without numpy's ComplexWarning first (the shape hint reads the shape only).
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match="target: expected real numbers, got a complex array"):
+            rk.reach(chain, np.array([0.5 + 1j, 0.5]), np.zeros(3))
 
 
 def test_nan_in_batch_is_rejected():

@@ -124,10 +124,14 @@ inline Array as_array(py::handle obj, const char* name) {
   if (obj.is_none()) fail(std::string(name) + ": expected an array of numbers, got None");
   if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj))
     fail(std::string(name) + ": expected an array of numbers, got a string");
-  // Complex numbers would lose their imaginary part silently under a float64 cast.
-  if (py::isinstance<py::array>(obj) && py::reinterpret_borrow<py::array>(obj).dtype().kind() == 'c')
+  // Complex numbers would lose their imaginary part silently under a float64 cast, a list of
+  // complex scalars as well as a complex array: what is not an array yet is made one of its own
+  // dtype first (a null handle when numpy cannot: the cast below then says so).
+  const py::object own = py::isinstance<py::array>(obj) ? py::reinterpret_borrow<py::object>(obj)
+                                                         : py::object(py::array::ensure(obj));
+  if (own && py::reinterpret_borrow<py::array>(own).dtype().kind() == 'c')
     fail(std::string(name) + ": expected real numbers, got a complex array");
-  Array a = aligned_array<double>(obj);
+  Array a = aligned_array<double>(own ? own : py::reinterpret_borrow<py::object>(obj));
   if (!a) fail(std::string(name) + ": expected an array of numbers");
   return a;
 }

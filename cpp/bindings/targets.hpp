@@ -50,7 +50,7 @@ inline std::string target_noun(Task task, bool plural) {
 inline void explain_target_shape(const Chain& chain, Task task, py::handle obj, const char* name,
                                  const char* count = nullptr) {
   const bool batch = count != nullptr;
-  const auto a = aligned_array<double>(obj);
+  const py::array a = py::array::ensure(obj);  // its own dtype: only the shape is read (no cast, no warning)
   if (!a || a.ndim() < (batch ? 2 : 1)) return;
   const std::vector<py::ssize_t> shape(a.shape() + (batch ? 1 : 0), a.shape() + a.ndim());
   if (shape == target_shape(task)) return;
