@@ -29,6 +29,7 @@ import numpy as np
 from . import _core
 from . import robots as _robots
 from ._core import UR_POSTURES, Chain, IKSolutions
+from ._ur_dh import ur_dh_rows
 
 __all__ = [
     "IKSolutions",
@@ -225,13 +226,9 @@ def _ur_chain(robot) -> Chain:
     with _UR_LOCK:
         chain = _UR_CHAINS.get(key)
         if chain is None:
-            d1, a2, a3, d4, d5, d6 = key
-            p = math.pi
-            rows = [(0.0, p / 2, d1, 0.0, "R"), (a2, 0.0, 0.0, 0.0, "R"), (a3, 0.0, 0.0, 0.0, "R"),
-                    (0.0, p / 2, d4, 0.0, "R"), (0.0, -p / 2, d5, 0.0, "R"), (0.0, 0.0, d6, 0.0, "R")]
             if len(_UR_CHAINS) > 64:
                 _UR_CHAINS.clear()
-            chain = _UR_CHAINS[key] = Chain.from_dh(rows)
+            chain = _UR_CHAINS[key] = Chain.from_dh(ur_dh_rows(*key))
     return chain
 
 

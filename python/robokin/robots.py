@@ -17,6 +17,7 @@ import numpy as np
 
 from ._core import Chain
 from ._checks import number
+from ._ur_dh import ur_dh_rows
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
            "planar_3r", "rp", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e", "panda", "iiwa14",
@@ -88,19 +89,10 @@ _UR_SOURCE = ("Universal Robots, \"DH Parameters for calculations of kinematics 
 def _ur(d1: float, a2: float, a3: float, d4: float, d5: float, d6: float, wrist3_unlimited: bool = False) -> Chain:
     """A UR arm: standard DH a = (0, a2, a3, 0, 0, 0), d = (d1, 0, 0, d4, d5, d6),
     alpha = (pi/2, 0, 0, pi/2, -pi/2, 0); every joint +-360 deg (wrist 3 unlimited when asked)."""
-    p = math.pi
-    rows = [
-        (0.0, p / 2, d1, 0.0, "R"),
-        (a2, 0.0, 0.0, 0.0, "R"),
-        (a3, 0.0, 0.0, 0.0, "R"),
-        (0.0, p / 2, d4, 0.0, "R"),
-        (0.0, -p / 2, d5, 0.0, "R"),
-        (0.0, 0.0, d6, 0.0, "R"),
-    ]
-    lower, upper = np.full(6, -2 * p), np.full(6, 2 * p)
+    lower, upper = np.full(6, -2 * math.pi), np.full(6, 2 * math.pi)
     if wrist3_unlimited:
         lower[5], upper[5] = -math.inf, math.inf
-    return Chain.from_dh(rows, limits=(lower, upper))
+    return Chain.from_dh(ur_dh_rows(d1, a2, a3, d4, d5, d6), limits=(lower, upper))
 
 
 def ur3() -> Chain:
