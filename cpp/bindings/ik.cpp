@@ -216,7 +216,8 @@ void bind_ik(py::module_& m) {
       .array("error_p", &IkBatchResult::error_p, "(N,) position errors (m).")
       .array("error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).")
       .done();
-  // The defaults as a solve resolves them (restarts and timeout None: until success within 5 ms).
+  // The defaults as a solve resolves them (restarts and timeout None: until success within the
+  // default time budget, IkOptions).
   const IkOptions d;
   py::dict defaults;
   const py::object fields = py::cast(d);

@@ -1,9 +1,9 @@
-// robokin::Progress for the long calls made from Python. Ctrl-C stops them: about every 50 ms the
+// robokin::Progress for the long calls made from Python. Ctrl-C stops them: every kPoll the
 // GIL is taken for a moment to run Python's signal handlers (an exception they raise, such as
 // KeyboardInterrupt, ends the computation through robokin::Interrupted and is what Python sees).
 // When stderr is a terminal and a call has run for more than two seconds, a bar is drawn there.
 // Nothing else of Python runs on the way, so no signal can be swallowed by a drawing error; and
-// nothing touches Python at all in a call shorter than 50 ms.
+// nothing touches Python at all in a call shorter than kPoll.
 #pragma once
 
 #include <pybind11/pybind11.h>

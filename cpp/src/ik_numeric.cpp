@@ -32,10 +32,10 @@ double thread_cpu_s() {
 }  // namespace
 
 // The time budget (IkOptions::timeout) is the solving thread's CPU time: a thread descheduled on a
-// busy machine (other processes, more threads than cores) does not see its search cut short (on a
-// loaded 2-core machine a wall-clock budget of 5 ms ran out after 3 iterations now and then). The
-// thread's CPU clock costs a system call (~1 us), so it is read only once the wall clock, which a
-// thread's CPU time never exceeds, says the budget may be spent.
+// busy machine (other processes, more threads than cores) does not see its search cut short, as a
+// wall-clock budget did on a loaded machine. The thread's CPU clock costs a system call, so it is
+// read only once the wall clock, which a thread's CPU time never exceeds, says the budget may be
+// spent.
 class IkSolver::Budget {
  public:
   explicit Budget(double seconds) : seconds_(seconds) {

@@ -10,6 +10,8 @@ import numbers
 
 import numpy as np
 
+from ._core import Chain
+
 
 def number(value, name: str, *, minimum: float = -math.inf, positive: bool = False) -> float:
     """A real scalar (a Python or numpy number, or a 0-d array of one; not a bool) as a float.
@@ -33,8 +35,6 @@ def number(value, name: str, *, minimum: float = -math.inf, positive: bool = Fal
 
 def chain(value, name: str = "chain"):
     """A robokin.Chain, as given."""
-    from ._core import Chain  # the core is loaded by then; imported here to keep this module light
-
     if not isinstance(value, Chain):
         raise TypeError(f"{name}: expected a robokin.Chain, got {type(value).__name__}")
     return value

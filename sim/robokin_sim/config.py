@@ -238,8 +238,8 @@ def parse_args(argv: Optional[Sequence[str]] = None) -> Config:
     gif = bool(ns.record) and ns.record.lower().endswith(".gif")
     every = ns.record_every or (2 if gif else 1)
     if gif and every < 2:
-        # Browsers show GIF frames shorter than 20 ms for 100 ms: one step (1/60 s) per frame
-        # would play at a sixth of the speed.
+        # Browsers stretch GIF frames below their minimum delay (two hundredths of a second):
+        # one step (1/60 s) per frame would play far slower than the run.
         parser.error("--record-every: a GIF keeps one frame in 2 steps or more (frames of at least 1/30 s)")
     width = ns.record_width or (min(GIF_WIDTH, ns.size[0]) if gif else None)
     return Config(

@@ -35,9 +35,9 @@ constexpr double kDefaultIkTimeout = 5e-3;
 
 // The options of a solve: the one place the defaults are written (the bindings bind these fields
 // one by one and show the resolved defaults to Python as robokin.IK_DEFAULTS). By default a solve
-// restarts from random configurations within the limits until it succeeds or its time budget,
-// 5 ms, runs out: a reachable target is solved (>= 99.9 % of random reachable targets on the
-// catalogue's arms, benchmarks/bench_ik_defaults.py); an unreachable one costs the whole budget.
+// restarts from random configurations within the limits until it succeeds or its time budget
+// (kDefaultIkTimeout above) runs out: a reachable target is solved (the rate on the catalogue's arms
+// is measured by benchmarks/bench_ik_defaults.py); an unreachable one costs the whole budget.
 struct IkOptions {
   IkMethod method = IkMethod::LM;
   std::optional<Task> task;  // unset: the chain's natural_task (task.hpp)
