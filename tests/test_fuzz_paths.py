@@ -164,7 +164,7 @@ def test_plot_robot(pose, mode, path):
        n=st.one_of(st.integers(-2, 40), st.sampled_from([10**9, 2**63, 2.5, None])),
        tol=st.one_of(st.just(1e-3), wild_floats))
 def test_plot_workspace(phi, mode, n, tol):
-    out = check_call(lambda: plots_rrr3.plot_workspace(ROBOT, phi, mode, n, tol), "phi", "mode", "n", "tol")
+    out = check_call(lambda: plots_rrr3.plot_workspace(ROBOT, phi=phi, mode=mode, n=n, tol=tol), "phi", "mode", "n", "tol")
     if out is not None:
         fig, ax, w = out
         assert w.cells.shape == (n, n) and len(ax.images) == 1

@@ -112,8 +112,7 @@ def test_dask_ik_batch_with_arbitrary_arguments(targets, task, seed, chunks, res
 def test_dask_region_areas_with_arbitrary_robots(robots, n, chunks):
     got = check_call(lambda: rkd.region_areas(robots, n=n, chunks=chunks).compute(), "robots", "n")
     if got is not None:
-        np.testing.assert_array_equal(got, rk._core.rrr3_region_areas(np.asarray(robots, dtype=float), 0.0, (1, 1, 1),
-                                                                     n, 1e-3))
+        np.testing.assert_array_equal(got, rk._core.rrr3_region_areas(np.asarray(robots, dtype=float), n=n))
 
 
 @settings(max_examples=20, deadline=None)

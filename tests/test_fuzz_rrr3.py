@@ -255,7 +255,7 @@ grid_sizes = st.one_of(st.integers(-3, 24), st.sampled_from([5001, 10**6, 2**31,
 
 @given(robot=robots, phi=options, mode=modes, n=grid_sizes, tol=options)
 def test_workspace_with_any_arguments(robot, phi, mode, n, tol):
-    w = run(lambda: robot.workspace(phi, mode, n, tol), "phi", "mode", "n", "tol")
+    w = run(lambda: robot.workspace(phi=phi, mode=mode, n=n, tol=tol), "phi", "mode", "n", "tol")
     if w is None:
         return
     cells = w.cells
@@ -409,14 +409,14 @@ def test_connect_routes_are_verified_and_opposite_signs_have_none(data, clearanc
 
 @given(rows=arrays(shape=[(0, 4), (1, 4), (3, 4), (2, 3), (4,)]), phi=options, mode=modes, n=grid_sizes, tol=options)
 def test_region_areas_with_any_arguments(rows, phi, mode, n, tol):
-    areas = run(lambda: _core.rrr3_region_areas(rows, phi, mode, n, tol), "robots", "phi", "mode", "n", "tol")
+    areas = run(lambda: _core.rrr3_region_areas(rows, phi=phi, mode=mode, n=n, tol=tol), "robots", "phi", "mode", "n", "tol")
     if areas is None:
         return
     g = np.asarray(rows, float)
     assert areas.shape == (g.shape[0],)
     assert_finite(areas)
     for row, area in zip(g, areas):
-        assert area == rk.RRR3(*row).workspace(phi, mode, n, tol).area
+        assert area == rk.RRR3(*row).workspace(phi=phi, mode=mode, n=n, tol=tol).area
 
 
 values = st.one_of(arrays(shape=[(1,), (3,), (0,), (2, 2), ()]), st.sampled_from([None, [0.1, 0.05]]))
@@ -427,7 +427,7 @@ small_n = st.one_of(st.integers(-2, 12), st.sampled_from([10**6, 2**63, "8"]))
 @given(radii=values, rb=scalars, l1=scalars, l2=scalars, phi=options, mode=modes, n=small_n, tol=options)
 def test_area_vs_platform_radius_with_any_arguments(radii, rb, l1, l2, phi, mode, n, tol):
     names = ("platform_radii", "base_radius", "l1", "l2", "phi", "mode", "n", "tol")
-    curve = run(lambda: rrr3_design.area_vs_platform_radius(radii, rb, l1, l2, phi, mode, n, tol), *names)
+    curve = run(lambda: rrr3_design.area_vs_platform_radius(radii, rb, l1, l2, phi=phi, mode=mode, n=n, tol=tol), *names)
     if curve is None:
         return
     k = 30 if radii is None else np.asarray(radii).size
@@ -441,7 +441,7 @@ def test_area_vs_platform_radius_with_any_arguments(radii, rb, l1, l2, phi, mode
 @given(l1s=values, l2s=values, rb=scalars, re=scalars, phi=options, mode=modes, n=small_n, tol=options)
 def test_best_l2_with_any_arguments(l1s, l2s, rb, re, phi, mode, n, tol):
     names = ("l1_values", "l2_values", "base_radius", "platform_radius", "phi", "mode", "n", "tol")
-    best = run(lambda: rrr3_design.best_l2(l1s, l2s, rb, re, phi, mode, n, tol), *names)
+    best = run(lambda: rrr3_design.best_l2(l1s, l2s, rb, re, phi=phi, mode=mode, n=n, tol=tol), *names)
     if best is None:
         return
     a, b = np.asarray(l1s, float).ravel(), np.asarray(l2s, float).ravel()

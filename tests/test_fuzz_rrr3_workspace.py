@@ -59,5 +59,5 @@ def test_workspace_options_defaults_are_the_calls():
     o = rk.RRR3WorkspaceOptions()
     assert (o.phi, o.mode, o.n, o.tol) == (0.0, (1, 1, 1), 200, rk.RRR3_DEFAULTS["singular_tol"])
     robot = rk.RRR3()
-    a, b = robot.workspace(n=40), robot.workspace(o.phi, o.mode, 40, o.tol)
+    a, b = robot.workspace(n=40), robot.workspace(phi=o.phi, mode=o.mode, n=40, tol=o.tol)
     np.testing.assert_array_equal(a.cells, b.cells)

@@ -44,7 +44,7 @@ def test_reachable_area_converges_to_the_intersection_of_disks(robot):
         c = base(robot)[i] - platform(robot, np.zeros(3))[i]
         inside &= np.linalg.norm(pts - c, axis=1) <= robot.l1 + robot.l2
     mc = inside.mean() * 0.36
-    assert robot.workspace(0.0, (1, 1, 1), 400).reachable_area == pytest.approx(mc, rel=0.02)
+    assert robot.workspace(phi=0.0, mode=(1, 1, 1), n=400).reachable_area == pytest.approx(mc, rel=0.02)
 
 
 def test_singular_cells(robot, ws):
@@ -126,7 +126,7 @@ def test_design_study_matches_the_workspace_maps():
     radii = np.array([0.04, 0.08, 0.12])
     curve = design.area_vs_platform_radius(radii, n=80)
     for r, a in zip(radii, curve.area):
-        assert a == pytest.approx(rk.RRR3(0.15, r, 0.10, 0.10).workspace(0.0, (1, 1, 1), 80).area)
+        assert a == pytest.approx(rk.RRR3(0.15, r, 0.10, 0.10).workspace(phi=0.0, mode=(1, 1, 1), n=80).area)
     assert curve.best in radii
     best = design.best_l2([0.08, 0.12], np.linspace(0.04, 0.2, 9), n=60)
     assert best.area.shape == (2, 9)

@@ -132,7 +132,7 @@ def check_rrr3_row(robot, r, avoid, previous_det_a):
     distance = s[-1] / s[0]
     assert float(r["distance"]) == pytest.approx(distance, rel=1e-7, abs=1e-12)
     assert r["avoid"] == str(int(avoid))
-    tol = rrr3_model.SINGULAR_TOL
+    tol = rk.RRR3_DEFAULTS["singular_tol"]  # the core's default, which the simulator uses
     kind = "serial" if abs(det_b / robot.l1**3) < tol else "parallel" if abs(det_a / robot.platform_radius) < tol else (
         "near" if distance < rrr3_model.NEAR_DISTANCE else "none")
     if kind in ("none", "near") and previous_det_a * det_a < 0:

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "arrays.hpp"
+#include "options.hpp"
 
 #include "robokin/chain.hpp"
 #include "robokin/limits.hpp"
@@ -67,6 +68,16 @@ inline Vector nullspace_gains(const Chain& chain, py::handle nullspace) {
     return joint_limit_gains(chain);
   }
   return as_vector(nullspace, "nullspace", chain.dof());
+}
+
+// The options of a Reach, tracking or resolved-rate call: its keyword arguments, plus the null-space
+// gains its `nullspace` argument gives for the chain; validated against the chain.
+template <class Options>
+Options options_with_nullspace(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
+  Options o = OptionsClass<Options>::from_kwargs(kwargs);
+  o.nullspace_gains = nullspace_gains(chain, nullspace);
+  o.validate(chain);
+  return o;
 }
 
 // Joint limits: None (none), or a pair (lower, upper) of arrays of dof values (any equal sizes for

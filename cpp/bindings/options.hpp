@@ -212,7 +212,7 @@ class OptionsClass {
 
   // Every field the struct lists in its header (`T::fields`: keyword, member, doc), in that order.
   OptionsClass& fields() {
-    T::fields([this](const char* name, auto member, const char* doc) { field(name, member, doc); });
+    T::fields([this](const char* name, auto member, const char* doc) { field(name, of_t(member), doc); });
     return *this;
   }
 
@@ -249,6 +249,13 @@ class OptionsClass {
 
  private:
   py::class_<T> cls_;
+
+  // A field of a base of T (options extending another's, as ServoOptions does RateOptions) as T's.
+  template <class V, class B>
+  static V T::*of_t(V B::*member) {
+    static_assert(std::is_base_of_v<B, T>, "a field of T or of a base of T");
+    return member;
+  }
 
   // A value that did not convert: an int too large for the field's C type is a bad value (out of
   // range), anything else a bad kind.

@@ -18,20 +18,12 @@ namespace {
 
 using ReachOptionsClass = OptionsClass<ReachOptions>;
 
-// The options of one call: the keyword arguments, plus the null-space term the chain gives them.
-ReachOptions make_options(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
-  ReachOptions o = ReachOptionsClass::from_kwargs(kwargs);
-  o.nullspace_gains = nullspace_gains(chain, nullspace);
-  o.validate(chain);
-  return o;
-}
-
 ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, TaskName task_obj, NullspaceLike nullspace,
                   const py::kwargs& kwargs) {
   const Task task = task_of(task_obj, chain);
   const Target t = one_target(chain, task, target);
   const Vector q = as_vector(q_obj, "q", chain.dof());
-  Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
+  Reacher reacher(chain, task, options_with_nullspace<ReachOptions>(chain, kwargs, nullspace));
   ReachResult r = reacher.reach(t, q);
   // Finite inputs near 1e308 can still give an error beyond the largest double: no inf returned.
   if (!std::isfinite(r.error)) fail("target: the task error is not finite (the target is too far away)");
@@ -43,7 +35,7 @@ TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskNa
   const Task task = task_of(task_obj, chain);
   const std::vector<Target> targets = many_targets(chain, task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
-  Reacher reacher(chain, task, make_options(chain, kwargs, nullspace));
+  Reacher reacher(chain, task, options_with_nullspace<ReachOptions>(chain, kwargs, nullspace));
   PythonProgress progress("track");
   TrackResult r;
   {

@@ -210,22 +210,21 @@ std::string keyword_list(const std::string& head) {
 
 using WorkspaceOptionsClass = OptionsClass<RRR3WorkspaceOptions>;
 
-// The options of one map from the call's arguments (the same keywords as before, positional too).
-RRR3WorkspaceOptions workspace_options(double phi, ModeLike mode_obj, long n, double tol) {
-  RRR3WorkspaceOptions o;
-  o.phi = phi, o.mode = as_mode(mode_obj), o.n = n, o.tol = tol;
+// The options of one map, from the call's keyword arguments.
+RRR3WorkspaceOptions workspace_options(const py::kwargs& kwargs) {
+  const RRR3WorkspaceOptions o = WorkspaceOptionsClass::from_kwargs(kwargs);
   o.validate();
   return o;
 }
 
-RRR3Workspace workspace_map(const RRR3& r, double phi, ModeLike mode_obj, long n, double tol) {
-  const RRR3WorkspaceOptions o = workspace_options(phi, mode_obj, n, tol);
+RRR3Workspace workspace_map(const RRR3& r, const py::kwargs& kwargs) {
+  const RRR3WorkspaceOptions o = workspace_options(kwargs);
   PythonProgress progress("RRR3.workspace");
   py::gil_scoped_release release;
   return workspace(r, o, &progress);
 }
 
-py::array_t<double> study_areas(ArrayLike robots_obj, double phi, ModeLike mode_obj, long n, double tol) {
+py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) {
   Array g = as_array(robots_obj, "robots");
   if (g.ndim() != 2 || g.shape(1) != 4)
     fail("robots: expected shape (K, 4) rows (base_radius, platform_radius, l1, l2), got " + shape_of(g));
@@ -238,7 +237,7 @@ py::array_t<double> study_areas(ArrayLike robots_obj, double phi, ModeLike mode_
       fail("robots[" + std::to_string(k) + "]: " + e.what());
     }
   }
-  const RRR3WorkspaceOptions o = workspace_options(phi, mode_obj, n, tol);
+  const RRR3WorkspaceOptions o = workspace_options(kwargs);
   std::vector<double> areas;
   PythonProgress progress("design study");
   {
@@ -393,9 +392,10 @@ void bind_defaults(py::module_& m) {
 
 // rrr3_region_areas: the design study's areas (robokin.rrr3_design).
 void bind_design_study(py::module_& m) {
-  m.def("rrr3_region_areas", &study_areas, py::arg("robots"), py::arg("phi") = 0.0,
-        py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode), py::arg("n") = 150, py::arg("tol") = kSingularTol,
-        "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.");
+  static const std::string doc = keyword_list<RRR3WorkspaceOptions>("rrr3_region_areas(robots, *") + "\n\n"
+      "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots, on the maps of the\n"
+      "options (RRR3WorkspaceOptions). Use robokin.rrr3_design.";
+  m.def("rrr3_region_areas", &study_areas, py::arg("robots"), doc.c_str());
 }
 
 // RRR3's constructor, lengths, base joints and modes.
@@ -474,10 +474,11 @@ void def_planning(py::class_<RRR3>& cls) {
       "The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all\n"
       "along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or\n"
       "why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).";
-  cls.def("workspace", &workspace_map, py::arg("phi") = RRR3WorkspaceOptions{}.phi,
-          py::arg("mode") = FieldCodec<Mode>::to_python(RRR3WorkspaceOptions{}.mode), py::arg("n") = RRR3WorkspaceOptions{}.n,
-          py::arg("tol") = RRR3WorkspaceOptions{}.tol,
-           "Constant-orientation workspace on an n x n grid with singular cells (both cores).")
+  static const std::string workspace_doc =
+      keyword_list<RRR3WorkspaceOptions>("workspace(*") + "\n\n"
+      "Constant-orientation workspace on an n x n grid with singular cells (every core); options\n"
+      "keyword-only (RRR3WorkspaceOptions).";
+  cls.def("workspace", &workspace_map, workspace_doc.c_str())
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
       .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())
       .def("plan_loop", &loop_plan, py::arg("points"), loop_doc);

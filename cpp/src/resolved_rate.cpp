@@ -9,19 +9,16 @@
 
 namespace robokin {
 
-void check_rate_options(const Chain& chain, const RateOptions& o) {
-  check_damping_and_nullspace(chain, o.damping, o.nullspace_gains);
-}
+void RateOptions::validate(const Chain& chain) const { check_damping_and_nullspace(chain, damping, nullspace_gains); }
 
-void check_servo_options(const Chain& chain, const ServoOptions& o) {
-  check_rate_options(chain, o.rate);
-  if (!(std::isfinite(o.dt) && o.dt > 0)) throw std::invalid_argument("dt: must be a positive finite number");
-  if (!(std::isfinite(o.gain) && o.gain >= 0)) throw std::invalid_argument("gain: must be a finite number >= 0");
+void ServoOptions::validate(const Chain& chain) const {
+  RateOptions::validate(chain);
+  if (!(std::isfinite(gain) && gain >= 0)) throw std::invalid_argument("gain: must be a finite number >= 0");
 }
 
 RateController::RateController(const Chain& chain, const RateOptions& options)
-    : chain_(chain), opt_(options), m_(task_rows(options.task)), n_(chain.dof()) {
-  check_rate_options(chain, options);
+    : chain_(chain), opt_(options), task_(options.task_for(chain)), m_(task_rows(task_)), n_(chain.dof()) {
+  options.validate(chain);
   qbar_ = joint_middles(chain);
   h_.resize(n_);
   correction_.resize(n_);
@@ -32,7 +29,7 @@ RateController::RateController(const Chain& chain, const RateOptions& options)
 template <int M>
 void RateController::solve(const double* q, const double* rhs_data, double* qdot_data) {
   Eigen::Map<Eigen::Matrix<double, M, Eigen::Dynamic>> J(J_.data(), M, n_);
-  const int* rows = task_row_indices(opt_.task);
+  const int* rows = task_row_indices(task_);
   for (int r = 0; r < M; ++r) J.row(r) = J6_.row(rows[r]);
   const Eigen::Matrix<double, M, 1> rhs = Eigen::Map<const Eigen::Matrix<double, M, 1>>(rhs_data);
   Eigen::Map<Vector> qdot(qdot_data, n_), h(h_.data(), n_), correction(correction_.data(), n_);
@@ -77,30 +74,39 @@ Rigid frame_of(const Target& t) {
 
 }  // namespace
 
-void RateController::servo(const ServoOptions& o, const Target* targets, long count, const Vector& q0, double* q_out,
-                           double* qdot_out, double* error_p, double* error_r, Progress* progress) {
-  check_servo_options(chain_, o);
-  opt_ = o.rate;
+ServoResult RateController::servo(const ServoOptions& o, double dt, const Target* targets, long count,
+                                  const Vector& q0, Progress* progress) {
+  o.validate(chain_);
+  if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("dt: must be a positive finite number");
+  opt_ = o;
+  ServoResult r;
+  r.t.resize(count);
+  r.q.resize(count, n_);
+  r.qd.resize(count, n_);
+  r.error_p.resize(count);
+  r.error_r.resize(count);
   Vector q = q0;
   double e[6], ff[6], rhs[6];
   Rigid T;
   for (long k = 0; k < count; ++k) {
     if (k % 256 == 0) report(progress, k, count);
+    r.t(k) = static_cast<double>(k) * dt;
     chain_.fk_jacobian(q.data(), T, J6_.data());
     task_error(targets[k], T, e);
-    task_error_norms(opt_.task, e, error_p[k], error_r[k]);
+    task_error_norms(task_, e, r.error_p(k), r.error_r(k));
     if (k + 1 < count) task_error(targets[k + 1], frame_of(targets[k]), ff);
-    for (int r = 0; r < m_; ++r) rhs[r] = (k + 1 < count ? ff[r] : 0.0) / o.dt + o.gain * e[r] / o.dt;
-    double* qdot = qdot_out + k * n_;
+    for (int i = 0; i < m_; ++i) rhs[i] = (k + 1 < count ? ff[i] : 0.0) / dt + o.gain * e[i] / dt;
+    double* qdot = r.qd.row(k).data();
     solve_rows(q.data(), rhs, qdot);
-    Eigen::Map<Vector>(q_out + k * n_, n_) = q;
+    r.q.row(k) = q.transpose();
     const Eigen::Map<const Vector> qd(qdot, n_);
-    if (!qd.allFinite() || !(q + o.dt * qd).allFinite())
+    if (!qd.allFinite() || !(q + dt * qd).allFinite())
       throw std::invalid_argument("poses: the joint velocities are not finite at step " + std::to_string(k) +
                                   " (targets too far away for gain and dt)");
-    q += o.dt * qd;
+    q += dt * qd;
     if (o.saturate) q = q.cwiseMax(chain_.lower()).cwiseMin(chain_.upper());
   }
+  return r;
 }
 
 }  // namespace robokin

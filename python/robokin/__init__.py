@@ -13,7 +13,7 @@ from ._core import RRR3WorkspaceOptions
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
-from .resolved_rate import ServoResult, resolved_rate, servo
+from .resolved_rate import RateOptions, ServoOptions, ServoResult, resolved_rate, servo
 from .postures import TrackPosturesResult, count_reconfigurations, track_postures
 from .cuspidality import Cuspidality, cuspidal
 
@@ -46,6 +46,8 @@ __all__ = [
     "release_output_memory",
     "robots",
     "track",
+    "RateOptions",
+    "ServoOptions",
     "ServoResult",
     "pose",
     "resolved_rate",

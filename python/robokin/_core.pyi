@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'ReachOptions', 'ReachResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'release_output_memory', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'release_output_memory', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -890,9 +890,12 @@ class RRR3:
         """
         Classification with tol on the normalised determinants.
         """
-    def workspace(self, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: tuple[int, int, int] = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 200, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Workspace:
+    def workspace(self, **kwargs) -> RRR3Workspace:
         """
-        Constant-orientation workspace on an n x n grid with singular cells (both cores).
+        workspace(*, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
+        
+        Constant-orientation workspace on an n x n grid with singular cells (every core); options
+        keyword-only (RRR3WorkspaceOptions).
         """
     @property
     def base_joints(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -1259,6 +1262,129 @@ class UrdfTree:
         """
         The end of each longest branch below the root, sorted by name.
         """
+class RateOptions:
+    """
+    The options of resolved-rate control (robokin.resolved_rate's keywords).
+    """
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('task', 'damping')
+    kinds: typing.ClassVar[tuple] = ('None or str', 'float')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        """
+        lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1, >= 0.
+        """
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def task(self) -> str | None:
+        """
+        'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.
+        """
+    @task.setter
+    def task(self, arg1: str | None) -> None:
+        ...
+class ServoOptions:
+    """
+    The options of the servo loop (robokin.servo's keywords).
+    """
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('task', 'damping', 'gain', 'saturate')
+    kinds: typing.ClassVar[tuple] = ('None or str', 'float', 'float', 'bool')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    @property
+    def damping(self) -> float:
+        """
+        lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1, >= 0.
+        """
+    @damping.setter
+    def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gain(self) -> float:
+        """
+        Share of the task error corrected per step, >= 0 (0: feed-forward only).
+        """
+    @gain.setter
+    def gain(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def saturate(self) -> bool:
+        """
+        Clamp the joints to their limits after every step.
+        """
+    @saturate.setter
+    def saturate(self, arg0: bool) -> None:
+        ...
+    @property
+    def task(self) -> str | None:
+        """
+        'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.
+        """
+    @task.setter
+    def task(self, arg1: str | None) -> None:
+        ...
+class ServoResult:
+    """
+    What the servo loop did, one row per control step.
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    @property
+    def error_p(self) -> numpy.ndarray:
+        """
+        (K,) position error (m): the norm of the task's translational rows.
+        """
+    @property
+    def error_r(self) -> numpy.ndarray:
+        """
+        (K,) orientation error (rad): the rotation angle to the target (pose), |phi error| (xyphi), 0 without orientation.
+        """
+    @property
+    def q(self) -> numpy.ndarray:
+        """
+        (K, dof) joints at each step (before its velocity is applied).
+        """
+    @property
+    def qd(self) -> numpy.ndarray:
+        """
+        (K, dof) joint velocities commanded at each step.
+        """
+    @property
+    def t(self) -> numpy.ndarray:
+        """
+        (K,) step times k dt.
+        """
 def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex = 256) -> dict:
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
@@ -1346,21 +1472,24 @@ def release_output_memory() -> int:
     frames on one thread: 24 -> 15 ms here). The kernel may take kept memory back under memory
     pressure at any time. Linux only; elsewhere numpy allocates every output and this returns 0.
     """
-def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> numpy.typing.NDArray[numpy.float64]:
+def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> numpy.typing.NDArray[numpy.float64]:
     """
-    Joint velocities for a task twist (damped least squares + null-space term). Use robokin.resolved_rate.
+    Joint velocities for a task twist; options as keywords (RateOptions). Use robokin.resolved_rate.
     """
 def rpr_self_motion(point: numpy.typing.ArrayLike, t1: numpy.typing.ArrayLike, l1: typing.SupportsFloat | typing.SupportsIndex, l3: typing.SupportsFloat | typing.SupportsIndex, lower: numpy.typing.ArrayLike, upper: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
     """
     Self-motion set of the RPR tip point: (2, K, 3) joints per t1 sample and branch, NaN where none.
     """
-def rrr3_region_areas(robots: numpy.typing.ArrayLike, phi: typing.SupportsFloat | typing.SupportsIndex = 0.0, mode: tuple[int, int, int] = (1, 1, 1), n: typing.SupportsInt | typing.SupportsIndex = 150, tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> numpy.typing.NDArray[numpy.float64]:
+def rrr3_region_areas(robots: numpy.typing.ArrayLike, **kwargs) -> numpy.typing.NDArray[numpy.float64]:
     """
-    RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots. Use robokin.rrr3_design.
+    rrr3_region_areas(robots, *, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
+    
+    RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots, on the maps of the
+    options (RRR3WorkspaceOptions). Use robokin.rrr3_design.
     """
-def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, gain: typing.SupportsFloat | typing.SupportsIndex = 0.75, damping: typing.SupportsFloat | typing.SupportsIndex = 0.0, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, saturate: bool = True) -> tuple:
+def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ServoResult:
     """
-    Resolved-rate servo along targets: (q, qdot, error_p, error_r). Use robokin.servo.
+    Resolved-rate servo along targets; options as keywords (ServoOptions). Use robokin.servo.
     """
 def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
     """

@@ -34,6 +34,7 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
 from . import _core, rrr3_design
 from ._checks import chain as check_chain
 from ._checks import real_array, whole
+from ._options import with_options
 from ._checks import seed as check_seed
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK as _BLOCK
@@ -110,14 +111,14 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
     return p.result(table[:, 0].copy(), table[:, 1].copy())
 
 
-def region_areas(robots, phi: float = 0.0, mode=(1, 1, 1), n: int = 150, tol: float = 1e-3, chunks="auto"):
+@with_options(_core.RRR3WorkspaceOptions)
+def region_areas(robots, *, chunks="auto", **options):
     """The 3-RRR sweep's areas (``RRR3Workspace.area``) of each row ``(base_radius,
     platform_radius, l1, l2)`` of ``robots`` (N, 4) as a dask array (N,), chunk by chunk with the
-    core's batch call."""
+    core's batch call on the maps of the options."""
     rd = _rows(robots, "robots", chunks)
-    _core.rrr3_region_areas(np.empty((0,) + rd.shape[1:]), phi, mode, n, tol)  # the one-machine checks
-    return rd.map_blocks(_areas_block, float(phi), tuple(mode), int(n), float(tol), drop_axis=1, dtype=np.float64,
-                         meta=np.empty((0,)))
+    _core.rrr3_region_areas(np.empty((0,) + rd.shape[1:]), **options)  # the one-machine checks
+    return rd.map_blocks(_areas_block, options, drop_axis=1, dtype=np.float64, meta=np.empty((0,)))
 
 
 def area_vs_platform_radius(*args, chunks="auto", **kwargs) -> rrr3_design.AreaCurve:
@@ -152,13 +153,13 @@ def _reach_block(voxels: np.ndarray, p) -> np.ndarray:
     return np.column_stack((index, manip))
 
 
-def _areas_block(robots: np.ndarray, phi, mode, n, tol) -> np.ndarray:
-    return _core.rrr3_region_areas(robots, phi, mode, n, tol) if len(robots) else np.empty((0,))
+def _areas_block(robots: np.ndarray, options: dict) -> np.ndarray:
+    return _core.rrr3_region_areas(robots, **options) if len(robots) else np.empty((0,))
 
 
 def _distributed_areas(chunks):
-    def areas(robots, phi, mode, n, tol):
-        (out,) = _compute(region_areas(robots, phi, mode, n, tol, chunks=chunks))
+    def areas(robots, **options):
+        (out,) = _compute(region_areas(robots, chunks=chunks, **options))
         return out
     return areas
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _core, rrr3_design
 from ._checks import planar_points
+from ._options import with_options
 
 __all__ = ["CELL_COLOURS", "plot_robot", "plot_workspace", "plot_design"]
 
@@ -68,20 +69,21 @@ def plot_robot(robot, pose, mode=(1, 1, 1), ax=None, path=None):
     return fig, ax
 
 
-def plot_workspace(robot, phi: float = 0.0, mode=(1, 1, 1), n: int = 300, tol: float = _core.RRR3_DEFAULTS["singular_tol"],
-                   ax=None):
-    """Constant-orientation workspace map: reachable cells in blue, singular ones in red (parallel)
-    and orange (serial), the base joints as squares.
+@with_options(_core.RRR3WorkspaceOptions)
+def plot_workspace(robot, *, ax=None, **options):
+    """Constant-orientation workspace map (``robot.workspace(**options)``): reachable cells in blue,
+    singular ones in red (parallel) and orange (serial), the base joints as squares.
 
     Returns:
         (figure, axes, RRR3Workspace).
     """
-    w = robot.workspace(phi, mode, n, tol)  # checks phi, mode, n and tol
+    w = robot.workspace(**options)  # checks the options
+    shown = _core.RRR3WorkspaceOptions(**options)
     fig, ax = _axes(ax)
     ax.imshow(CELL_COLOURS[w.cells], origin="lower", extent=w.extent, interpolation="nearest")
     o = robot.base_joints
     ax.plot(*o.T, "ks", ms=7)
-    ax.set_title(f"workspace at phi = {np.degrees(phi):.1f} deg, mode {tuple(mode)}\n"
+    ax.set_title(f"workspace at phi = {np.degrees(shown.phi):.1f} deg, mode {shown.mode}\n"
                  f"reachable {w.reachable_area * 1e4:.0f} cm^2, largest singularity-free region "
                  f"{w.area * 1e4:.0f} cm^2", fontsize=10)
     ax.set_xlabel("x (m)")
@@ -114,7 +116,8 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     if best is not None and not isinstance(best, rrr3_design.BestL2):
         raise TypeError(f"best: expected an rrr3_design.BestL2 or None, got {type(best).__name__}")
     curve = curve or rrr3_design.area_vs_platform_radius()
-    best = best or rrr3_design.best_l2(np.linspace(0.05, 0.15, 11), np.linspace(0.02, 0.30, 57))
+    # 627 robots: a coarser grid than one map's keeps the figure quick.
+    best = best or rrr3_design.best_l2(np.linspace(0.05, 0.15, 11), np.linspace(0.02, 0.30, 57), n=100)
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
     ax1.plot(curve.values * 100, curve.area * 1e4, "o-", ms=3)
     k = int(np.argmax(curve.area))

@@ -12,8 +12,6 @@ from typing import NamedTuple, Optional, Tuple
 import numpy as np
 import robokin as rk
 
-#: The seed's tolerance, on the core's normalised determinants (det A / R_e, det B / l1^3).
-SINGULAR_TOL = rk.RRR3_DEFAULTS["singular_tol"]
 #: Distance to a parallel singularity (the core's inverse condition number of A, in [0, 1])
 #: below which a pose is "near" (orange): the margin the core's avoidance planner keeps, and the
 #: clearance of every approach (``RRR3.connect``).
@@ -47,7 +45,7 @@ def evaluate(robot, pose, mode) -> Optional[Evaluation]:
         return None
     try:
         alpha = np.asarray(robot.ik(pose, mode=mode), dtype=float)
-        sing = robot.singularity(pose, mode, tol=SINGULAR_TOL)
+        sing = robot.singularity(pose, mode)
     except ValueError:  # rk.UnreachableError is a ValueError
         return None
     det_a, det_b, distance = float(sing.det_a), float(sing.det_b), float(sing.distance)
@@ -73,10 +71,11 @@ class Workspace(NamedTuple):
     extent: Tuple[float, float, float, float]
 
 
-def workspace(robot, phi: float, mode, n: int = 200) -> Optional[Workspace]:
-    """The workspace at orientation ``phi`` (``RRR3.workspace``), or None if the core declines."""
+def workspace(robot, phi: float, mode) -> Optional[Workspace]:
+    """The workspace at orientation ``phi`` (``RRR3.workspace``, its default grid and tolerance), or
+    None if the core declines."""
     try:
-        ws = robot.workspace(phi, mode=mode, n=n, tol=SINGULAR_TOL)
+        ws = robot.workspace(phi=phi, mode=mode)
     except ValueError:
         return None
     return Workspace(np.asarray(ws.cells), tuple(float(v) for v in ws.extent))

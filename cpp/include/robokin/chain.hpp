@@ -15,6 +15,7 @@ namespace robokin {
 
 using Matrix4 = Eigen::Matrix4d;
 using Vector = Eigen::VectorXd;
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;  // rows of a batch
 using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
 // A rigid transform kept as rotation + translation: cheaper to chain than a 4x4 product.

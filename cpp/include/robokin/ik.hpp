@@ -159,7 +159,7 @@ class IkSolver {
 
 // What ik_batch found, one row per target.
 struct IkBatchResult {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> q;  // count x dof
+  RowMatrix q;  // count x dof
   Eigen::Array<bool, Eigen::Dynamic, 1> success;
   Eigen::ArrayXi iterations, attempts;
   Vector error_p, error_r;

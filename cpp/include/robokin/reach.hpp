@@ -51,7 +51,7 @@ struct ReachResult {
 
 // What tracking a path did, one row per path point.
 struct TrackResult {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> q;  // count x dof
+  RowMatrix q;  // count x dof
   Vector error;                                                           // task error per point
   Eigen::Array<bool, Eigen::Dynamic, 1> converged;                        // error < tol
   Eigen::ArrayXi iterations;                                              // Reach iterations per point

@@ -7,24 +7,53 @@
 #include "robokin/progress.hpp"
 #include "robokin/task.hpp"
 
+#include <optional>
+
 namespace robokin {
 
+// The options of resolved-rate control (rk.resolved_rate's keywords).
 struct RateOptions {
-  Task task = Task::Pose;
-  double damping = 0.0;     // lambda of J^T (J J^T + lambda^2 I)^-1; 0: the minimum-norm pseudoinverse
-  Vector nullspace_gains;  // empty: none; else h = diag(gains) (qbar - q) (ReachOptions, reach.hpp)
+  std::optional<Task> task;  // unset: the chain's natural_task (task.hpp)
+  double damping = 0.0;      // lambda of J^T (J J^T + lambda^2 I)^-1; 0: the minimum-norm pseudoinverse
+  // Null-space term h = diag(gains) (qbar - q) (as ReachOptions, reach.hpp); empty: none. Set from
+  // the call's `nullspace` argument, which needs the chain.
+  Vector nullspace_gains;
+
+  // Every option Python sets by keyword, its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("task", &RateOptions::task, "'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.");
+    field("damping", &RateOptions::damping, "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1, >= 0.");
+  }
+
+  // Throws std::invalid_argument("name: ...") for an option out of range or not fitting the chain.
+  void validate(const Chain& chain) const;
+  Task task_for(const Chain& chain) const { return task ? *task : natural_task(chain); }
 };
 
-struct ServoOptions {
-  RateOptions rate;
-  double dt = 0.01;      // control period (s): one step per target
+// The options of the servo loop (rk.servo's keywords): resolved-rate control plus the feedback.
+struct ServoOptions : RateOptions {
   double gain = 0.75;    // share of the task error corrected per step (the seed's d)
   bool saturate = true;  // clamp the joints to their limits after every step
+
+  template <class Visit>
+  static void fields(Visit&& field) {
+    RateOptions::fields(field);
+    field("gain", &ServoOptions::gain, "Share of the task error corrected per step, >= 0 (0: feed-forward only).");
+    field("saturate", &ServoOptions::saturate, "Clamp the joints to their limits after every step.");
+  }
+
+  void validate(const Chain& chain) const;
 };
 
-// Checks sizes and numbers (std::invalid_argument naming the option).
-void check_rate_options(const Chain& chain, const RateOptions& options);
-void check_servo_options(const Chain& chain, const ServoOptions& options);
+// What the servo loop did, one row per control step.
+struct ServoResult {
+  Vector t;         // step times k dt
+  RowMatrix q;      // count x dof: the joints at each step, before its velocity is applied
+  RowMatrix qd;     // count x dof: the joint velocities commanded at each step
+  Vector error_p;   // position error: norm of the task's translational rows
+  Vector error_r;   // orientation error: rotation angle (pose), |phi error| (xyphi), 0 without orientation
+};
 
 class RateController {
  public:
@@ -33,12 +62,11 @@ class RateController {
   void joint_velocity(const double* q, const double* twist, double* qdot);
 
   // Follows targets[0..count) one per period dt: at step k the tool's error e_k toward target k is
-  // recorded (error_p: norm of the translational rows, error_r: rotation angle, or |phi error|
-  // for xyphi, 0 without orientation), then q_{k+1} = q_k + dt qdot_k with
-  // qdot_k = J^p (v_k + gain e_k / dt) + null-space term, v_k the feed-forward task velocity from
-  // target k to target k + 1 (0 after the last). q_out, qdot_out: count x dof.
-  void servo(const ServoOptions& options, const Target* targets, long count, const Vector& q0, double* q_out,
-             double* qdot_out, double* error_p, double* error_r, Progress* progress = nullptr);
+  // recorded, then q_{k+1} = q_k + dt qdot_k with qdot_k = J^p (v_k + gain e_k / dt) + null-space
+  // term, v_k the feed-forward task velocity from target k to target k + 1 (0 after the last).
+  // Validates options and dt (std::invalid_argument naming them); the controller's task is used.
+  ServoResult servo(const ServoOptions& options, double dt, const Target* targets, long count, const Vector& q0,
+                    Progress* progress = nullptr);
 
  private:
   template <int M>
@@ -47,6 +75,7 @@ class RateController {
 
   const Chain& chain_;
   RateOptions opt_;
+  Task task_;  // opt_.task resolved for the chain
   int m_, n_;
   Vector qbar_, h_, correction_;
   Matrix6X J6_;
