@@ -373,9 +373,9 @@ def test_descent_methods_never_return_a_worse_point_with_more_iterations(method)
 def test_default_damping_is_the_documented_one():
     doc = " ".join(rk.ik.__doc__.split())
     patterns = {
-        "lm": r"``lm``: initial damping relative to ``max diag\(J\^T J\)`` \(default ([^)]+)\)",
-        "nr": r"``nr``: lambda of the damped pseudoinverse \(default ([^)]+)\)",
-        "halley": r"``halley``: the same lambda \(default ([^)]+)\)",
+        "lm": r"lm: initial damping relative to max diag\(J\^T J\) \(default ([^)]+)\)",
+        "nr": r"nr: lambda of the damped pseudoinverse \(default ([^)]+)\)",
+        "halley": r"halley: the same lambda \(default ([^)]+)\)",
     }
     chain = rk.robots.ur5()
     _, T = random_targets(chain, 3, seed=5)

@@ -168,7 +168,7 @@ class ReachOptions:
     @property
     def damping(self) -> float:
         """
-        lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1.
+        lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1, for use near singularities.
         """
     @damping.setter
     def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -208,7 +208,7 @@ class ReachOptions:
     @property
     def tol(self) -> float:
         """
-        Tolerance on the norm of the task error (the seed's delta).
+        Tolerance on the norm of the task error (the seed's delta; metres for positions).
         """
     @tol.setter
     def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1003,7 +1003,7 @@ class IKOptions:
     @property
     def damping(self) -> float | None:
         """
-        Damping (lm: initial mu; nr, halley: lambda); None: the method's.
+        lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse (default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.
         """
     @damping.setter
     def damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1019,7 +1019,7 @@ class IKOptions:
     @property
     def method(self) -> str:
         """
-        'lm', 'gn', 'nr' or 'halley'.
+        'lm', 'gn', 'nr' or 'halley' (robokin.ik's module docstring).
         """
     @method.setter
     def method(self, arg1: str) -> None:
@@ -1027,7 +1027,7 @@ class IKOptions:
     @property
     def restarts(self) -> int | None:
         """
-        Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.
+        Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
         """
     @restarts.setter
     def restarts(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -1035,7 +1035,7 @@ class IKOptions:
     @property
     def stall_window(self) -> int:
         """
-        With restarts left, drop an attempt whose cost has not halved over this many iterations; 0: never.
+        With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
         """
     @stall_window.setter
     def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -1043,7 +1043,7 @@ class IKOptions:
     @property
     def task(self) -> str | None:
         """
-        'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.
+        Which part of the tool pose is solved for: 'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task ('pose' for arms of six joints or more, 'position' for fewer, 'xyphi' / 'xy' for planar arms).
         """
     @task.setter
     def task(self, arg1: str | None) -> None:
@@ -1051,7 +1051,7 @@ class IKOptions:
     @property
     def timeout(self) -> float | None:
         """
-        CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.
+        Time budget in seconds for all the attempts (checked every few iterations), counted in the solving thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable target costs the whole budget.
         """
     @timeout.setter
     def timeout(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
@@ -1067,7 +1067,7 @@ class IKOptions:
     @property
     def tol_r(self) -> float:
         """
-        Orientation tolerance (rad); unused for tasks without orientation.
+        Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); unused for the other tasks.
         """
     @tol_r.setter
     def tol_r(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

@@ -20,12 +20,22 @@ def _annotation(kind: str) -> str:
     return f"Optional[{kind[len('None or '):]}]" if kind.startswith("None or ") else kind
 
 
-def options_section(options_class, indent: str = "    ") -> str:
+def keywords(options) -> dict:
+    """The fields of a bound options instance as keyword arguments."""
+    return {name: getattr(options, name) for name in type(options).fields}
+
+
+def _fields(options_class, exclude):
+    return [(name, kind) for name, kind in zip(options_class.fields, options_class.kinds) if name not in exclude]
+
+
+def options_section(options_class, indent: str = "    ", defaults=None, exclude=()) -> str:
     """The ``Options:`` section of a docstring, its heading at ``indent``: each field of
-    ``options_class`` with its kind, its default and its doc (the header's)."""
-    defaults = options_class()
+    ``options_class`` (but ``exclude``) with its kind, its default (``defaults``' value, else the
+    struct's) and its doc (the header's)."""
+    defaults = options_class() if defaults is None else defaults
     lines = [f"{indent}Options (keyword-only, the fields of :class:`{options_class.__name__}`):"]
-    for name, kind in zip(options_class.fields, options_class.kinds):
+    for name, kind in _fields(options_class, exclude):
         doc = " ".join((getattr(options_class, name).__doc__ or "").split())
         lines += textwrap.wrap(f"{name} ({kind}, default {getattr(defaults, name)!r}): {doc}", width=100,
                                initial_indent=indent + "    ", subsequent_indent=indent + "        ",
@@ -33,31 +43,36 @@ def options_section(options_class, indent: str = "    ") -> str:
     return "\n".join(lines) + "\n"
 
 
-def _with_options_section(doc: str, options_class) -> str:
-    """doc with the options' section inserted before its ``Returns:`` (else at its end)."""
+def _with_options_section(doc: str, section) -> str:
+    """doc with the options' section (``section(indent)``) inserted before its ``Returns:`` (else at
+    its end)."""
     lines = doc.splitlines(keepends=True)
     for i, line in enumerate(lines):
         if line.strip() == "Returns:":
-            section = options_section(options_class, line[:len(line) - len(line.lstrip())])
-            return "".join(lines[:i]) + section + "\n" + "".join(lines[i:])
-    return doc.rstrip() + "\n\n" + options_section(options_class)
+            return "".join(lines[:i]) + section(line[:len(line) - len(line.lstrip())]) + "\n" + "".join(lines[i:])
+    return doc.rstrip() + "\n\n" + section("    ")
 
 
-def with_options(options_class) -> Callable[[F], F]:
+def with_options(options_class, *, defaults=None, exclude=()) -> Callable[[F], F]:
     """Decorator: replaces the ``**options`` of the wrapped function's signature by one keyword-only
-    parameter per field of ``options_class`` (a bound core options struct), default from
-    ``options_class()``, adds the fields' docs to its docstring and records the class as
-    ``func.options_class``."""
-    defaults = options_class()
+    parameter per field of ``options_class`` (a bound core options struct) but ``exclude`` (fields
+    the function takes as arguments of its own), default from ``defaults`` (an instance: for a call
+    whose defaults differ from the struct's, which it must then apply itself) or
+    ``options_class()``; adds the fields' docs to its docstring and records ``func.options_class``."""
+    shown = options_class() if defaults is None else defaults
 
     def decorate(func: F) -> F:
         sig = inspect.signature(func)
         params = [p for p in sig.parameters.values() if p.kind is not inspect.Parameter.VAR_KEYWORD]
-        params += [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=getattr(defaults, name),
+        clash = {p.name for p in params} & {name for name, _ in _fields(options_class, exclude)}
+        if clash:
+            raise TypeError(f"{func.__qualname__}: arguments {sorted(clash)} are {options_class.__name__} fields too")
+        params += [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=getattr(shown, name),
                                      annotation=_annotation(kind))
-                   for name, kind in zip(options_class.fields, options_class.kinds)]
+                   for name, kind in _fields(options_class, exclude)]
         func.__signature__ = sig.replace(parameters=params)
-        func.__doc__ = _with_options_section(func.__doc__ or "", options_class)
+        func.__doc__ = _with_options_section(
+            func.__doc__ or "", lambda indent: options_section(options_class, indent, shown, exclude))
         func.options_class = options_class
         return func
 

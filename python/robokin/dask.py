@@ -38,6 +38,7 @@ from ._options import with_options
 from ._checks import seed as check_seed
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK as _BLOCK
+from .reachability import IK_OPTIONS as _IK_OPTIONS
 from .reachability import ReachabilityMap, plan
 
 __all__ = ["IKBatchArrays", "area_vs_platform_radius", "best_l2", "fk", "ik_batch", "reachability",
@@ -73,12 +74,12 @@ def fk(chain: _core.Chain, q, chunks="auto"):
                          meta=np.empty((0, 4, 4)))
 
 
+@with_options(_core.IKOptions)
 def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **options) -> IKBatchArrays:
     """:func:`robokin.ik_batch` over chunks of ``targets`` ((N, 4, 4) frames for ``task="pose"``,
     (N, rows) otherwise; numpy or dask), one start ``q0`` (dof,) for all. Target ``k`` uses
     ``seed + k`` whatever chunk it is in: with ``restarts`` given the arrays are the one-machine
-    call's, bit for bit. ``options``: every field of :class:`robokin.IKOptions`, as for
-    robokin.ik_batch (``task`` None: ``chain.natural_task``; ``path`` is sequential: not here).
+    call's, bit for bit. The options are robokin.ik_batch's (``path`` is sequential: not here).
 
     Returns:
         IKBatchArrays of dask arrays (``.compute()`` for numpy).
@@ -96,12 +97,12 @@ def ik_batch(chain: _core.Chain, targets, q0, seed: int = 0, chunks="auto", **op
                          packed[:, n + 2].astype(np.int32), packed[:, n + 3], packed[:, n + 4])
 
 
+@with_options(_core.IKOptions, defaults=_IK_OPTIONS, exclude=("task",))
 def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
                  task: Optional[str] = None, q0=None, chunks: int = _BLOCK, **ik_options) -> ReachabilityMap:
     """:func:`robokin.reachability.reachability` with the voxels cut into chunks of ``chunks``
     voxels, computed with Dask (the active ``distributed.Client`` when there is one). The same
-    arguments (``task`` None: ``chain.natural_task``; ``ik_options``: any other IKOptions field) and
-    the same map, bit for bit, whatever the chunking and the workers."""
+    arguments and options, and the same map, bit for bit, whatever the chunking and the workers."""
     p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
     whole(chunks, "chunks", 1, 2**63 - 1, "voxels per chunk")
     voxels = da.arange(p.voxels, chunks=int(chunks), dtype=np.int64)

@@ -65,30 +65,6 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
         q0: Start configuration, shape (dof,).
         seed: Seed of the restarts' generator (reproducible results), an int in ``[0, 2**64)``;
             None draws one. (With a time budget, how many restarts fit depends on the machine.)
-        **options: Keyword-only, the fields of :class:`IKOptions`:
-            ``method``: ``"lm"``, ``"gn"``, ``"nr"`` or ``"halley"`` (see the module docstring).
-            ``task``: which part of the tool pose is solved for; None (the default):
-            ``chain.natural_task`` (``"pose"`` for arms of six joints or more, ``"position"`` for
-            fewer, ``"xyphi"`` / ``"xy"`` for planar arms).
-            ``tol_p``: position tolerance (m).
-            ``tol_r``: orientation tolerance (rad): the rotation angle between the frames (pose),
-            the planar angle (xyphi); unused for the other tasks.
-            ``max_iter``: iterations per attempt.
-            ``restarts``: extra attempts from random configurations drawn uniformly within the
-            limits (revolute joints without limits: ``[-pi, pi]``) when an attempt fails; at most
-            1,000,000. The restarts stop at the first success. None (the default): as many as
-            the time budget allows. An int: at most that many, and no time budget unless
-            ``timeout`` is given (on an unreachable target they all run).
-            ``timeout``: time budget in seconds for all the attempts (checked every few
-            iterations), counted in the solving thread's CPU time: a busy machine does not cut a
-            search short (the wall time is then longer). None: ``IK_DEFAULTS["timeout"]`` (5 ms)
-            when ``restarts`` is None, no budget when ``restarts`` is an int. An unreachable
-            target costs the whole budget.
-            ``damping``: ``lm``: initial damping relative to ``max diag(J^T J)`` (default 1e-1);
-            ``nr``: lambda of the damped pseudoinverse (default 1e-6); ``halley``: the same
-            lambda (default 1e-9); unused by ``gn``. None selects the default.
-            ``stall_window``: with restarts left, an attempt whose squared error has not halved
-            over this many iterations is dropped for a restart (default 6); 0: never dropped.
 
     Returns:
         IKResult with ``q``, ``success``, ``iterations``, ``attempts``, ``error_p``, ``error_r``.
@@ -118,7 +94,7 @@ def ik_batch(chain: _core.Chain, targets, q0, *, seed: Optional[int] = None, pat
             restart could jump to another branch): a target the warm start misses is reported
             unsolved; ``restarts=k`` allows restarts. Otherwise the targets are solved in
             parallel on every core.
-        **options: As :func:`ik` (``timeout`` applies to each target).
+        The options are :func:`ik`'s (``timeout`` applies to each target).
 
     Returns:
         IKBatchResult with read-only arrays ``q`` (N, dof), ``success``, ``iterations``,

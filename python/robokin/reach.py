@@ -43,11 +43,6 @@ def reach(chain: _core.Chain, target, q, task: Optional[str] = None, *, nullspac
             ``1/2 sum g_i (qbar_i - q_i)^2`` (``"joint_limits"`` is ``g = 1 / (q_max - q_min)^2``;
             ``k`` times those gains pulls ``k`` times harder toward the least cost, 0 for a joint
             that should not be pulled).
-        **options: Keyword-only, the fields of :class:`ReachOptions` (defaults the seed's):
-            ``max_iter`` iterations at most (the seed's n = 25, in [1, 100000]); ``tol`` on the norm
-            of the task error (metres for positions; the seed's 1e-5); ``gain`` the seed's d;
-            ``dt`` the seed's time step; ``saturate`` clamp to the joint limits after every step;
-            ``damping`` lambda of the damped pseudoinverse, for use near singularities.
 
     Returns:
         ReachResult with ``q``, ``converged``, ``iterations`` and ``error``.
@@ -82,8 +77,7 @@ def track(chain: _core.Chain, points, q0, task: Optional[str] = None, *, nullspa
         chain: The serial chain.
         points: (K, rows) targets for the task ((K, 4, 4) frames for ``"pose"``), close together.
         q0: Joints at the start of the path, shape (dof,).
-        task, nullspace, **options: As for :func:`reach` (options keyword-only, :class:`ReachOptions`);
-            task None: ``chain.natural_task``.
+        task, nullspace: As for :func:`reach` (task None: ``chain.natural_task``).
 
     Returns:
         TrackResult with read-only arrays ``q`` (K, dof), ``error`` (K,), ``converged`` (K,),

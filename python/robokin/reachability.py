@@ -27,15 +27,19 @@ from . import _core
 from ._checks import chain as check_chain
 from ._checks import number, real_array, whole
 from ._checks import seed as check_seed
+from ._core import IKOptions
+from ._options import keywords, with_options
 from .ik import ik_batch
 from .pose import from_quaternion
 
-__all__ = ["BLOCK", "DEFAULTS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap",
+__all__ = ["BLOCK", "IK_OPTIONS", "MAX_ORIENTATIONS", "MAX_VOXELS", "ORIENTATIONS", "ReachabilityMap",
            "ReachabilityPlan", "grid", "plan", "reachability"]
 
-#: What a reachability map's IK uses unless told otherwise (restarts explicit: no time budget);
-#: every other :class:`robokin.IKOptions` field keeps the IK's default.
-DEFAULTS = {"method": "lm", "tol_p": 1e-6, "tol_r": 1e-6, "max_iter": 100, "restarts": 10}
+#: The IK options of a map unless told otherwise: explicit restarts, hence no time budget (a map
+#: does not depend on the machine's speed), and tolerances of a micrometre / microradian; every other
+#: field the IK's own. Read when the module is imported (the keywords of :func:`reachability` change
+#: them per call).
+IK_OPTIONS = IKOptions(tol_p=1e-6, tol_r=1e-6, restarts=10)
 #: Orientations sampled per voxel by default, for the tasks with an orientation ("pose", "xyphi").
 ORIENTATIONS = 50
 #: Voxels per batch IK call of :func:`reachability` (bounds the memory, not the result).
@@ -97,6 +101,7 @@ def grid(bounds, resolution) -> Tuple[np.ndarray, ...]:
     return tuple((lo + hi) / 2 + (np.arange(int(n)) - (n - 1) / 2) * h for (lo, hi), n in zip(b, counts))
 
 
+@with_options(IKOptions, defaults=IK_OPTIONS, exclude=("task",))
 def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
                  task: Optional[str] = None, q0=None, **ik_options) -> ReachabilityMap:
     """The reachability map of ``chain`` over a grid.
@@ -114,10 +119,8 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
             None: ``chain.natural_task``.
         q0: IK start for every target, (dof,); None: the middle of each joint's finite limits, 0
             for unlimited joints.
-        ik_options: The other fields of :class:`robokin.IKOptions`, for the batch IK
-            (:func:`robokin.ik_batch`); the defaults are :data:`DEFAULTS` (tolerances 1e-6,
-            10 restarts, no time budget), the IK's own for the others. A ``timeout`` makes the
-            map depend on the machine's speed.
+        The options are the batch IK's (:func:`robokin.ik_batch`), with the map's defaults
+        (:data:`IK_OPTIONS`); a ``timeout`` makes the map depend on the machine's speed.
 
     Returns:
         ReachabilityMap.
@@ -151,7 +154,7 @@ class ReachabilityPlan:
     seed: int
     task: str
     q0: np.ndarray
-    options: dict
+    options: IKOptions  # the batch IK's, its task the map's
 
     @property
     def shape(self) -> Tuple[int, ...]:
@@ -168,7 +171,7 @@ class ReachabilityPlan:
         centres = np.column_stack([a[c] for a, c in zip(self.axes, cells)])
         g0 = first * K
         targets = _targets(self.task, np.repeat(centres, K, axis=0), _uniforms(self.seed, g0, count * K, 3))
-        r = ik_batch(self.chain, targets, self.q0, task=self.task, seed=(self.seed + g0) % 2**64, **self.options)
+        r = ik_batch(self.chain, targets, self.q0, seed=(self.seed + g0) % 2**64, **keywords(self.options))
         ok = r.success.reshape(count, K)
         m = np.zeros(count * K)
         if ok.any():
@@ -180,6 +183,7 @@ class ReachabilityPlan:
                                self.orientations, self.seed, self.task)
 
 
+@with_options(IKOptions, defaults=IK_OPTIONS, exclude=("task",))
 def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
          task: Optional[str] = None, q0=None, **ik_options) -> ReachabilityPlan:
     """The plan of :func:`reachability`'s map (same arguments, same checks), to compute its blocks
@@ -199,8 +203,8 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     if free and K != 1:
         raise ValueError(f"orientations: task {task!r} leaves the orientation free: expected 1, got {K}")
     s = check_seed(seed)
-    options = {**DEFAULTS, **ik_options}
-    _core.IKOptions(**options).validate()  # every IKOptions field, checked by the core (names, kinds, ranges)
+    options = IKOptions(**{**keywords(IK_OPTIONS), **ik_options, "task": task})  # names and kinds checked
+    options.validate()  # ranges
     if q0 is None:  # the middle of finite limits, else the finite one, else 0
         lo, hi = chain.limits
         q0 = np.zeros(chain.dof)

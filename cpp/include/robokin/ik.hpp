@@ -62,17 +62,31 @@ struct IkOptions {
   // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
   template <class Visit>
   static void fields(Visit&& field) {
-    field("method", &IkOptions::method, "'lm', 'gn', 'nr' or 'halley'.");
-    field("task", &IkOptions::task, "'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task.");
+    field("method", &IkOptions::method, "'lm', 'gn', 'nr' or 'halley' (robokin.ik's module docstring).");
+    field("task", &IkOptions::task,
+          "Which part of the tool pose is solved for: 'pose', 'position', 'xy' or 'xyphi'; None: the chain's "
+          "natural task ('pose' for arms of six joints or more, 'position' for fewer, 'xyphi' / 'xy' for planar arms).");
     field("tol_p", &IkOptions::tol_p, "Position tolerance (m).");
-    field("tol_r", &IkOptions::tol_r, "Orientation tolerance (rad); unused for tasks without orientation.");
+    field("tol_r", &IkOptions::tol_r,
+          "Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); "
+          "unused for the other tasks.");
     field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
     field("restarts", &IkOptions::restarts,
-          "Extra attempts from random configurations, at most 1,000,000; None: as many as the time budget allows.");
-    field("timeout", &IkOptions::timeout, "CPU seconds for every attempt; None: 5 ms when restarts is None, else no budget.");
-    field("damping", &IkOptions::damping, "Damping (lm: initial mu; nr, halley: lambda); None: the method's.");
+          "Extra attempts from random configurations drawn uniformly within the limits (revolute joints without "
+          "limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as "
+          "many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
+          "(on an unreachable target they all run).");
+    field("timeout", &IkOptions::timeout,
+          "Time budget in seconds for all the attempts (checked every few iterations), counted in the solving "
+          "thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: "
+          "IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable "
+          "target costs the whole budget.");
+    field("damping", &IkOptions::damping,
+          "lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse "
+          "(default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.");
     field("stall_window", &IkOptions::stall_window,
-          "With restarts left, drop an attempt whose cost has not halved over this many iterations; 0: never.");
+          "With restarts left, an attempt whose squared error has not halved over this many iterations is dropped "
+          "for a restart; 0: never dropped.");
   }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.

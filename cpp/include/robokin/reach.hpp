@@ -31,11 +31,12 @@ struct ReachOptions {
   template <class Visit>
   static void fields(Visit&& field) {
     field("max_iter", &ReachOptions::max_iter, "Iterations at most (the seed's n), in [1, 100000].");
-    field("tol", &ReachOptions::tol, "Tolerance on the norm of the task error (the seed's delta).");
+    field("tol", &ReachOptions::tol, "Tolerance on the norm of the task error (the seed's delta; metres for positions).");
     field("gain", &ReachOptions::gain, "The seed's gain d: dp = d (p_target - p) / dt.");
     field("dt", &ReachOptions::dt, "The seed's time step.");
     field("saturate", &ReachOptions::saturate, "Clamp the joints to their limits after every step.");
-    field("damping", &ReachOptions::damping, "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1.");
+    field("damping", &ReachOptions::damping,
+          "lambda of the damped pseudoinverse J^T (J J^T + lambda^2 I)^-1, for use near singularities.");
   }
 
   // Throws std::invalid_argument("name: ...") for an option out of range or not fitting the chain.
