@@ -240,11 +240,13 @@ void bind_ik(py::module_& m) {
                           "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
                           "thread for parallel solves (ik_batch is the parallel route).");
+  static const std::string init_doc = keyword_list<IkOptions>("IKSolver(chain, *, seed=None") +
+                                      "\n\nThe solver of chain with these options (keyword-only, IKOptions).";
   solver.def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
              return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
                                                   options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),
-           py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>())
+           py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>(), init_doc.c_str())
       .def_property_readonly("method", [](const BoundSolver& b) { return name_of(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(*b.options.task); },
                              "The task solved for (task=None: the chain's natural_task).")

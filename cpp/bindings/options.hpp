@@ -93,6 +93,16 @@ std::vector<std::string> field_names() {
   return names;
 }
 
+// "plan(points, *, phi=0.0, mode=(1, 1, 1), ...)": head and T's options with their defaults, for
+// the docstring of a core call that takes them as **kwargs (T bound before).
+template <class T>
+std::string keyword_list(const std::string& head) {
+  py::object defaults = py::cast(T{});
+  std::string s = head;
+  for (const std::string& n : field_names<T>()) s += ", " + n + "=" + py::repr(defaults.attr(n.c_str())).cast<std::string>();
+  return s + ")";
+}
+
 // `ClassName(a=1, b=array(...))` from the named attributes of obj; arrays of more than 8 numbers
 // are summarised by shape and dtype.
 inline std::string repr_fields(py::handle obj, const std::vector<std::string>& names) {

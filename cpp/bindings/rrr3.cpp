@@ -199,15 +199,6 @@ RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, c
   return connect(r, start, goal, o, &progress);
 }
 
-// "plan(points, *, phi=0.0, mode=(1, 1, 1), ...)": the options with their defaults, for a docstring.
-template <class T>
-std::string keyword_list(const std::string& head) {
-  py::object defaults = py::cast(T{});
-  std::string s = head;
-  for (const std::string& n : field_names<T>()) s += ", " + n + "=" + py::repr(defaults.attr(n.c_str())).cast<std::string>();
-  return s + ")";
-}
-
 using WorkspaceOptionsClass = OptionsClass<RRR3WorkspaceOptions>;
 
 // The options of one map, from the call's keyword arguments.

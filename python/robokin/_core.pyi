@@ -1167,7 +1167,11 @@ class IKSolver:
     def __getstate__(self) -> tuple[int, typing.Any, IKOptions, bool, int, int]:
         ...
     def __init__(self, chain: Chain, *, seed: int | None = None, **kwargs) -> None:
-        ...
+        """
+        IKSolver(chain, *, seed=None, method='lm', task=None, tol_p=1e-09, tol_r=1e-09, max_iter=100, restarts=None, timeout=None, damping=None, stall_window=6)
+        
+        The solver of chain with these options (keyword-only, IKOptions).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:

@@ -58,7 +58,8 @@ def with_options(options_class, *, defaults=None, exclude=()) -> Callable[[F], F
     parameter per field of ``options_class`` (a bound core options struct) but ``exclude`` (fields
     the function takes as arguments of its own), default from ``defaults`` (an instance: for a call
     whose defaults differ from the struct's, which it must then apply itself) or
-    ``options_class()``; adds the fields' docs to its docstring and records ``func.options_class``."""
+    ``options_class()``; adds the fields' docs to its docstring and records ``func.options_class``
+    and the option names it takes, ``func.option_names``."""
     shown = options_class() if defaults is None else defaults
 
     def decorate(func: F) -> F:
@@ -74,6 +75,7 @@ def with_options(options_class, *, defaults=None, exclude=()) -> Callable[[F], F
         func.__doc__ = _with_options_section(
             func.__doc__ or "", lambda indent: options_section(options_class, indent, shown, exclude))
         func.options_class = options_class
+        func.option_names = tuple(name for name, _ in _fields(options_class, exclude))
         return func
 
     return decorate

@@ -20,6 +20,7 @@ Interrupting (Ctrl-C) a computation started here cancels its tasks on the cluste
 
 from __future__ import annotations
 
+import inspect
 from dataclasses import dataclass
 from typing import Optional
 
@@ -34,8 +35,8 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
 from . import _core, rrr3_design
 from ._checks import chain as check_chain
 from ._checks import real_array, whole
-from ._options import with_options
 from ._checks import seed as check_seed
+from ._options import with_options
 from .ik import ik_batch as _ik_batch
 from .reachability import BLOCK as _BLOCK
 from .reachability import IK_OPTIONS as _IK_OPTIONS
@@ -122,14 +123,24 @@ def region_areas(robots, *, chunks="auto", **options):
     return rd.map_blocks(_areas_block, options, drop_axis=1, dtype=np.float64, meta=np.empty((0,)))
 
 
-def area_vs_platform_radius(*args, chunks="auto", **kwargs) -> rrr3_design.AreaCurve:
-    """:func:`robokin.rrr3_design.area_vs_platform_radius` with its workspace maps on Dask."""
-    return rrr3_design.area_vs_platform_radius(*args, areas=_distributed_areas(chunks), **kwargs)
+def _on_dask(study):
+    """The design study ``study`` of robokin.rrr3_design with its workspace maps on Dask: the same
+    signature, ``areas`` replaced by ``chunks`` (robots per chunk)."""
+    def on_dask(*args, chunks="auto", **kwargs):
+        return study(*args, areas=_distributed_areas(chunks), **kwargs)
+
+    sig = inspect.signature(study)
+    params = [p.replace(name="chunks", default="auto") if p.name == "areas" else p for p in sig.parameters.values()]
+    on_dask.__signature__ = sig.replace(parameters=params)
+    on_dask.__name__ = on_dask.__qualname__ = study.__name__
+    on_dask.__doc__ = (f":func:`robokin.rrr3_design.{study.__name__}` with its workspace maps on Dask, ``chunks``"
+                       f" robots per chunk.\n\n{study.__doc__}")
+    on_dask.options_class, on_dask.option_names = study.options_class, study.option_names
+    return on_dask
 
 
-def best_l2(*args, chunks="auto", **kwargs) -> rrr3_design.BestL2:
-    """:func:`robokin.rrr3_design.best_l2` with its workspace maps on Dask."""
-    return rrr3_design.best_l2(*args, areas=_distributed_areas(chunks), **kwargs)
+area_vs_platform_radius = _on_dask(rrr3_design.area_vs_platform_radius)
+best_l2 = _on_dask(rrr3_design.best_l2)
 
 
 # --- the work of one chunk (runs on the workers) ----------------------------------------------------

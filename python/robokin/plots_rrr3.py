@@ -30,12 +30,15 @@ def _path(path):
     return None if path is None else planar_points(path, "path")
 
 
-def plot_robot(robot, pose, mode=(1, 1, 1), ax=None, path=None):
-    """Draws the robot at ``pose`` in ``mode``: base, legs O-A-B, platform; optional (K, 2) path.
+def plot_robot(robot, pose, mode=None, ax=None, path=None):
+    """Draws the robot at ``pose`` in ``mode`` (None: the core's default working mode): base, legs
+    O-A-B, platform; optional (K, 2) path.
 
     Returns:
         (figure, axes).
     """
+    if mode is None:
+        mode = _core.RRR3WorkspaceOptions().mode  # the core's one default working mode
     pts = robot.points(pose, mode)  # checks pose and mode
     pose = np.asarray(pose, dtype=float)
     path = _path(path)
