@@ -1,6 +1,7 @@
 // robokin.Chain: serial chains from DH tables or plain segments; FK, Jacobians, frames.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_parts.hpp"
 #include "chain_args.hpp"
 #include "fastcall.hpp"
 #include "progress.hpp"
@@ -234,8 +235,7 @@ std::string joint_types(const Chain& c) {
 
 }  // namespace
 
-void bind_chain(py::module_& m) {
-  py::class_<Chain> chain(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).");
+void def_chain_model(py::class_<Chain>& chain) {
   chain
       .def_static("from_dh", &chain_from_dh, py::arg("rows"), py::arg("modified") = false,
                   py::arg("tool") = py::none(), py::arg("limits") = py::none(),
@@ -271,7 +271,15 @@ void bind_chain(py::module_& m) {
                                       "') -> numpy.ndarray",
                                   "Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)\n"
                                   "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"));
-  // Pickling, copies, ==, hash and repr: pickle_chain.cpp.
+}
+
+void bind_chain(py::module_& m) {
+  py::class_<Chain> cls(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).");
+  def_chain_model(cls);
+  def_chain_names(cls);
+  def_chain_from_urdf(cls);
+  def_chain_manipulability(cls);
+  def_chain_value(cls);
 }
 
 }  // namespace robokin::bind

@@ -2,6 +2,7 @@
 // (added to the Chain class registered by chain.cpp).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_parts.hpp"
 
 #include "robokin/chain.hpp"
 
@@ -122,8 +123,7 @@ py::typing::Dict<py::str, py::float_> q_dict(const Chain& c, ArrayLike q_obj) {
 
 }  // namespace
 
-void bind_chain_names(py::module_& m) {
-  auto cls = py::reinterpret_borrow<py::class_<Chain>>(m.attr("Chain"));
+void def_chain_names(py::class_<Chain>& cls) {
   cls.def_property_readonly(
       "joint_names", [](const Chain& c) { return as_tuple(c.joint_names()); },
       "The names of the dof joints, in q's order: a URDF chain's from the file (its movable joints\n"

@@ -1,6 +1,7 @@
 // Chain.manipulability and Chain.ellipsoid (added to the Chain class made in chain.cpp).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_parts.hpp"
 #include "chain_args.hpp"
 #include "fastcall.hpp"
 #include "progress.hpp"
@@ -76,10 +77,9 @@ PyObject* manipulability_fast(PyObject* self, PyObject* const* args, Py_ssize_t 
 
 }  // namespace
 
-void bind_manipulability(py::module_& m) {
-  py::object chain_class = m.attr("Chain");
+void def_chain_manipulability(py::class_<Chain>& cls) {
   add_fast_method(  // without pybind11's dispatcher (fastcall.hpp)
-      chain_class,
+      cls,
       fast_def("manipulability", &manipulability_fast,
                "(self: robokin._core.Chain, q: " + type_text<ArrayLike>() + ", measure: " + type_text<MeasureName>() +
                    " = '" + kMeasure + "', task: " + type_text<TaskName>() +
@@ -89,9 +89,7 @@ void bind_manipulability(py::module_& m) {
                "condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),\n"
                "an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's\n"
                "natural_task (a planar arm's 'pose' rows would always give 0).\n"));
-  chain_class.attr("ellipsoid") = py::cpp_function(
-      &ellipsoid, py::name("ellipsoid"), py::is_method(chain_class), py::sibling(py::getattr(chain_class, "ellipsoid", py::none())),
-      py::arg("q"), py::arg("part") = "translation",
+  cls.def("ellipsoid", &ellipsoid, py::arg("q"), py::arg("part") = "translation",
       "Velocity ellipsoid of the translational ('translation': rows v) or rotational ('rotation': rows w)\n"
       "Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed\n"
       "frame), lengths (3,) the singular values in decreasing order (0 for missing directions).");

@@ -1,6 +1,7 @@
-// robokin.Chain.from_urdf (added to the Chain class registered by chain.cpp) and robokin.urdf_tree.
+// robokin.Chain.from_urdf (a part of the Chain class, chain_parts.hpp) and robokin.urdf_tree.
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_parts.hpp"
 
 #include "robokin/urdf.hpp"
 
@@ -154,10 +155,11 @@ void bind_urdf(py::module_& m) {
         "joints (name, type, parent, child) in the same order, root, base (the root), tip (None when the\n"
         "longest branches tie: tips lists their ends). Raises ValueError for a bad document, TypeError for\n"
         "an argument of the wrong kind; robokin.URDFWarning for what urdfdom accepted but warned about.");
-  py::object chain_class = m.attr("Chain");
-  py::cpp_function from_urdf_function(
-      &from_urdf, py::name("from_urdf"), py::arg("path_or_string"), py::arg("base") = py::none(),
-      py::arg("tip") = py::none(),
+}
+
+void def_chain_from_urdf(py::class_<Chain>& cls) {
+  cls.def_static(
+      "from_urdf", &from_urdf, py::arg("path_or_string"), py::arg("base") = py::none(), py::arg("tip") = py::none(),
       "Builds the chain from link `base` to link `tip` of a URDF file or string, with the file's joint\n"
       "limits (continuous joints unlimited) and names (joint_names, link_names).\n\n"
       "path_or_string: a str or bytes whose first non-blank character is '<' is the document itself\n"
@@ -174,7 +176,6 @@ void bind_urdf(py::module_& m) {
       "Raises ValueError saying what is wrong with the file, the links or the chain between them;\n"
       "TypeError for an argument of the wrong kind. Emits robokin.URDFWarning for what was accepted but\n"
       "changed (a joint with lower == upper limit taken as unlimited, urdfdom's warnings).");
-  chain_class.attr("from_urdf") = py::reinterpret_steal<py::object>(PyStaticMethod_New(from_urdf_function.ptr()));
 }
 
 }  // namespace robokin::bind

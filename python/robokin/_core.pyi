@@ -392,6 +392,111 @@ class RRR3Singularity:
         """
         For a parallel singularity: 'parallel' or 'concurrent' lines A_iB_i, else None.
         """
+class RRR3:
+    """
+    The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).
+    """
+    modes: typing.ClassVar[tuple] = ((1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1), (-1, 1, 1), (-1, 1, -1), (-1, -1, 1), (-1, -1, -1))
+    def __eq__(self, arg0: RRR3) -> bool:
+        ...
+    def __getstate__(self) -> tuple[int, float, float, float, float]:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex = 0.13, platform_radius: typing.SupportsFloat | typing.SupportsIndex = 0.07, l1: typing.SupportsFloat | typing.SupportsIndex = 0.12, l2: typing.SupportsFloat | typing.SupportsIndex = 0.12) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def connect(self, start: numpy.typing.ArrayLike, goal: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
+        """
+        connect(start, goal, *, mode=(1, 1, 1), clearance=0.05, serial_margin=0.02, max_step=0.001, max_turn=0.01, resolution=0.005, span=1.5)
+        
+        Poses from start to goal along which det A keeps its sign and the distance to parallel
+        singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says
+        why there is none (the two poses are in different singularity-free regions of the mode);
+        options keyword-only (RRR3ConnectOptions).
+        """
+    def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Fk:
+        """
+        One assembly mode by Newton from a guess pose.
+        """
+    def fk_all(self, alpha: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel
+        singularity too; modes closer than the loops can tell in floating point, some 1e-7 of the
+        size, as one). Where the elbows form a triangle congruent to the platform's (e.g. equal
+        alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi
+        fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.
+        """
+    def ik(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.
+        """
+    def ik_all(self, pose: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (8, 3): row k for mode k of RRR3.modes, NaN where unreachable.
+        """
+    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
+        """
+    def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Newton:
+        """
+        Newton-Raphson on the 6 loop equations from guess (alpha, beta).
+        """
+    def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
+        """
+        The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.
+        """
+    def plan(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
+        """
+        plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0, closed=False)
+        
+        Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;
+        options keyword-only (RRR3PlanOptions).
+        """
+    def plan_loop(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Loop:
+        """
+        plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)
+        
+        The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all
+        along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
+        why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
+        """
+    def points(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> dict:
+        """
+        Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
+        """
+    def singularity(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
+        """
+        Classification with tol on the normalised determinants.
+        """
+    def workspace(self, **kwargs) -> RRR3Workspace:
+        """
+        workspace(*, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
+        
+        Constant-orientation workspace on an n x n grid with singular cells (every core); options
+        keyword-only (RRR3WorkspaceOptions).
+        """
+    @property
+    def base_joints(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only).
+        """
+    @property
+    def base_radius(self) -> float:
+        ...
+    @property
+    def l1(self) -> float:
+        ...
+    @property
+    def l2(self) -> float:
+        ...
+    @property
+    def platform_radius(self) -> float:
+        ...
 class RRR3Plan:
     """
     Answer of RRR3.plan and RRR3.connect: the poses to follow and what they give.
@@ -808,111 +913,6 @@ class RRR3LoopOptions:
         """
     @sign.setter
     def sign(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-class RRR3:
-    """
-    The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).
-    """
-    modes: typing.ClassVar[tuple] = ((1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1), (-1, 1, 1), (-1, 1, -1), (-1, -1, 1), (-1, -1, -1))
-    def __eq__(self, arg0: RRR3) -> bool:
-        ...
-    def __getstate__(self) -> tuple[int, float, float, float, float]:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __init__(self, base_radius: typing.SupportsFloat | typing.SupportsIndex = 0.13, platform_radius: typing.SupportsFloat | typing.SupportsIndex = 0.07, l1: typing.SupportsFloat | typing.SupportsIndex = 0.12, l2: typing.SupportsFloat | typing.SupportsIndex = 0.12) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
-    def connect(self, start: numpy.typing.ArrayLike, goal: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
-        """
-        connect(start, goal, *, mode=(1, 1, 1), clearance=0.05, serial_margin=0.02, max_step=0.001, max_turn=0.01, resolution=0.005, span=1.5)
-        
-        Poses from start to goal along which det A keeps its sign and the distance to parallel
-        singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says
-        why there is none (the two poses are in different singularity-free regions of the mode);
-        options keyword-only (RRR3ConnectOptions).
-        """
-    def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Fk:
-        """
-        One assembly mode by Newton from a guess pose.
-        """
-    def fk_all(self, alpha: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        (k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel
-        singularity too; modes closer than the loops can tell in floating point, some 1e-7 of the
-        size, as one). Where the elbows form a triangle congruent to the platform's (e.g. equal
-        alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi
-        fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.
-        """
-    def ik(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.
-        """
-    def ik_all(self, pose: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        (8, 3): row k for mode k of RRR3.modes, NaN where unreachable.
-        """
-    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
-        """
-    def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Newton:
-        """
-        Newton-Raphson on the 6 loop equations from guess (alpha, beta).
-        """
-    def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
-        """
-        The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.
-        """
-    def plan(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
-        """
-        plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0, closed=False)
-        
-        Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;
-        options keyword-only (RRR3PlanOptions).
-        """
-    def plan_loop(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Loop:
-        """
-        plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)
-        
-        The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all
-        along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
-        why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
-        """
-    def points(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> dict:
-        """
-        Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
-        """
-    def singularity(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
-        """
-        Classification with tol on the normalised determinants.
-        """
-    def workspace(self, **kwargs) -> RRR3Workspace:
-        """
-        workspace(*, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
-        
-        Constant-orientation workspace on an n x n grid with singular cells (every core); options
-        keyword-only (RRR3WorkspaceOptions).
-        """
-    @property
-    def base_joints(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        (3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only).
-        """
-    @property
-    def base_radius(self) -> float:
-        ...
-    @property
-    def l1(self) -> float:
-        ...
-    @property
-    def l2(self) -> float:
-        ...
-    @property
-    def platform_radius(self) -> float:
         ...
 class IKSolutions:
     """

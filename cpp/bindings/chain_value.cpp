@@ -2,6 +2,7 @@
 // hash, and repr (added to the class registered by chain.cpp).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_parts.hpp"
 
 #include "robokin/chain.hpp"
 
@@ -159,8 +160,7 @@ std::string chain_repr(const Chain& c) {
 
 }  // namespace
 
-void bind_chain_pickle(py::module_& m) {
-  auto cls = py::reinterpret_borrow<py::class_<Chain>>(m.attr("Chain"));
+void def_chain_value(py::class_<Chain>& cls) {
   cls.def(py::pickle([](const Chain& c) { return chain_state(c); },
                      [](const py::tuple& t) {
                        try {
