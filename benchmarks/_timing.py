@@ -43,13 +43,10 @@ def per_call_interleaved(stmts, namespace: dict, repeat: int = 7, budget: float 
     return [(min(r), statistics.median(r)) for r in runs]
 
 
-def once(fn, repeat: int = 3, before=None):
-    """(best, median) seconds of ``fn()`` over ``repeat`` runs (for long calls: batches, paths);
-    ``before()``, when given, runs untimed before each."""
+def once(fn, repeat: int = 3):
+    """(best, median) seconds of ``fn()`` over ``repeat`` runs (for long calls: batches, paths)."""
     runs = []
     for _ in range(repeat):
-        if before is not None:
-            before()
         start = timeit.default_timer()
         fn()
         runs.append(timeit.default_timer() - start)

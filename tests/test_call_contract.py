@@ -24,6 +24,7 @@ CALL_ARGUMENTS = {
     "chunks": "robokin.dask: how the data is cut, not what is computed",
     "areas": "the design study: the function computing the areas (robokin.dask passes its own)",
     "ax": "a figure's axes",
+    "out": "numpy's idiom: the caller's array the result is written into",
 }
 
 # Parameters named like an option of some class whose default is a data default of their own.

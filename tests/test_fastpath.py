@@ -79,7 +79,7 @@ def test_large_frame_batch_gives_the_bits_of_small_batches(name, threads, monkey
     np.testing.assert_array_equal(large, small)
     for k in rng.integers(0, len(Q), 20):
         np.testing.assert_allclose(large[k], chain._fk_kdl(Q[k]), rtol=0, atol=1e-12)
-    positions = chain.fk(Q, out="position")
+    positions = chain.fk(Q, part="position")
     np.testing.assert_array_equal(positions, large[:, :3, 3])
 
 
@@ -248,7 +248,7 @@ def test_unaligned_buffers_give_the_same_results():
     chain = rk.robots.ur5()
     Q = np.random.default_rng(3).uniform(-3, 3, (50, 6))
     np.testing.assert_array_equal(chain.fk(unaligned(Q)), chain.fk(Q))
-    np.testing.assert_array_equal(chain.fk(unaligned(Q), out="position"), chain.fk(Q, out="position"))
+    np.testing.assert_array_equal(chain.fk(unaligned(Q), part="position"), chain.fk(Q, part="position"))
     T = chain.fk(Q[:5])
     a = rk.ik_batch(chain, unaligned(T), unaligned(Q[0]), restarts=2, seed=1)
     b = rk.ik_batch(chain, T, Q[0], restarts=2, seed=1)
@@ -277,10 +277,11 @@ UR5 = rk.robots.ur5()
 Q5 = np.zeros(6)
 FAST_CALL_ERRORS = [
     (lambda: UR5.fk(), TypeError, "fk() missing required argument 'q'"),
-    (lambda: UR5.fk(Q5, "frame", 3), TypeError, "fk() takes at most 2 positional arguments (3 given)"),
+    (lambda: UR5.fk(Q5, "frame", np.empty((4, 4))), TypeError, "fk() takes at most 2 positional arguments (3 given)"),
     (lambda: UR5.fk(Q5, bogus=1), TypeError, "fk() got an unexpected keyword argument 'bogus'"),
-    (lambda: UR5.fk(Q5, "frame", out="frame"), TypeError, "fk() got multiple values for argument 'out'"),
-    (lambda: UR5.fk(Q5, out="nope"), ValueError, "out: expected 'frame' or 'position', got 'nope'"),
+    (lambda: UR5.fk(Q5, "frame", part="frame"), TypeError, "fk() got multiple values for argument 'part'"),
+    (lambda: UR5.fk(Q5, part="nope"), ValueError, "part: expected 'frame' or 'position', got 'nope'"),
+    (lambda: UR5.fk(Q5, out="frame"), TypeError, "out: expected a numpy array or None, got str"),
     (lambda: UR5.jacobian(q=Q5, task="nope"), ValueError, "task"),
     (lambda: UR5.jacobian(Q5, 3), TypeError, "task: expected None or a string"),
     (lambda: rk._core.Chain.fk(1, Q5), TypeError, "doesn't apply to a 'int' object"),
@@ -313,7 +314,7 @@ def test_fast_calls_take_keywords_positions_and_defaults_alike():
     q = np.array([0.1, -0.8, 1.1, 0.2, 0.5, -0.3])
     T = UR5.fk(q)
     assert np.array_equal(UR5.fk(q=q), T) and np.array_equal(UR5.fk(q, "frame"), T)
-    assert np.array_equal(UR5.fk(q, out="position"), T[:3, 3])
+    assert np.array_equal(UR5.fk(q, part="position"), T[:3, 3])
     J = UR5.jacobian(q)
     assert np.array_equal(UR5.jacobian(q, "pose"), J) and np.array_equal(UR5.jacobian(task="position", q=q), J[:3])
     by_position = rk._core.ik(UR5, T, q + 0.05, seed=1, tol_p=1e-10)

@@ -460,19 +460,19 @@ def test_robot_factories_name_their_arguments():
 
 
 @given(case=dh_chains(), q=arrays([(7,), (3, 7), (40, 7), (2, 3)]),
-       out=st.one_of(st.sampled_from(["frame", "position"]), st.sampled_from(["Position", "", None, 0, b"frame"])))
-def test_fk_out_position_is_the_frames_last_column(case, q, out):
-    """Any chain, any array, any ``out``: "position" gives (3,) or (N, 3), the frames' last column
-    bit for bit, within 1e-9 of KDL; otherwise a ValueError / TypeError naming out or q."""
+       part=st.one_of(st.sampled_from(["frame", "position"]), st.sampled_from(["Position", "", None, 0, b"frame"])))
+def test_fk_part_position_is_the_frames_last_column(case, q, part):
+    """Any chain, any array, any ``part``: "position" gives (3,) or (N, 3), the frames' last column
+    bit for bit, within 1e-9 of KDL; otherwise a ValueError / TypeError naming part or q."""
     chain, n = case["chain"], case["chain"].dof
     if isinstance(q, np.ndarray) and q.ndim >= 1 and q.shape[-1] >= n:
         q = q[..., :n]  # mostly the right width, sometimes not
-    P = check_call(lambda: chain.fk(q, out=out), "out", "q")
+    P = check_call(lambda: chain.fk(q, part=part), "part", "q")
     if P is None:
         return
     F = chain.fk(q)
     assert_finite(P)
-    if out == "frame":
+    if part == "frame":
         np.testing.assert_array_equal(P, F)
         return
     assert P.shape == F.shape[:-2] + (3,)

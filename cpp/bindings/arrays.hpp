@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -51,6 +52,9 @@ struct SeedTag {
 struct TaskTag {  // task_of: a task's name, or None for the chain's natural task
   static constexpr auto name = py::detail::const_name("typing.Literal['pose', 'position', 'xy', 'xyphi'] | None");
 };
+struct OutTag {  // output_array: the caller's array to write into, or None for a new one
+  static constexpr auto name = py::detail::const_name("numpy.typing.NDArray[numpy.float64] | None");
+};
 struct FrameOrPositionTag {
   static constexpr auto name = py::detail::const_name("typing.Literal['frame', 'position']");
 };
@@ -68,7 +72,8 @@ using ChainLimitsLike = Typed<ChainLimitsTag>;
 using ModeLike = Typed<ModeTag>;
 using SeedLike = Typed<SeedTag>;
 using TaskName = Typed<TaskTag>;
-using FkOut = Typed<FrameOrPositionTag>;
+using FkPart = Typed<FrameOrPositionTag>;
+using OutArray = Typed<OutTag>;
 using MeasureName = Typed<MeasureTag>;
 using NullspaceLike = Typed<NullspaceTag>;
 using OptionalArrayLike = Typed<OptionalArrayTag>;
@@ -187,23 +192,35 @@ inline py::array numpy_float64(int ndim, const py::ssize_t* shape) {
   return py::reinterpret_steal<py::array>(a);
 }
 
-// Outputs of this size or more (numpy asks huge pages for them) come from output_pool.cpp, in
-// memory kept from freed ones.
-constexpr std::size_t kPooledBytes = std::size_t{4} << 20;
-py::array pooled_float64(int ndim, const py::ssize_t* shape, std::size_t bytes);
-
 // A new, uninitialised C-contiguous float64 array: every output the bindings fill.
-inline py::array new_float64(int ndim, const py::ssize_t* shape) {
-  std::size_t bytes = sizeof(double);
-  bool overflow = false;
-  for (int i = 0; i < ndim; ++i)
-    overflow |= shape[i] < 0 || __builtin_mul_overflow(bytes, static_cast<std::size_t>(shape[i]), &bytes);
-  if (!overflow && bytes >= kPooledBytes) return pooled_float64(ndim, shape, bytes);
-  return numpy_float64(ndim, shape);  // numpy's error when the size is too large
-}
+inline py::array new_float64(int ndim, const py::ssize_t* shape) { return numpy_float64(ndim, shape); }
 
 inline double* float64_data(const py::array& a) {
   return reinterpret_cast<double*>(py::detail::array_proxy(a.ptr())->data);
+}
+
+// The array a batch call writes its result into: a new one when `out` is None, else the caller's
+// (numpy's idiom: the caller reuses memory across calls), which must be a writable, aligned,
+// C-contiguous float64 ndarray of exactly that shape sharing no byte with the input [in, in + n).
+// A value of the wrong kind is a TypeError, a wrong shape or layout a ValueError, naming `out`.
+inline py::array output_array(py::handle out, int ndim, const py::ssize_t* shape, const double* in, py::ssize_t n) {
+  if (out.is_none()) return new_float64(ndim, shape);
+  if (!py::isinstance<py::array>(out))
+    throw py::type_error("out: expected a numpy array or None, got " +
+                         py::str(py::type::handle_of(out).attr("__name__")).cast<std::string>());
+  const py::array a = py::reinterpret_borrow<py::array>(out);
+  if (!a.dtype().equal(py::dtype::of<double>()))
+    throw py::type_error("out: expected a float64 array, got " + py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != ndim || !std::equal(shape, shape + ndim, a.shape()))
+    fail("out: expected shape " + shape_of(ndim, shape) + ", got " + shape_of(a));
+  const int need = py::detail::npy_api::NPY_ARRAY_C_CONTIGUOUS_ | py::detail::npy_api::NPY_ARRAY_ALIGNED_ |
+                   py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  if ((py::detail::array_proxy(a.ptr())->flags & need) != need)
+    fail("out: expected a writable, aligned, C-contiguous array (np.empty gives one)");
+  const char* o = static_cast<const char*>(a.data());
+  const char* i = reinterpret_cast<const char*>(in);
+  if (o < i + n * static_cast<py::ssize_t>(sizeof(double)) && i < o + a.nbytes()) fail("out: shares memory with q");
+  return a;
 }
 
 // True when no value is NaN or inf: their exponent bits are all ones. Integer operations only, with

@@ -17,5 +17,4 @@ void bind_traj(pybind11::module_& m);
 void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
 void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
-void bind_output_pool(pybind11::module_& m);  // release_output_memory
 }  // namespace robokin::bind

@@ -108,19 +108,19 @@ void write_rigid(const Rigid& T, double* m) {
   m[15] = 1.0;
 }
 
-// fk's `out`: "frame" (4 x 4 per configuration, the default) or "position" (the tool point, 3 values).
-FkOutput fk_output_of(py::handle obj) {
+// fk's `part`: "frame" (4 x 4 per configuration, the default) or "position" (the tool point, 3 values).
+FkOutput fk_part_of(py::handle obj) {
   if (!py::isinstance<py::str>(obj))
-    throw py::type_error("out: expected the string 'frame' or 'position', got " +
+    throw py::type_error("part: expected the string 'frame' or 'position', got " +
                          std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
   const std::string s = py::cast<std::string>(obj);
   if (s == "frame") return FkOutput::Frame;
   if (s == "position") return FkOutput::Position;
-  fail("out: expected 'frame' or 'position', got '" + s + "'");
+  fail("part: expected 'frame' or 'position', got '" + s + "'");
 }
 
-py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
-  const FkOutput what = fk_output_of(out_obj);
+py::array fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj) {
+  const FkOutput what = fk_part_of(part_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
   const Float64View q = q_view(q_obj, holder);
@@ -131,7 +131,8 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
     Rigid T;
     c.fk(q.data, T);
     const py::ssize_t frame_shape[2] = {4, 4}, position_shape[1] = {3};
-    py::array out = what == FkOutput::Position ? new_float64(1, position_shape) : new_float64(2, frame_shape);
+    py::array out = what == FkOutput::Position ? output_array(out_obj, 1, position_shape, q.data, q.size)
+                                               : output_array(out_obj, 2, frame_shape, q.data, q.size);
     double* m = float64_data(out);
     if (what == FkOutput::Position) m[0] = T.p(0), m[1] = T.p(1), m[2] = T.p(2);
     else write_rigid(T, m);
@@ -139,7 +140,8 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
     return out;
   }
   const py::ssize_t frame_shape[3] = {count, 4, 4}, position_shape[2] = {count, 3};
-  py::array out = what == FkOutput::Position ? new_float64(2, position_shape) : new_float64(3, frame_shape);
+  py::array out = what == FkOutput::Position ? output_array(out_obj, 2, position_shape, q.data, q.size)
+                                             : output_array(out_obj, 3, frame_shape, q.data, q.size);
   double* dst = float64_data(out);
   PythonProgress progress("Chain.fk");
   bool finite;
@@ -154,7 +156,7 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkOut out_obj) {
   return out;
 }
 
-py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj) {
+py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray out_obj) {
   const Task task = task_of(task_obj, c);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
@@ -162,8 +164,8 @@ py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj) {
   const int rows = task_rows(task), n = c.dof();
   const int* row_of = task_row_indices(task);
   const long batch = count < 0 ? 1 : count;
-  py::array out = count < 0 ? new_float64(2, std::array<py::ssize_t, 2>{rows, n}.data())
-                            : new_float64(3, std::array<py::ssize_t, 3>{batch, rows, n}.data());
+  py::array out = count < 0 ? output_array(out_obj, 2, std::array<py::ssize_t, 2>{rows, n}.data(), q.data, q.size)
+                            : output_array(out_obj, 3, std::array<py::ssize_t, 3>{batch, rows, n}.data(), q.data, q.size);
   double* dst = float64_data(out);
   // The 6 x n Jacobian (column-major) on the stack for the usual sizes.
   double small[6 * 16];
@@ -201,25 +203,26 @@ py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike po
   return to_numpy(out);
 }
 
-// Chain.fk(q, out='frame') and Chain.jacobian(q, task='pose') through fastcall.hpp.
-template <class Second, py::array (*F)(const Chain&, ArrayLike, Second)>
+// Chain.fk(q, part='frame', *, out=None) and Chain.jacobian(q, task='pose', *, out=None) through
+// fastcall.hpp.
+template <class Second, py::array (*F)(const Chain&, ArrayLike, Second, OutArray)>
 PyObject* fast_method(const char* fname, const char* second, PyObject* fallback, PyObject* self,
                       PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
   return guarded([&]() -> py::object {
-    const char* const names[] = {"q", second};
-    PyObject* a[2];
-    parse_args(fname, args, nargs, kwnames, names, 2, 2, a);
+    const char* const names[] = {"q", second, "out"};
+    PyObject* a[3];
+    parse_args(fname, args, nargs, kwnames, names, 3, 2, a);
     if (!a[0]) missing(fname, "q");
     return F(self_of<Chain>(self), py::reinterpret_borrow<ArrayLike>(a[0]),
-             py::reinterpret_borrow<Second>(a[1] ? a[1] : fallback));
+             py::reinterpret_borrow<Second>(a[1] ? a[1] : fallback), py::reinterpret_borrow<OutArray>(a[2] ? a[2] : Py_None));
   });
 }
 
-constexpr const char* kFkOut = "frame";  // Chain.fk's default out
+constexpr const char* kFkPart = "frame";  // Chain.fk's default part
 
 PyObject* fk_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  static PyObject* const out = interned(kFkOut);  // kept for the process
-  return fast_method<FkOut, &fk>("fk", "out", out, self, args, nargs, kwnames);
+  static PyObject* const part = interned(kFkPart);  // kept for the process
+  return fast_method<FkPart, &fk>("fk", "part", part, self, args, nargs, kwnames);
 }
 
 PyObject* jacobian_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
@@ -262,15 +265,16 @@ void def_chain_model(py::class_<Chain>& chain) {
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
   // The two hottest methods without pybind11's dispatcher (fastcall.hpp).
   const std::string q = "(self: robokin._core.Chain, q: " + type_text<ArrayLike>();
-  add_fast_method(chain, fast_def("fk", &fk_fast,
-                                  q + ", out: " + type_text<FkOut>() + " = '" + kFkOut + "') -> numpy.ndarray",
-                                  "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool\n"
-                                  "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"));
+  const std::string out = ", *, out: " + type_text<OutArray>() + " = None) -> numpy.ndarray";
+  add_fast_method(chain, fast_def("fk", &fk_fast, q + ", part: " + type_text<FkPart>() + " = '" + kFkPart + "'" + out,
+                                  "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). part='position': the tool\n"
+                                  "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"
+                                  "out: an array of the result's shape to write it into (returned), for repeated calls.\n"));
   add_fast_method(chain, fast_def("jacobian", &jacobian_fast,
-                                  q + ", task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) +
-                                      "') -> numpy.ndarray",
+                                  q + ", task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) + "'" + out,
                                   "Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)\n"
-                                  "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"));
+                                  "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"
+                                  "out: an array of the result's shape to write it into (returned), for repeated calls.\n"));
 }
 
 void bind_chain(py::module_& m) {

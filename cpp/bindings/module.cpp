@@ -15,5 +15,4 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_resolved_rate(m);
   robokin::bind::bind_pose(m);
   robokin::bind::bind_ik_3r(m);
-  robokin::bind::bind_output_pool(m);
 }

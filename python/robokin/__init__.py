@@ -7,7 +7,7 @@ with joint-limit avoidance and path tracking. See the README for a tour.
 from . import closed, paths, robots
 from . import pose, traj
 from ._core import (RRR3, RRR3_DEFAULTS, Chain, ReachOptions, ReachResult, RRR3ConnectOptions, RRR3PlanOptions,
-                    TrackResult, joint_limit_cost, release_output_memory)
+                    TrackResult, joint_limit_cost)
 from ._core import RRR3LoopOptions
 from ._core import RRR3WorkspaceOptions
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
@@ -43,7 +43,6 @@ __all__ = [
     "joint_limit_cost",
     "paths",
     "reach",
-    "release_output_memory",
     "robots",
     "track",
     "RateOptions",

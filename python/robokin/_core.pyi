@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'release_output_memory', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -72,19 +72,21 @@ class Chain:
         Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed
         frame), lengths (3,) the singular values in decreasing order (0 for missing directions).
         """
-    def fk(self, q: numpy.typing.ArrayLike, out: typing.Literal['frame', 'position'] = 'frame') -> numpy.ndarray:
+    def fk(self, q: numpy.typing.ArrayLike, part: typing.Literal['frame', 'position'] = 'frame', *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
         """
-        Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). out='position': the tool
+        Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). part='position': the tool
         point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).
+        out: an array of the result's shape to write it into (returned), for repeated calls.
         """
     def frames(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         Frames (dof + 1, 4, 4): base, then the frame after each joint.
         """
-    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose') -> numpy.ndarray:
+    def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose', *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
         """
         Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)
         by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.
+        out: an array of the result's shape to write it into (returned), for repeated calls.
         """
     def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
         """
@@ -1463,18 +1465,6 @@ def pose_rpy(T: numpy.typing.ArrayLike) -> numpy.ndarray:
 def reach(chain: Chain, target: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ReachResult:
     """
     One Reach call (the RPR study, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.
-    """
-def release_output_memory() -> int:
-    """
-    Gives back to the system the memory robokin keeps of freed outputs, and returns how many
-    bytes that was.
-    
-    Outputs of 4 MB or more (a batch's frames, positions, Jacobians) are made in memory robokin
-    maps itself. When one is freed its memory is kept, up to 256 MB of the most recently freed,
-    and the next output of its size (or up to a fifth smaller) is written into it: a loop of
-    batch calls then skips the kernel's page faults and zeroing of a fresh output (1e6 RPR
-    frames on one thread: 24 -> 15 ms here). The kernel may take kept memory back under memory
-    pressure at any time. Linux only; elsewhere numpy allocates every output and this returns 0.
     """
 def resolved_rate(chain: Chain, q: numpy.typing.ArrayLike, twist: numpy.typing.ArrayLike, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> numpy.typing.NDArray[numpy.float64]:
     """
