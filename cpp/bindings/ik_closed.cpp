@@ -211,9 +211,36 @@ std::string repr(const ClosedFormSolutions& s) {
   return s.count() ? out + "\n)" : out;
 }
 
-}  // namespace
+// IKSolutions' pickled state: (version, dof, q (k, dof), postures, singular, within_limits).
+py::tuple solutions_state(const ClosedFormSolutions& s) {
+  py::list postures, within;
+  for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k])), within.append(py::bool_(s.within_limits[k]));
+  return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular, py::tuple(within));
+}
 
-void bind_ik_closed(py::module_& m) {
+ClosedFormSolutions solutions_from_state(const py::tuple& t) {
+  check_state(t, 6, "IKSolutions");
+  // The labels are static strings in a solution: one interned copy of each label read back.
+  static std::set<std::string> labels;
+  static std::mutex labels_mutex;
+  ClosedFormSolutions s;
+  s.dof = t[1].cast<int>();
+  s.singular = t[4].cast<bool>();
+  const Array q = as_array(t[2], "q");
+  const py::sequence postures = t[3].cast<py::sequence>(), within = t[5].cast<py::sequence>();
+  if (s.dof < 1 || s.dof > ClosedFormSolutions::kMaxDof ||
+      postures.size() > static_cast<size_t>(ClosedFormSolutions::kMaxSolutions) ||
+      q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof || within.size() != postures.size())
+    fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture and per within_limits "
+         "flag, at most 8 rows");
+  std::lock_guard<std::mutex> lock(labels_mutex);
+  for (size_t k = 0; k < postures.size(); ++k)
+    s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str(), within[k].cast<bool>());
+  return s;
+}
+
+// robokin.closed's IKSolutions.
+void bind_solutions(py::module_& m) {
   py::class_<ClosedFormSolutions>(m, "IKSolutions",
                                   "Every closed-form solution of a pose: q (k, dof), one posture label per row and\n"
                                   "whether each row is within the joint limits (none is dropped for its limits).")
@@ -241,32 +268,7 @@ void bind_ik_closed(py::module_& m) {
                     "True at a singularity (postures coincide, or a joint is free: 0 was chosen).")
       .def_readonly("dof", &ClosedFormSolutions::dof)
       .def(py::pickle(  // (version, dof, q (k, dof), postures, singular, within_limits)
-          [](const ClosedFormSolutions& s) {
-            py::list postures, within;
-            for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k])), within.append(py::bool_(s.within_limits[k]));
-            return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular, py::tuple(within));
-          },
-          [](const py::tuple& t) {
-            check_state(t, 6, "IKSolutions");
-            // The labels are static strings in a solution: one interned copy of each label read back.
-            static std::set<std::string> labels;
-            static std::mutex labels_mutex;
-            ClosedFormSolutions s;
-            s.dof = t[1].cast<int>();
-            s.singular = t[4].cast<bool>();
-            const Array q = as_array(t[2], "q");
-            const py::sequence postures = t[3].cast<py::sequence>(), within = t[5].cast<py::sequence>();
-            if (s.dof < 1 || s.dof > ClosedFormSolutions::kMaxDof ||
-                postures.size() > static_cast<size_t>(ClosedFormSolutions::kMaxSolutions) ||
-                q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof || within.size() != postures.size())
-              fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture and per within_limits "
-                   "flag, at most 8 rows");
-            std::lock_guard<std::mutex> lock(labels_mutex);
-            for (size_t k = 0; k < postures.size(); ++k)
-              s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str(),
-                    within[k].cast<bool>());
-            return s;
-          }))
+&solutions_state, &solutions_from_state))
       .def("__len__", &ClosedFormSolutions::count)
       .def(
           "nearest",
@@ -279,6 +281,10 @@ void bind_ik_closed(py::module_& m) {
           py::arg("q"),
           "Index of the solution within the limits nearest to q (Euclidean in joint space); None when none is.")
       .def("__repr__", &repr);
+}
+
+// The solvers with their geometry bound (robokin.closed keeps them for repeated calls).
+void bind_solvers(py::module_& m) {
   py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
       .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, LimitsLike limits) {
              check_length(d6, "d6");
@@ -287,16 +293,6 @@ void bind_ik_closed(py::module_& m) {
            py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
            py::arg("limits") = py::none())
       .def("solve", &SphericalWrist::solve, py::arg("target"));
-  m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
-  m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
-  m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),
-        py::arg("method") = "algebraic", py::arg("limits") = py::none());
-  m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1") = 0.0,
-        py::arg("limits") = py::none());
-  m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
-        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
-  m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
-        py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   py::class_<URSolver> ur_solver(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.");
   ur_solver
       .def(py::init([](const Chain& chain, ChainLimitsLike limits) {
@@ -308,6 +304,23 @@ void bind_ik_closed(py::module_& m) {
                                       "(self: robokin._core._URSolver, target: " + type_text<ArrayLike>() +
                                           ") -> robokin._core.IKSolutions",
                                       ""));
+}
+
+}  // namespace
+
+void bind_ik_closed(py::module_& m) {
+  bind_solutions(m);
+  bind_solvers(m);
+  m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
+  m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
+  m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),
+        py::arg("method") = "algebraic", py::arg("limits") = py::none());
+  m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1") = 0.0,
+        py::arg("limits") = py::none());
+  m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
+        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
+  m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
+        py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
   m.def("ur_geometry", &ur_geometry, py::arg("chain"));
