@@ -212,7 +212,7 @@ std::string repr(const ClosedFormSolutions& s) {
 }
 
 // IKSolutions' pickled state: (version, dof, q (k, dof), postures, singular, within_limits).
-py::tuple solutions_state(const ClosedFormSolutions& s) {
+auto solutions_state(const ClosedFormSolutions& s) {
   py::list postures, within;
   for (int k = 0; k < s.count(); ++k) postures.append(py::str(s.postures[k])), within.append(py::bool_(s.within_limits[k]));
   return py::make_tuple(kStateVersion, s.dof, solutions_q(s), py::tuple(postures), s.singular, py::tuple(within));

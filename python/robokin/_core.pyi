@@ -921,7 +921,7 @@ class IKSolutions:
     Every closed-form solution of a pose: q (k, dof), one posture label per row and
     whether each row is within the joint limits (none is dropped for its limits).
     """
-    def __getstate__(self) -> tuple:
+    def __getstate__(self) -> tuple[int, int, numpy.typing.NDArray[numpy.float64], tuple, bool, tuple]:
         ...
     def __len__(self) -> int:
         ...
