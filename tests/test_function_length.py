@@ -28,11 +28,9 @@ ALLOWLIST = {
     # bindings: being split per Python class
     "cpp/bindings/ik_closed.cpp:bind_ik_closed": "the closed forms' registrations, all classes in one function",
     # multi-phase functions being split into named steps on this branch
-    "cpp/src/rrr3_connect.cpp:connect": "being split",
     "cpp/src/ik_3r.cpp:cuspidal_3r": "being split",
     "cpp/src/ik_3r.cpp:ik_3r": "being split",
     "cpp/src/ik_closed.cpp:ik_ur": "being split",
-    "cpp/src/rrr3_workspace.cpp:workspace": "being split",
     "python/robokin/postures.py:track_postures": "being split",
 }
 
