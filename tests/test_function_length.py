@@ -30,7 +30,6 @@ ALLOWLIST = {
     # multi-phase functions being split into named steps on this branch
     "cpp/src/ik_3r.cpp:cuspidal_3r": "being split",
     "cpp/src/ik_3r.cpp:ik_3r": "being split",
-    "cpp/src/ik_closed.cpp:ik_ur": "being split",
     "python/robokin/postures.py:track_postures": "being split",
 }
 
