@@ -28,8 +28,6 @@ ALLOWLIST = {
     # bindings: being split per Python class
     "cpp/bindings/ik_closed.cpp:bind_ik_closed": "the closed forms' registrations, all classes in one function",
     # multi-phase functions being split into named steps on this branch
-    "cpp/src/ik_3r.cpp:cuspidal_3r": "being split",
-    "cpp/src/ik_3r.cpp:ik_3r": "being split",
     "python/robokin/postures.py:track_postures": "being split",
 }
 
