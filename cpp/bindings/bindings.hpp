@@ -21,4 +21,5 @@ void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
 void bind_output_pool(pybind11::module_& m);  // release_output_memory
 void bind_chain_pickle(pybind11::module_& m);  // after bind_chain: Chain pickling, ==, hash, repr
 void bind_chain_names(pybind11::module_& m);   // after bind_chain: joint_names, link_names, q_from, q_dict
+void bind_postures(pybind11::module_& m);  // track_postures' dynamic programme
 }  // namespace robokin::bind

@@ -19,4 +19,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_pose(m);
   robokin::bind::bind_ik_3r(m);
   robokin::bind::bind_output_pool(m);
+  robokin::bind::bind_postures(m);
 }
