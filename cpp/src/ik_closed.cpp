@@ -703,7 +703,7 @@ inline __attribute__((always_inline)) void ur_wrists(const URArm& arm, const Rig
 // q234 of each (shoulder, wrist) pair: the wrist's two flips, or one representative when the wrist
 // is singular.
 inline __attribute__((always_inline)) void ur_pairs(const URArm& arm, URStages& s) {
-  s.pairs = 0;
+  int pairs = 0;  // a local, as m in ur_candidates
   for (int side = 0; side < s.sides; ++side)
     for (int flip = 0; flip < (s.wrist_singular[side] ? 1 : 2); ++flip) {
       double t;
@@ -723,9 +723,10 @@ inline __attribute__((always_inline)) void ur_pairs(const URArm& arm, URStages& 
           t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
         }
       }
-      s.pair_side[s.pairs] = side, s.pair_flip[s.pairs] = flip, s.q234[s.pairs++] = t;
+      s.pair_side[pairs] = side, s.pair_flip[pairs] = flip, s.q234[pairs++] = t;
     }
-  vmath::sincos(s.q234, s.s234, s.c234, s.pairs);
+  s.pairs = pairs;
+  vmath::sincos(s.q234, s.s234, s.c234, pairs);
 }
 
 // Per pair: the atan2 arguments of q5, q6 and of the planar 2R (links |a2|, |a3|) reaching origin 4,
@@ -733,7 +734,8 @@ inline __attribute__((always_inline)) void ur_pairs(const URArm& arm, URStages& 
 inline __attribute__((always_inline)) void ur_angles(const URArm& arm, URStages& s, ClosedFormSolutions& out) {
   double* y = s.y;
   double* x = s.x;
-  for (int j = 0; j < s.pairs; ++j) {
+  const int pairs = s.pairs;
+  for (int j = 0; j < pairs; ++j) {
     const Eigen::Matrix3d& m = s.M[s.pair_side[j]];
     double c = s.c234[j], sn = s.s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
     // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
@@ -753,14 +755,14 @@ inline __attribute__((always_inline)) void ur_angles(const URArm& arm, URStages&
       for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
     for (int i = 2 + 2 * s.nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
   }
-  vmath::atan2(y, x, s.t, 6 * s.pairs);
+  vmath::atan2(y, x, s.t, 6 * pairs);
 }
 
 // The candidates: the DH angles of each pair's 2R solutions as the chain's joints, with their
 // posture labels and slots.
 inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URStages& s) {
   const double* t = s.t;
-  s.m = 0;
+  int m = 0;  // a local: the stores below may not reload it
   for (int j = 0; j < s.pairs; ++j) {
     const int side = s.pair_side[j], flip = s.pair_flip[j];
     const double q5 = t[6 * j], q6 = t[6 * j + 1];
@@ -779,11 +781,12 @@ inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URSta
         elbow = ((cross > 0) == (s.X[j] >= 0)) ? 0 : 1;
       }
       const double dh[6] = {s.q1[side], q2, q3, s.q234[j] - q2 - q3, q5, q6};
-      for (int i = 0; i < 6; ++i) s.cand[s.m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-      s.posture[s.m] = ur_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
-      s.cand_slot[s.m++] = (s.shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (s.wrist_singular[side] ? 0 : flip);
+      for (int i = 0; i < 6; ++i) s.cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+      s.posture[m] = ur_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
+      s.cand_slot[m++] = (s.shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (s.wrist_singular[side] ? 0 : flip);
     }
   }
+  s.m = m;
 }
 
 // The candidates brought within the limits where they fit (marked), checked by the chain's forward
