@@ -197,9 +197,12 @@ def _function_name(header: str) -> str | None:
     if re.search(r"\bnamespace\b|\bextern\s+\"", h):
         return None
     top = _top_level(h)
-    if "(" not in top:
+    # The parameter list: the first (...) that is not an attribute's, decltype's or alignas'.
+    opens = [m.start() for m in re.finditer(r"\(", top)
+             if not re.search(r"\b(__attribute__|decltype|alignas|__declspec)\s*$", top[:m.start()])]
+    if not opens:
         return None  # class, struct, enum, union or a braced initializer without a call
-    before = top[:top.index("(")]
+    before = re.sub(r"\b(__attribute__|decltype|alignas|__declspec)\s*\(\)", " ", top[:opens[0]])
     if "=" in before.replace("operator=", "").replace("==", ""):
         return None  # an initializer: `T x = f(...) {` cannot be, `auto f = [](...) {` is data
     if re.search(r"\b(class|struct|union|enum)\b[^;]*$", before) and not re.search(r"\w\s*$", before):
@@ -365,11 +368,16 @@ class Foo : public Bar {
 };
 const int table[3] = {1, 2, 3};
 std::string Foo::name() const { return "x"; }
+inline __attribute__((always_inline)) bool hot(int a,
+                                              int b) {
+  return a < b;
+}
+decltype(auto) deduced(int a) { return a; }
 }  // namespace a
 """
     got = {name: (first, last) for name, first, last in cpp_functions(src)}
     assert got == {"programme": (3, 8), "leg": (13, 13), "Cell": (14, 16), "run": (20, 24),
-                   "Foo::name": (27, 27)}
+                   "Foo::name": (27, 27), "hot": (28, 31), "deduced": (32, 32)}
 
 
 def test_cpp_scanner_counts_lambdas_in_their_function():
