@@ -17,4 +17,5 @@ void bind_traj(pybind11::module_& m);
 void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
 void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
+void bind_postures(pybind11::module_& m);  // track_postures' dynamic programme
 }  // namespace robokin::bind

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_resolved_rate(m);
   robokin::bind::bind_pose(m);
   robokin::bind::bind_ik_3r(m);
+  robokin::bind::bind_postures(m);
 }

@@ -616,144 +616,208 @@ bool onto_reach(const Eigen::Vector3d& P, double d5, double a2, double a3, doubl
 }
 }  // namespace
 
-ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
-                          int* slot) {
-  ClosedFormSolutions out;
-  out.dof = 6;
-  // The frame A1 ... A5 Rz(q6) of the bare DH arm: its origin is the wrist centre (frame 5's).
-  const Rigid Td = arm.base.inverse() * T * arm.tool.inverse();
-  const Eigen::Vector3d p = Td.p;
-  const double size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) +
-                      std::abs(arm.d5) + arm.base.p.norm() + arm.tool.p.norm();
-  // Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist centre in a plane
-  // d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions x1 . p = +-h.
-  const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
-  // |p_xy| without std::hypot (glibc's took ~5 % of a call): p is a point within the arm's reach,
-  // its squares far from overflow and underflow.
-  const double r = std::sqrt(p.x() * p.x() + p.y() * p.y()) / unit, d4 = std::abs(arm.d4) / unit;
-  const double disc = (r - d4) * (r + d4);
-  if (!(disc >= -kCosEps * std::max(1.0, r * r))) return out;
-  const double h = std::sqrt(std::max(0.0, disc)) * unit;
-  // disc carries the rounding of r^2 (~1e-16): h, its square root, is then ~1e-8 where the two
-  // shoulders coincide, and the two q1 differ by ~h / d4.
-  const bool shoulder_singular = disc <= 1e-13 * std::max(1.0, r * r);
-  if (shoulder_singular) out.singular = true;
-  const int sides = shoulder_singular ? 1 : 2;
-  const double a2 = std::abs(arm.a2), a3 = std::abs(arm.a3);
-  // In stages, each stage's arc tangents, sines and cosines in one vectorised pass (fast_math.hpp):
-  // q1 of each shoulder; R01 from it; q234 of each wrist; then q5, q6 and the planar 2R of each
-  // (shoulder, wrist); the candidates within the limits are checked by chain.fk together.
-  double ya[3] = {p.y(), arm.d4, arm.d4}, xa[3] = {p.x(), -h, h}, ta[3];  // shoulder left: x1 = -h
-  vmath::atan2(ya, xa, ta, 1 + sides);
-  const double phi = r > 0 ? ta[0] : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
+namespace {
+
+// One ik_ur call's stages, on the stack (no allocation, nothing initialised that a stage does not
+// write): each stage reads the previous ones' fields and computes its arc tangents, sines and
+// cosines in one vectorised pass (fast_math.hpp). Td, the frame A1 ... A5 Rz(q6) of the bare DH arm
+// (its origin is the wrist centre), is the caller's.
+struct URStages {
+  // The arm's size (for the FK check), its unit (the longest of a2, a3, d4, d5), |a2| and |a3|.
+  double size, unit, a2, a3;
+  // Shoulders (side 0 left, 1 right; one when singular): q1 and its sine and cosine.
+  bool shoulder_singular;
+  int sides;
   double q1[2], s1[2], c1[2];
-  for (int side = 0; side < sides; ++side) q1[side] = phi + ta[1 + side];
-  vmath::sincos(q1, s1, c1, sides);
+  // Per side: R16 = Rz(q234) Ry(-q5) Rz(q6) (M), the wrist centre in frame 1 (P), the wrist's
+  // singularity and q234's arc tangent.
   Eigen::Matrix3d M[2];
   Eigen::Vector3d P[2];
   bool wrist_singular[2];
-  double yw[2], xw[2], tw[2];
-  for (int side = 0; side < sides; ++side) {
-    // Rz(q1) Rx(pi/2), with cos(pi/2) as the chain's DH row has it (6e-17, not 0): near the wrist
-    // singularity M(0, 2) and M(1, 2) are tiny and q234 follows their rounding.
-    Eigen::Matrix3d Rz1;
-    Rz1 << c1[side], -s1[side], 0, s1[side], c1[side], 0, 0, 0, 1;
-    const Eigen::Matrix3d R01 = Rz1 * rot_x(kPi / 2);
-    M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
-    P[side].noalias() = R01.transpose() * (p - Eigen::Vector3d(0, 0, arm.d1));
-    wrist_singular[side] = M[side](0, 2) * M[side](0, 2) + M[side](1, 2) * M[side](1, 2) < 1e-20;  // |.| < 1e-10
-    if (wrist_singular[side]) out.singular = true;
-    yw[side] = -M[side](1, 2), xw[side] = -M[side](0, 2);
-  }
-  vmath::atan2(yw, xw, tw, sides);
-  // The (shoulder, wrist) pairs: q234 of each.
-  int pairs = 0, pair_side[4], pair_flip[4];
+  double tw[2];
+  // The (shoulder, wrist) pairs: q234 of each, its sine and cosine.
+  int pairs, pair_side[4], pair_flip[4];
   double q234[4], s234[4], c234[4];
-  for (int side = 0; side < sides; ++side)
-    for (int flip = 0; flip < (wrist_singular[side] ? 1 : 2); ++flip) {
-      double t;
-      if (!wrist_singular[side]) {
-        t = tw[side] + (flip ? kPi : 0.0);
-      } else {
-        // Axes 2, 3, 4, 6 parallel: q234 is free. The wrist's origin 4 is then on the circle
-        // P + d5 (-sin t, cos t); the representative puts it where |W|^2 = a2^2 + a3^2 (the
-        // elbow at a right angle) or as near as the circle comes.
-        const Eigen::Vector3d& Ps = P[side];
-        const double rho = std::hypot(Ps.x(), Ps.y());
-        const double beta = std::atan2(Ps.x(), Ps.y());
-        const double den = 2.0 * arm.d5 * rho;
-        t = 0.0;
-        if (std::abs(den) > 1e-12 * unit * unit) {
-          const double cv = (a2 * a2 + a3 * a3 - rho * rho - arm.d5 * arm.d5) / den;
-          t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
-        }
-      }
-      pair_side[pairs] = side, pair_flip[pairs] = flip, q234[pairs++] = t;
-    }
-  vmath::sincos(q234, s234, c234, pairs);
-  // Per pair: atan2 arguments of q5, q6 (2) and of the planar 2R's solutions (up to 2 x 2).
+  // Per pair: atan2 arguments and results of q5, q6 (2) and of the planar 2R's solutions (up to
+  // 2 x 2), origin 4 in frame 1 (X, Y), the 2R's solution count and elbow singularity.
   double y[24], x[24], t[24], X[4], Y[4];
   int nk[4];
   const char* lab[4][2];
   bool elbow_singular[4];
-  for (int j = 0; j < pairs; ++j) {
-    const Eigen::Matrix3d& m = M[pair_side[j]];
-    double c = c234[j], s = s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
-    // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
-    const Eigen::Vector3d& Ps = P[pair_side[j]];
-    X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
-    double yx[2][2][2];
-    const double w2 = m(0, 2) * m(0, 2) + m(1, 2) * m(1, 2);  // sin^2 q5
-    if (!wrist_singular[pair_side[j]] && w2 < 1e-6 && onto_reach(Ps, arm.d5, a2, a3, std::sqrt(w2), q234[j])) {
-      c = std::cos(q234[j]), s = std::sin(q234[j]);
-      X[j] = Ps.x() - arm.d5 * s, Y[j] = Ps.y() + arm.d5 * c;
-    }
-    nk[j] = planar_2r_args(a2, a3, X[j], Y[j], yx, lab[j], elbow_singular[j]);
-    if (elbow_singular[j]) out.singular = true;
-    y[6 * j] = -(c * m(0, 2) + s * m(1, 2)), x[6 * j] = m(2, 2);
-    y[6 * j + 1] = c * m(1, 0) - s * m(0, 0), x[6 * j + 1] = c * m(1, 1) - s * m(0, 1);
-    for (int k = 0; k < nk[j]; ++k)
-      for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
-    for (int i = 2 + 2 * nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
-  }
-  vmath::atan2(y, x, t, 6 * pairs);
+  // The candidates: joints, posture label, slot of rk.closed.ur_batch's 8.
   double cand[8][6];
   const char* posture[8];
-  int cand_slot[8], m = 0;
+  int cand_slot[8], m;
+};
+
+// q1 of each shoulder. Axis 1: z1 = (s1, -c1, 0) and z1 . p = d4 (joints 2 to 5 move the wrist
+// centre in a plane d4 from the one through axis 1): r sin(q1 - phi) = d4, two solutions
+// x1 . p = +-h. False when the wrist centre is out of reach of both.
+inline __attribute__((always_inline)) bool ur_shoulders(const URArm& arm, const Rigid& Td, URStages& s,
+                                                        ClosedFormSolutions& out) {
+  const Eigen::Vector3d& p = Td.p;
+  s.size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) + std::abs(arm.d5) +
+           arm.base.p.norm() + arm.tool.p.norm();
+  const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
+  s.unit = unit;
+  // |p_xy| without std::hypot (glibc's took ~5 % of a call): p is a point within the arm's reach,
+  // its squares far from overflow and underflow.
+  const double r = std::sqrt(p.x() * p.x() + p.y() * p.y()) / unit, d4 = std::abs(arm.d4) / unit;
+  const double disc = (r - d4) * (r + d4);
+  if (!(disc >= -kCosEps * std::max(1.0, r * r))) return false;
+  const double h = std::sqrt(std::max(0.0, disc)) * unit;
+  // disc carries the rounding of r^2 (~1e-16): h, its square root, is then ~1e-8 where the two
+  // shoulders coincide, and the two q1 differ by ~h / d4.
+  s.shoulder_singular = disc <= 1e-13 * std::max(1.0, r * r);
+  if (s.shoulder_singular) out.singular = true;
+  s.sides = s.shoulder_singular ? 1 : 2;
+  s.a2 = std::abs(arm.a2), s.a3 = std::abs(arm.a3);
+  double ya[3] = {p.y(), arm.d4, arm.d4}, xa[3] = {p.x(), -h, h}, ta[3];  // shoulder left: x1 = -h
+  vmath::atan2(ya, xa, ta, 1 + s.sides);
+  const double phi = r > 0 ? ta[0] : 0.0;  // r = 0 (d4 = 0): q1 free, 0 chosen
+  for (int side = 0; side < s.sides; ++side) s.q1[side] = phi + ta[1 + side];
+  vmath::sincos(s.q1, s.s1, s.c1, s.sides);
+  return true;
+}
+
+// Per shoulder: the wrist's frame M = R16 and centre P seen from frame 1, and q234's arc tangent.
+inline __attribute__((always_inline)) void ur_wrists(const URArm& arm, const Rigid& Td, URStages& s,
+                                                     ClosedFormSolutions& out) {
+  double yw[2], xw[2];
+  for (int side = 0; side < s.sides; ++side) {
+    // Rz(q1) Rx(pi/2), with cos(pi/2) as the chain's DH row has it (6e-17, not 0): near the wrist
+    // singularity M(0, 2) and M(1, 2) are tiny and q234 follows their rounding.
+    Eigen::Matrix3d Rz1;
+    Rz1 << s.c1[side], -s.s1[side], 0, s.s1[side], s.c1[side], 0, 0, 0, 1;
+    const Eigen::Matrix3d R01 = Rz1 * rot_x(kPi / 2);
+    s.M[side].noalias() = R01.transpose() * Td.R;  // R16 = Rz(q234) Ry(-q5) Rz(q6)
+    s.P[side].noalias() = R01.transpose() * (Td.p - Eigen::Vector3d(0, 0, arm.d1));
+    const Eigen::Matrix3d& M = s.M[side];
+    s.wrist_singular[side] = M(0, 2) * M(0, 2) + M(1, 2) * M(1, 2) < 1e-20;  // |.| < 1e-10
+    if (s.wrist_singular[side]) out.singular = true;
+    yw[side] = -M(1, 2), xw[side] = -M(0, 2);
+  }
+  vmath::atan2(yw, xw, s.tw, s.sides);
+}
+
+// q234 of each (shoulder, wrist) pair: the wrist's two flips, or one representative when the wrist
+// is singular.
+inline __attribute__((always_inline)) void ur_pairs(const URArm& arm, URStages& s) {
+  int pairs = 0;  // a local, as m in ur_candidates
+  for (int side = 0; side < s.sides; ++side)
+    for (int flip = 0; flip < (s.wrist_singular[side] ? 1 : 2); ++flip) {
+      double t;
+      if (!s.wrist_singular[side]) {
+        t = s.tw[side] + (flip ? kPi : 0.0);
+      } else {
+        // Axes 2, 3, 4, 6 parallel: q234 is free. The wrist's origin 4 is then on the circle
+        // P + d5 (-sin t, cos t); the representative puts it where |W|^2 = a2^2 + a3^2 (the
+        // elbow at a right angle) or as near as the circle comes.
+        const Eigen::Vector3d& Ps = s.P[side];
+        const double rho = std::hypot(Ps.x(), Ps.y());
+        const double beta = std::atan2(Ps.x(), Ps.y());
+        const double den = 2.0 * arm.d5 * rho;
+        t = 0.0;
+        if (std::abs(den) > 1e-12 * s.unit * s.unit) {
+          const double cv = (s.a2 * s.a2 + s.a3 * s.a3 - rho * rho - arm.d5 * arm.d5) / den;
+          t = std::acos(std::clamp(cv, -1.0, 1.0)) - beta;
+        }
+      }
+      s.pair_side[pairs] = side, s.pair_flip[pairs] = flip, s.q234[pairs++] = t;
+    }
+  s.pairs = pairs;
+  vmath::sincos(s.q234, s.s234, s.c234, pairs);
+}
+
+// Per pair: the atan2 arguments of q5, q6 and of the planar 2R (links |a2|, |a3|) reaching origin 4,
+// then every arc tangent at once.
+inline __attribute__((always_inline)) void ur_angles(const URArm& arm, URStages& s, ClosedFormSolutions& out) {
+  double* y = s.y;
+  double* x = s.x;
+  const int pairs = s.pairs;
   for (int j = 0; j < pairs; ++j) {
-    const int side = pair_side[j], flip = pair_flip[j];
+    const Eigen::Matrix3d& m = s.M[s.pair_side[j]];
+    double c = s.c234[j], sn = s.s234[j];  // N = Rz(-q234) M: rows c M0 + s M1, c M1 - s M0, M2
+    // Origin 4 in frame 1: (a2 c2 + a3 c23, a2 s2 + a3 s23), a planar 2R (links |a2|, |a3|).
+    const Eigen::Vector3d& Ps = s.P[s.pair_side[j]];
+    s.X[j] = Ps.x() - arm.d5 * sn, s.Y[j] = Ps.y() + arm.d5 * c;
+    double yx[2][2][2];
+    const double w2 = m(0, 2) * m(0, 2) + m(1, 2) * m(1, 2);  // sin^2 q5
+    if (!s.wrist_singular[s.pair_side[j]] && w2 < 1e-6 && onto_reach(Ps, arm.d5, s.a2, s.a3, std::sqrt(w2), s.q234[j])) {
+      c = std::cos(s.q234[j]), sn = std::sin(s.q234[j]);
+      s.X[j] = Ps.x() - arm.d5 * sn, s.Y[j] = Ps.y() + arm.d5 * c;
+    }
+    s.nk[j] = planar_2r_args(s.a2, s.a3, s.X[j], s.Y[j], yx, s.lab[j], s.elbow_singular[j]);
+    if (s.elbow_singular[j]) out.singular = true;
+    y[6 * j] = -(c * m(0, 2) + sn * m(1, 2)), x[6 * j] = m(2, 2);
+    y[6 * j + 1] = c * m(1, 0) - sn * m(0, 0), x[6 * j + 1] = c * m(1, 1) - sn * m(0, 1);
+    for (int k = 0; k < s.nk[j]; ++k)
+      for (int i = 0; i < 2; ++i) y[6 * j + 2 + 2 * k + i] = yx[k][i][0], x[6 * j + 2 + 2 * k + i] = yx[k][i][1];
+    for (int i = 2 + 2 * s.nk[j]; i < 6; ++i) y[6 * j + i] = 0.0, x[6 * j + i] = 1.0;  // unused
+  }
+  vmath::atan2(y, x, s.t, 6 * pairs);
+}
+
+// The candidates: the DH angles of each pair's 2R solutions as the chain's joints, with their
+// posture labels and slots.
+inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URStages& s) {
+  const double* t = s.t;
+  int m = 0;  // a local: the stores below may not reload it
+  for (int j = 0; j < s.pairs; ++j) {
+    const int side = s.pair_side[j], flip = s.pair_flip[j];
     const double q5 = t[6 * j], q6 = t[6 * j + 1];
-    for (int k = 0; k < nk[j]; ++k) {
+    for (int k = 0; k < s.nk[j]; ++k) {
       const double th1 = t[6 * j + 2 + 2 * k], th2 = t[6 * j + 3 + 2 * k];
       // Negative a2, a3 (the UR arms): a c = |a| cos(angle + pi).
       const double q2 = th1 - (arm.a2 < 0 ? kPi : 0.0);
       const double q3 = th2 + ((arm.a2 < 0 ? kPi : 0.0) - (arm.a3 < 0 ? kPi : 0.0));
       int elbow;
-      if (nk[j] == 1) {
-        elbow = x[6 * j + 3] > 0 ? 2 : 3;  // cos theta2 > 0 (c2 of planar_2r_args): straight, else folded
+      if (s.nk[j] == 1) {
+        elbow = s.x[6 * j + 3] > 0 ? 2 : 3;  // cos theta2 > 0 (c2 of planar_2r_args): straight, else folded
       } else {
         // The elbow's side of the line to origin 4: X a2 sin(th1) - Y a2 cos(th1), whose sign is
         // that of X y1 - Y x1 for th1 = atan2(y1, x1).
-        const double cross = X[j] * y[6 * j + 2 + 2 * k] - Y[j] * x[6 * j + 2 + 2 * k];
-        elbow = ((cross > 0) == (X[j] >= 0)) ? 0 : 1;
+        const double cross = s.X[j] * s.y[6 * j + 2 + 2 * k] - s.Y[j] * s.x[6 * j + 2 + 2 * k];
+        elbow = ((cross > 0) == (s.X[j] >= 0)) ? 0 : 1;
       }
-      const double dh[6] = {q1[side], q2, q3, q234[j] - q2 - q3, q5, q6};
-      for (int i = 0; i < 6; ++i) cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-      posture[m] = ur_label(shoulder_singular ? 2 : side, elbow, wrist_singular[side] ? 2 : flip);
-      cand_slot[m++] = (shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (wrist_singular[side] ? 0 : flip);
+      const double dh[6] = {s.q1[side], q2, q3, s.q234[j] - q2 - q3, q5, q6};
+      for (int i = 0; i < 6; ++i) s.cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
+      s.posture[m] = ur_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
+      s.cand_slot[m++] = (s.shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (s.wrist_singular[side] ? 0 : flip);
     }
   }
-  // The candidates brought within the limits where they fit (marked), checked by the chain's forward
-  // model together.
+  s.m = m;
+}
+
+// The candidates brought within the limits where they fit (marked), checked by the chain's forward
+// model together: those that reach T are the answer.
+inline __attribute__((always_inline)) void ur_checked(const Chain& chain, const Rigid& T, const JointLimits& limits,
+                                                      URStages& s, int* slot, ClosedFormSolutions& out) {
   bool fits[8];
-  fit_limits_rows(cand[0], m, 6, limits, fits);
+  fit_limits_rows(s.cand[0], s.m, 6, limits, fits);
   Rigid F[8];
-  chain.fk_few(cand[0], m, F);
-  for (int k = 0; k < m; ++k) {
-    if (!((F[k].p - T.p).norm() <= kTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
-    if (slot) slot[out.count()] = cand_slot[k];
-    out.add(cand[k], posture[k], fits[k]);
+  chain.fk_few(s.cand[0], s.m, F);
+  for (int k = 0; k < s.m; ++k) {
+    if (!((F[k].p - T.p).norm() <= kTolP * s.size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    if (slot) slot[out.count()] = s.cand_slot[k];
+    out.add(s.cand[k], s.posture[k], fits[k]);
   }
+}
+
+}  // namespace
+
+ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
+                          int* slot) {
+  ClosedFormSolutions out;
+  out.dof = 6;
+  const Rigid Td = arm.base.inverse() * T * arm.tool.inverse();
+  URStages s;
+  if (!ur_shoulders(arm, Td, s, out)) return out;
+  ur_wrists(arm, Td, s, out);
+  ur_pairs(arm, s);
+  ur_angles(arm, s, out);
+  ur_candidates(arm, s);
+  ur_checked(chain, T, limits, s, slot, out);
   return out;
 }
 

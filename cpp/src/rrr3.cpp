@@ -6,6 +6,7 @@
 
 #include "fast_math.hpp"
 #include "rrr3_leg.hpp"
+#include "rrr3_pose_eval.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -240,17 +241,18 @@ double RRR3::distance(const Eigen::Matrix3d& A) const {
 RRR3Singularity RRR3::singularity(const Pose& pose, const Mode& mode, double tol) const {
   if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
   Eigen::Matrix3d A, B;
-  jacobians(pose, mode, A, B);
+  const PoseMeasures m = measures_at(*this, pose, ik_or_throw(pose, mode), A, B);
   RRR3Singularity s;
-  s.det_a = A.determinant();
-  s.det_b = B.determinant();
-  s.det_a_norm = s.det_a / re_;
-  s.det_b_norm = s.det_b / (l1_ * l1_ * l1_);
+  s.det_a = m.det_a;
+  s.det_b = m.det_b;
+  s.det_a_norm = m.det_a_norm;
+  s.det_b_norm = m.det_b_norm;
   s.distance = distance(A);
-  if (std::abs(s.det_b_norm) < tol) {
+  const SingularKind kind = singular_kind(s.det_a_norm, s.det_b_norm, tol);
+  if (kind == SingularKind::Serial) {
     s.kind = "serial";
     B.diagonal().cwiseAbs().minCoeff(&s.leg);
-  } else if (std::abs(s.det_a_norm) < tol) {
+  } else if (kind == SingularKind::Parallel) {
     s.kind = "parallel";
     // Lines A_iB_i parallel: the direction rows (cos g_i, sin g_i) are pairwise collinear.
     double worst = 0;

@@ -4,6 +4,8 @@
 
 #include "robokin/parallel.hpp"
 
+#include "rrr3_pose_eval.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -13,7 +15,6 @@
 namespace robokin {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kForbidden = 1e12;  // cost of an unreachable, serial or wrong-sign orientation
 constexpr double kShortfall = 1e8;   // weight of (margin - distance)^2 below the margin: nearly a constraint
 constexpr double kMaxHalf = 1e5;     // orientations on each side of the nominal one
@@ -21,26 +22,8 @@ constexpr double kMaxBytes = 1024.0 * 1024 * 1024;  // memory of the grid (cells
 constexpr double kMaxWork = 1e9;     // count * m * (2 w + 1) transitions of the dynamic programme
 constexpr double kStepSlack = 1e-12;  // rounding allowed on an orientation step's bound
 
-struct Cell {
-  bool reachable = false;
-  double det_a = kNaN, det_b = kNaN, distance = kNaN;
-  Eigen::Vector3d alpha = Eigen::Vector3d::Constant(kNaN);
-};
-
-Cell evaluate(const RRR3& robot, const Pose& pose, const Mode& mode) {
-  Cell c;
-  if (robot.ik(pose, mode, c.alpha.data()) >= 0) {
-    c.alpha.setConstant(kNaN);
-    return c;
-  }
-  Eigen::Matrix3d A, B;
-  robot.jacobians_at(pose, robot.elbows(c.alpha), A, B);
-  c.reachable = true;
-  c.det_a = A.determinant() / robot.platform_radius();
-  c.det_b = B.determinant() / std::pow(robot.l1(), 3);
-  c.distance = robot.distance(A);
-  return c;
-}
+// The model at one (point, orientation): the shared evaluation (rrr3_pose_eval.hpp).
+using Cell = PoseEval;
 
 int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
@@ -91,7 +74,7 @@ std::vector<Cell> evaluate_grid(const RRR3& robot, const double* points, long co
   std::vector<Cell> cells(count * g.m);
   parallel_for(count * g.m, 2048, [&](long begin, long end) {
     for (long c = begin; c < end; ++c)
-      cells[c] = evaluate(robot, Pose(points[2 * (c / g.m)], points[2 * (c / g.m) + 1], g.at(c % g.m)), mode);
+      cells[c] = evaluate_pose(robot, Pose(points[2 * (c / g.m)], points[2 * (c / g.m) + 1], g.at(c % g.m)), mode);
   }, progress);
   return cells;
 }
@@ -204,7 +187,7 @@ void evaluate_along(const RRR3& robot, const RRR3PlanOptions& o, RRR3Plan& plan)
   plan.distance.resize(count);
   plan.feasible = count > 0;
   for (long k = 0; k < count; ++k) {
-    const Cell c = evaluate(robot, plan.poses.row(k).transpose(), o.mode);
+    const Cell c = evaluate_pose(robot, plan.poses.row(k).transpose(), o.mode);
     plan.alpha.row(k) = c.alpha.transpose();
     plan.det_a_norm(k) = c.det_a;
     plan.det_b_norm(k) = c.det_b;

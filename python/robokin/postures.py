@@ -6,9 +6,9 @@ At every waypoint, the set of inverse solutions (the closed forms of :mod:`robok
 arm has one, otherwise numerical IK from many starts with duplicates merged); between consecutive
 waypoints, a step is *continuous* when no joint moves more than ``qdot_max * dt`` and a
 *reconfiguration* otherwise (the arm must leave the path to change posture). A dynamic programme
-over the layered graph of solutions picks one solution per waypoint minimising first the number of
-reconfigurations, then the joint motion (the sum over steps of the Euclidean norm of the joint
-change). Greedy tracking (the solution nearest the previous one, :func:`robokin.closed.puma560_path`)
+over the layered graph of solutions (in the core: ``_core.plan_postures``) picks one solution per
+waypoint minimising first the number of reconfigurations, then the joint motion (the sum over steps
+of the Euclidean norm of the joint change); among equal plans, the lowest-numbered solutions. Greedy tracking (the solution nearest the previous one, :func:`robokin.closed.puma560_path`)
 is one path of that graph: the plan never has more reconfigurations.
 """
 
@@ -25,6 +25,7 @@ from ._checks import chain as check_chain
 from ._checks import real_array, whole
 from ._checks import seed as check_seed
 from ._core import Chain
+from ._options import with_options
 
 __all__ = ["TrackPosturesResult", "track_postures", "count_reconfigurations"]
 
@@ -199,6 +200,7 @@ def _ik_options(method: str, ik_options: dict) -> dict:
     return options
 
 
+@with_options(_core.IKOptions, exclude=("method", "task"))
 def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str = "closed", q0=None,
                    starts: int = 32, seed: int = 0, **ik_options) -> TrackPosturesResult:
     """Follows the tool frames ``poses`` with the fewest reconfigurations, then the least joint motion.
@@ -216,9 +218,8 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
             ``"halley"``: IKOptions' ``method``).
         q0: Optional (n,) joints before the path: the step to the first waypoint counts too.
             Without it the plan starts in whichever posture is best.
-        starts, seed: For the numerical IK.
-        **ik_options: For the numerical IK: the other fields of :class:`robokin.IKOptions`
-            (``task``: None or ``"pose"``, the waypoints being tool frames).
+        starts, seed: For the numerical IK, whose options follow (its method is ``method``, its task
+            ``"pose"``: the waypoints are tool frames); none apply to ``method="closed"``.
 
     Returns:
         TrackPosturesResult (``q``, ``success``, ``reconfigurations``, ``motion``, ``solutions``,
@@ -226,6 +227,36 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         keeps them continuous, shifted by whole turns within the limits).
     """
     check_chain(chain)
+    P, step_dt, vmax, options, start = _track_arguments(chain, poses, dt, qdot_max, method, q0, starts, seed,
+                                                         ik_options)
+    cont = _continuous(chain)
+    labels = None
+    if method == "closed":
+        got = _closed_sets(chain, P)
+        if got is None:
+            raise ValueError("method: 'closed' needs a UR-layout arm or the PUMA 560; use method='numerical'")
+        sets, labels = got
+    else:
+        sets = _numerical_sets(chain, P, int(starts), int(seed), cont, options)
+    K = len(sets)
+    success = np.array([len(s) > 0 for s in sets])
+    if not np.any(success):
+        q = np.zeros((K, chain.dof))
+        q[:] = start if start is not None else 0.0
+        return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
+                                   [None] * K if labels is not None else None)
+    pick, _, _ = _core.plan_postures(sets, vmax, step_dt, cont, start)
+    q = _joint_path(chain, sets, pick, start, cont)
+    recon = _reconfigurations(q, success, start, step_dt, vmax, cont, chain)
+    steps = q if start is None else np.vstack([start, q])
+    motion = float(np.sum(np.linalg.norm(_step(steps[:-1], steps[1:], cont), axis=1)))
+    chosen = [labels[k][pick[k]] if pick[k] >= 0 else None for k in range(K)] if labels is not None else None
+    return TrackPosturesResult(q, success, recon, motion, sets, chosen)
+
+
+def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed, ik_options):
+    """track_postures' arguments checked: the (K, 4, 4) poses, dt, the (n,) speed limits, the
+    numerical IK's options (None for the closed form) and q0 (or None)."""
     n = chain.dof
     P = real_array(poses, "poses")
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
@@ -242,58 +273,19 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     whole(starts, "starts", 1, 10_000, "IK starts per waypoint")
     check_seed(seed)
     start = None if q0 is None else _vector(q0, n, "q0")
-    cont = _continuous(chain)
-    labels = None
-    if method == "closed":
-        got = _closed_sets(chain, P)
-        if got is None:
-            raise ValueError("method: 'closed' needs a UR-layout arm or the PUMA 560; use method='numerical'")
-        sets, labels = got
-    else:
-        sets = _numerical_sets(chain, P, int(starts), int(seed), cont, options)
-    K = len(sets)
-    success = np.array([len(s) > 0 for s in sets])
-    layers = np.nonzero(success)[0]
-    q = np.zeros((K, n))
-    chosen: list = [None] * K
-    if len(layers) == 0:
-        q[:] = start if start is not None else 0.0
-        return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
-                                   [None] * K if labels is not None else None)
+    return P, step_dt, vmax, options, start
 
-    def edge(a, b, steps):
-        D = _step(a[:, None, :], b[None, :, :], cont)
-        jump = np.any(np.abs(D) > vmax * step_dt * steps * (1 + 1e-9), axis=2)
-        return jump.astype(np.int64), np.linalg.norm(D, axis=2)
 
-    first = layers[0]
-    if start is not None:
-        j, m = edge(start[None, :], sets[first], first + 1)
-        cost_r, cost_m = j[0], m[0]
-    else:
-        cost_r, cost_m = np.zeros(len(sets[first]), np.int64), np.zeros(len(sets[first]))
-    back = {}
-    prev = first
-    for k in layers[1:]:
-        j, m = edge(sets[prev], sets[k], k - prev)
-        R = cost_r[:, None] + j
-        M = cost_m[:, None] + m
-        rmin = R.min(axis=0)
-        best = np.argmin(np.where(R == rmin[None, :], M, np.inf), axis=0)
-        cols = np.arange(R.shape[1])
-        cost_r, cost_m = R[best, cols], M[best, cols]
-        back[k] = best
-        prev = k
-    # The best end, then back along the choices.
-    end = int(np.lexsort((cost_m, cost_r))[0])
-    pick = {prev: end}
-    for a, b in zip(layers[::-1][:-1], layers[::-1][1:]):
-        pick[b] = int(back[a][pick[a]])
-    # Joint path: continuous joints unwrapped along the path, by whole turns within the limits.
+def _joint_path(chain: Chain, sets, pick, start, cont) -> np.ndarray:
+    """(K, n) joints of the picked rows, continuous joints unwrapped along the path by whole turns
+    within the limits; a waypoint without solution repeats the previous joints (the next
+    solution's, or q0, for leading ones)."""
+    K, n = len(sets), chain.dof
     lo, hi = chain.limits
+    q = np.zeros((K, n))
     last = start
     for k in range(K):
-        if k in pick:
+        if pick[k] >= 0:
             v = sets[k][pick[k]].copy()
             if last is not None:
                 turns = np.round((last - v) / (2 * math.pi))
@@ -302,27 +294,30 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
                 v = np.where(ok, shifted, v)
             q[k] = v
             last = v
-            chosen[k] = labels[k][pick[k]] if labels is not None else None
         elif last is not None:
             q[k] = last
+    first = int(np.argmax(pick >= 0))
     q[:first] = q[first] if start is None else start
+    return q
+
+
+def _reconfigurations(q, success, start, step_dt, vmax, cont, chain: Chain) -> np.ndarray:
+    """The reconfigurations of the joint path q; a failed waypoint repeats the joints, so the step
+    over a gap is judged over its duration."""
     recon = count_reconfigurations(q, step_dt, vmax, q0=start, chain=chain)
-    # A failed waypoint repeats the joints: the step over the gap is judged over its duration.
-    if not np.all(success):
-        keep = []
-        for k in recon:
-            a = k - 1
-            while a >= 0 and not success[a]:
-                a -= 1
-            if not success[k]:
-                continue
-            base = (start if a < 0 else q[a]) if (a >= 0 or start is not None) else None
-            if base is None:
-                continue
-            d = _step(base, q[k], cont)
-            if np.any(np.abs(d) > vmax * step_dt * (k - a) * (1 + 1e-9)):
-                keep.append(k)
-        recon = np.array(keep, dtype=np.intp)
-    steps = q if start is None else np.vstack([start, q])
-    motion = float(np.sum(np.linalg.norm(_step(steps[:-1], steps[1:], cont), axis=1)))
-    return TrackPosturesResult(q, success, recon, motion, sets, chosen if labels is not None else None)
+    if np.all(success):
+        return recon
+    keep = []
+    for k in recon:
+        a = k - 1
+        while a >= 0 and not success[a]:
+            a -= 1
+        if not success[k]:
+            continue
+        base = (start if a < 0 else q[a]) if (a >= 0 or start is not None) else None
+        if base is None:
+            continue
+        d = _step(base, q[k], cont)
+        if np.any(np.abs(d) > vmax * step_dt * (k - a) * (1 + 1e-9)):
+            keep.append(k)
+    return np.array(keep, dtype=np.intp)

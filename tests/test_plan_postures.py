@@ -1,0 +1,144 @@
+"""_core.plan_postures: track_postures' dynamic programme over the layers of inverse solutions.
+
+Truth: a small reference programme written here with numpy, on random layers. Its rules are the
+core's, stated once: a step from row a of waypoint k to row b of waypoint l (the next waypoint with
+solutions; q0 is waypoint -1) is a reconfiguration when some joint i moves more than
+qdot_max[i] * dt * (l - k) * (1 + 1e-9), continuous joints the short way round
+(remainder(d + pi, 2 pi) - pi); its motion is the square root of the squared changes summed over the
+joints in order. The plan minimises (reconfigurations, motion) lexicographically; ties go to the
+lowest row, for each row's predecessor and for the last waypoint's row. Layers of small whole
+numbers make exact ties common, so the tie rule is tested, not only the optimum.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from robokin import _core
+
+
+def reference(sets, vmax, dt, cont, q0=None):
+    """(pick, reconfigurations, motion) by the rules above, with numpy."""
+    n = len(vmax)
+    reached = [k for k, s in enumerate(sets) if len(s)]
+    pick = np.full(len(sets), -1)
+    if not reached:
+        return pick, 0, 0.0
+
+    def step(a, b, steps):
+        d = b[None, :, :] - a[:, None, :]
+        d = np.where(cont, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d)
+        jump = np.any(np.abs(d) > vmax * dt * steps * (1 + 1e-9), axis=2).astype(int)
+        sq = d * d
+        total = sq[..., 0]
+        for i in range(1, n):
+            total = total + sq[..., i]
+        return jump, np.sqrt(total)
+
+    first = reached[0]
+    if q0 is None:
+        costs = [(0, 0.0)] * len(sets[first])
+    else:
+        j, m = step(np.asarray(q0, float)[None, :], sets[first], first + 1)
+        costs = [(int(j[0, b]), float(m[0, b])) for b in range(len(sets[first]))]
+    back = {}
+    for prev, k in zip(reached[:-1], reached[1:]):
+        j, m = step(sets[prev], sets[k], k - prev)
+        new, back[k] = [], []
+        for b in range(len(sets[k])):
+            r, mm, a = min((costs[a][0] + int(j[a, b]), costs[a][1] + float(m[a, b]), a) for a in range(len(sets[prev])))
+            new.append((r, mm))
+            back[k].append(a)
+        costs = new
+    r, m, row = min((c[0], c[1], b) for b, c in enumerate(costs))
+    for k in reversed(reached):
+        pick[k] = row
+        if k != first:
+            row = back[k][row]
+    return pick, r, m
+
+
+def random_layers(rng, whole_numbers):
+    n = int(rng.integers(1, 4)) if whole_numbers else 6
+    K = int(rng.integers(1, 9))
+    sets = []
+    for _ in range(K):
+        m = int(rng.integers(0, 5))
+        if whole_numbers:
+            sets.append(rng.integers(-2, 3, (m, n)).astype(float))
+        else:
+            sets.append(rng.uniform(-4.0, 4.0, (m, n)))
+    vmax = rng.choice([0.5, 1.0, 2.0], n) if whole_numbers else rng.uniform(0.5, 20.0, n)
+    cont = rng.random(n) < 0.5
+    q0 = None if rng.random() < 0.5 else (rng.integers(-2, 3, n).astype(float) if whole_numbers else rng.uniform(-4, 4, n))
+    return sets, vmax, 1.0 if whole_numbers else float(rng.uniform(0.05, 0.5)), cont, q0
+
+
+@pytest.mark.parametrize("whole_numbers", [True, False])
+def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
+    ties = 0
+    for trial in range(300):
+        sets, vmax, dt, cont, q0 = random_layers(rng, whole_numbers)
+        pick, r, m = _core.plan_postures(sets, vmax, dt, cont, q0)
+        ref_pick, ref_r, ref_m = reference(sets, vmax, dt, cont, q0)
+        np.testing.assert_array_equal(pick, ref_pick, err_msg=str(trial))
+        assert (r, m) == (ref_r, ref_m), trial
+        ties += whole_numbers and sum(len(np.unique(s, axis=0)) < len(s) for s in sets)
+    assert not whole_numbers or ties > 50  # duplicate rows: exact ties in motion and reconfigurations
+
+
+def test_ties_go_to_the_lowest_row():
+    # Two identical rows everywhere: every choice ties; the lowest rows are taken.
+    same = np.array([[0.0, 1.0], [0.0, 1.0]])
+    pick, r, m = _core.plan_postures([same, same, same], [1.0, 1.0], 0.1, [False, False])
+    assert list(pick) == [0, 0, 0] and (r, m) == (0, 0.0)
+    # Equal motion both ways (1 to the left, 1 to the right): the lower row.
+    pick, _, m = _core.plan_postures([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
+    assert list(pick) == [0, 0] and m == 1.0
+    # Fewer reconfigurations beat less motion.
+    sets = [np.array([[0.0]]), np.array([[0.3], [0.2]]), np.array([[0.6], [10.0]])]
+    pick, r, _ = _core.plan_postures(sets, [0.35], 1.0, [False])
+    assert list(pick) == [0, 0, 0] and r == 0
+
+
+def test_gaps_q0_and_continuous_joints():
+    # An empty waypoint: the step over the gap has two intervals' allowance.
+    sets = [np.array([[0.0]]), np.zeros((0, 1)), np.array([[1.5], [-0.1]])]
+    pick, r, _ = _core.plan_postures(sets, [1.0], 1.0, [False])
+    assert list(pick) == [0, -1, 1] and r == 0
+    # q0 is waypoint -1: the first step counts.
+    pick, r, _ = _core.plan_postures([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
+    assert list(pick) == [1] and r == 0
+    # A continuous joint goes the short way round: 3 to -3 is a step of 2 pi - 6.
+    pick, r, m = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
+    assert r == 0 and m == pytest.approx(2 * math.pi - 6)
+    pick, r, _ = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
+    assert r == 1
+    # No solution anywhere, and no waypoint at all.
+    pick, r, m = _core.plan_postures([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
+    assert list(pick) == [-1, -1, -1] and (r, m) == (0, 0.0)
+    assert len(_core.plan_postures([], [1.0], 0.1, [False])[0]) == 0
+
+
+@pytest.mark.parametrize("args, error, name", [
+    (dict(sets=5), TypeError, "sets"),
+    (dict(sets="abc"), TypeError, "sets"),
+    (dict(sets=[np.zeros((1, 2)), np.zeros((1, 3))]), ValueError, r"sets\[1\]"),
+    (dict(sets=[np.full((1, 2), np.nan)]), ValueError, r"sets\[0\]"),
+    (dict(sets=[np.zeros(2)]), ValueError, r"sets\[0\]"),
+    (dict(sets=[["a", "b"]]), ValueError, r"sets\[0\]"),
+    (dict(qdot_max=[1.0, -1.0]), ValueError, "qdot_max"),
+    (dict(qdot_max=[1.0, np.inf]), ValueError, "qdot_max"),
+    (dict(qdot_max=[]), ValueError, "qdot_max"),
+    (dict(dt=0.0), ValueError, "dt"),
+    (dict(dt=np.nan), ValueError, "dt"),
+    (dict(continuous=[True]), ValueError, "continuous"),
+    (dict(q0=[0.0]), ValueError, "q0"),
+    (dict(q0=[0.0, np.nan]), ValueError, "q0"),
+])
+def test_bad_arguments_name_themselves(args, error, name):
+    call = dict(sets=[np.zeros((1, 2))], qdot_max=[1.0, 1.0], dt=0.1, continuous=[False, False], q0=None)
+    call.update(args)
+    with pytest.raises(error, match=name):
+        _core.plan_postures(**call)
