@@ -232,13 +232,24 @@ def test_limits():
         (np.zeros((2, 3, 1)), r"q: expected shape"),
         ([0.1, np.nan, 0.2], "q: contains NaN or inf"),
         ([0.1, np.inf, 0.2], "q: contains NaN or inf"),
-        ("abc", "q: expected an array of numbers"),
-        (None, "q: expected an array of numbers"),
-        (np.array([1 + 2j, 0, 0]), "q: expected real numbers"),
     ],
 )
 def test_fk_rejects_bad_q(q, match):
     with pytest.raises(ValueError, match=match):
+        rk.robots.rpr().fk(q)
+
+
+@pytest.mark.parametrize(
+    "q, match",
+    [
+        ("abc", "q: expected an array of numbers, got a string"),
+        (None, "q: expected an array of numbers, got None"),
+        (np.array([1 + 2j, 0, 0]), "q: expected real numbers, got a complex array"),
+        ([object(), 0, 0], "q: expected an array of numbers"),
+    ],
+)
+def test_fk_rejects_q_of_the_wrong_kind_with_a_type_error(q, match):
+    with pytest.raises(TypeError, match=match):
         rk.robots.rpr().fk(q)
 
 

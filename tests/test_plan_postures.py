@@ -127,7 +127,7 @@ def test_gaps_q0_and_continuous_joints():
     (dict(sets=[np.zeros((1, 2)), np.zeros((1, 3))]), ValueError, r"sets\[1\]"),
     (dict(sets=[np.full((1, 2), np.nan)]), ValueError, r"sets\[0\]"),
     (dict(sets=[np.zeros(2)]), ValueError, r"sets\[0\]"),
-    (dict(sets=[["a", "b"]]), ValueError, r"sets\[0\]"),
+    (dict(sets=[["a", "b"]]), TypeError, r"sets\[0\]"),
     (dict(qdot_max=[1.0, -1.0]), ValueError, "qdot_max"),
     (dict(qdot_max=[1.0, np.inf]), ValueError, "qdot_max"),
     (dict(qdot_max=[]), ValueError, "qdot_max"),

@@ -104,7 +104,7 @@ def test_loop_bad_input_names_the_argument(robot):
             (dict(sign=0), ValueError, "sign"), (dict(sign=2), ValueError, "sign"), (dict(sign=True), TypeError, "sign"),
             (dict(sign=1.0), TypeError, "sign"), (dict(nominals=[]), ValueError, "nominals"),
             (dict(nominals=[np.nan]), ValueError, "nominals"), (dict(nominals=[[0.0, 1.0]]), ValueError, "nominals"),
-            (dict(nominals="a"), ValueError, "nominals"), (dict(nominals=np.zeros(10001)), ValueError, "nominals"),
+            (dict(nominals="a"), TypeError, "nominals"), (dict(nominals=np.zeros(10001)), ValueError, "nominals"),
             (dict(phi=0.1), TypeError, "phi"), (dict(closed=False), TypeError, "closed"),
             (dict(span=4.0), ValueError, "span"), (dict(mode=(1, 0, 1)), ValueError, "mode"),
             (dict(bogus=1), TypeError, "bogus")]:

@@ -94,7 +94,11 @@ struct handle_type_name<robokin::bind::Typed<Tag>> {
 namespace robokin::bind {
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+// The bindings' two errors, as robokin's Python checks raise them: a value out of range or of the
+// wrong shape is a ValueError, a value of the wrong kind (None, a string, complex numbers, objects
+// numpy cannot read as numbers where numbers are expected) a TypeError; both name the argument.
 [[noreturn]] inline void fail(const std::string& message) { throw py::value_error(message); }
+[[noreturn]] inline void fail_kind(const std::string& message) { throw py::type_error(message); }
 
 inline std::string shape_of(py::ssize_t ndim, const py::ssize_t* shape) {
   std::string s = "(";
@@ -126,18 +130,18 @@ py::array_t<T, py::array::c_style | py::array::forcecast> aligned_array(py::hand
 
 // A C-contiguous, aligned float64 view of obj (no copy when it already is one).
 inline Array as_array(py::handle obj, const char* name) {
-  if (obj.is_none()) fail(std::string(name) + ": expected an array of numbers, got None");
+  if (obj.is_none()) fail_kind(std::string(name) + ": expected an array of numbers, got None");
   if (py::isinstance<py::str>(obj) || py::isinstance<py::bytes>(obj))
-    fail(std::string(name) + ": expected an array of numbers, got a string");
+    fail_kind(std::string(name) + ": expected an array of numbers, got a string");
   // Complex numbers would lose their imaginary part silently under a float64 cast, a list of
   // complex scalars as well as a complex array: what is not an array yet is made one of its own
   // dtype first (a null handle when numpy cannot: the cast below then says so).
   const py::object own = py::isinstance<py::array>(obj) ? py::reinterpret_borrow<py::object>(obj)
                                                          : py::object(py::array::ensure(obj));
   if (own && py::reinterpret_borrow<py::array>(own).dtype().kind() == 'c')
-    fail(std::string(name) + ": expected real numbers, got a complex array");
+    fail_kind(std::string(name) + ": expected real numbers, got a complex array");
   Array a = aligned_array<double>(own ? own : py::reinterpret_borrow<py::object>(obj));
-  if (!a) fail(std::string(name) + ": expected an array of numbers");
+  if (!a) fail_kind(std::string(name) + ": expected an array of numbers");
   return a;
 }
 
