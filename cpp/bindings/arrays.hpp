@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -185,19 +186,20 @@ inline Float64View view_of(const Array& a) {
   return v;
 }
 
-// A new C-contiguous float64 array, made by numpy's C API directly (pybind11's array_t
-// constructor builds shape and stride vectors and a dtype object first).
-inline py::array numpy_float64(int ndim, const py::ssize_t* shape) {
+// A new, uninitialised C-contiguous float64 array: every output the bindings fill comes from here.
+// Made by numpy's C API directly (pybind11's array_t constructor builds shape and stride vectors and
+// a dtype object first).
+inline py::array_t<double> new_array(int ndim, const py::ssize_t* shape) {
   using py::detail::npy_api;
   const npy_api& api = npy_api::get();
   PyObject* descr = api.PyArray_DescrFromType_(npy_api::NPY_DOUBLE_);  // the reference is stolen below
   PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, ndim, shape, nullptr, nullptr, 0, nullptr);
   if (!a) throw py::error_already_set();
-  return py::reinterpret_steal<py::array>(a);
+  return py::reinterpret_steal<py::array_t<double>>(a);
 }
-
-// A new, uninitialised C-contiguous float64 array: every output the bindings fill.
-inline py::array new_float64(int ndim, const py::ssize_t* shape) { return numpy_float64(ndim, shape); }
+inline py::array_t<double> new_array(std::initializer_list<py::ssize_t> shape) {
+  return new_array(static_cast<int>(shape.size()), shape.begin());
+}
 
 inline double* float64_data(const py::array& a) {
   return reinterpret_cast<double*>(py::detail::array_proxy(a.ptr())->data);
@@ -208,7 +210,7 @@ inline double* float64_data(const py::array& a) {
 // C-contiguous float64 ndarray of exactly that shape sharing no byte with the input [in, in + n).
 // A value of the wrong kind is a TypeError, a wrong shape or layout a ValueError, naming `out`.
 inline py::array output_array(py::handle out, int ndim, const py::ssize_t* shape, const double* in, py::ssize_t n) {
-  if (out.is_none()) return new_float64(ndim, shape);
+  if (out.is_none()) return new_array(ndim, shape);
   if (!py::isinstance<py::array>(out))
     throw py::type_error("out: expected a numpy array or None, got " +
                          py::str(py::type::handle_of(out).attr("__name__")).cast<std::string>());
@@ -287,20 +289,17 @@ inline void check_state(const py::tuple& t, size_t size, const char* what) {
     fail(std::string(what) + " state: not a state of this robokin (version 1, " + std::to_string(size) + " entries)");
 }
 
-// A new (d0, ..., dk) float64 array.
-inline py::array_t<double> new_array(std::vector<py::ssize_t> shape) { return py::array_t<double>(shape); }
-
 // Copies a column-major Eigen matrix into a new row-major numpy array.
 template <class M>
 py::array_t<double> to_numpy(const M& m) {
-  py::array_t<double> out({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
       out.mutable_data(), m.rows(), m.cols()) = m;
   return out;
 }
 
 inline py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
-  py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(v.size())});
   Eigen::Map<Eigen::VectorXd>(out.mutable_data(), v.size()) = v;
   return out;
 }

@@ -183,7 +183,7 @@ py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray 
 
 py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
-  py::array_t<double> out({static_cast<py::ssize_t>(f.size()), py::ssize_t{4}, py::ssize_t{4}});
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(f.size()), 4, 4});
   for (size_t i = 0; i < f.size(); ++i)
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * i) = f[i];
   require_finite_result(out.data(), out.size());

@@ -49,7 +49,7 @@ void bind_ik_3r(py::module_& m) {
           py::gil_scoped_release release;
           r = cuspidal_3r(arm, resolution);
         }
-        py::array_t<double> cusps({static_cast<py::ssize_t>(r.cusps.size()), py::ssize_t{4}});
+        py::array_t<double> cusps = new_array({static_cast<py::ssize_t>(r.cusps.size()), 4});
         double* c = cusps.mutable_data();
         for (size_t k = 0; k < r.cusps.size(); ++k) {
           c[4 * k] = r.cusps[k].q2, c[4 * k + 1] = r.cusps[k].q3, c[4 * k + 2] = r.cusps[k].rho, c[4 * k + 3] = r.cusps[k].z;

@@ -70,7 +70,7 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   const Vector q0 = as_vector(q0_obj, "q0", 6);
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
   const JointLimits lim = limits_arg(limits, 6);
-  py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{6}});
+  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 6});
   py::array_t<bool> ok(static_cast<py::ssize_t>(count)), reachable(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();
   bool* okd = ok.mutable_data();
@@ -155,7 +155,7 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
       fail("targets: frame " + std::to_string(k) + " is not a rigid transform");
     targets[k] = Rigid::from_matrix(m);
   }
-  py::array_t<double> q({static_cast<py::ssize_t>(count), py::ssize_t{8}, py::ssize_t{6}});
+  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
   py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
   py::array_t<bool> singular(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();
@@ -177,7 +177,7 @@ py::tuple ur_geometry(const Chain& chain) {
 }
 
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
-  py::array_t<double> out({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
+  py::array_t<double> out = new_array({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
   std::copy(s.row(0), s.row(s.count()), out.mutable_data());
   return out;
 }

@@ -35,7 +35,7 @@ py::object manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_o
     return py::float_(v);
   }
   const py::ssize_t shape[1] = {count};
-  py::array out = new_float64(1, shape);
+  py::array out = new_array(1, shape);
   double* dst = float64_data(out);
   PythonProgress progress("Chain.manipulability");
   {

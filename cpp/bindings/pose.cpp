@@ -63,7 +63,7 @@ long read_vectors(py::handle obj, const char* name, long width, Array& a) {
 // A new array of `count` values of shape `inner` (no leading axis when count < 0).
 py::array output(long count, std::vector<py::ssize_t> inner) {
   if (count >= 0) inner.insert(inner.begin(), count);
-  return new_float64(static_cast<int>(inner.size()), inner.data());
+  return new_array(static_cast<int>(inner.size()), inner.data());
 }
 
 void write_frame(const Rigid& T, double* m) {

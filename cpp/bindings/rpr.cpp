@@ -19,7 +19,7 @@ void bind_rpr(py::module_& m) {
         if (lower.hasNaN() || upper.hasNaN() || (lower.array() > upper.array()).any())
           fail("limits: lower must be <= upper, without NaN");
         const auto count = static_cast<py::ssize_t>(t1.size());
-        py::array_t<double> out({py::ssize_t{2}, count, py::ssize_t{3}});
+        py::array_t<double> out = new_array({2, count, 3});
         rpr_self_motion(p.head<2>(), t1.data(), count, l1, l3, lower, upper, out.mutable_data());
         return out;
       },

@@ -39,12 +39,12 @@ long joint_pair(ArrayLike q0_obj, ArrayLike q1_obj, Vector& q0, Vector& q1) {
 
 py::array new_samples(long count, long n) {
   const py::ssize_t shape[2] = {count, n};
-  return new_float64(2, shape);
+  return new_array(2, shape);
 }
 
 py::array vector_array(const std::vector<double>& values) {
   const py::ssize_t shape[1] = {static_cast<py::ssize_t>(values.size())};
-  py::array a = new_float64(1, shape);
+  py::array a = new_array(1, shape);
   std::copy(values.begin(), values.end(), float64_data(a));
   return a;
 }
@@ -71,7 +71,7 @@ py::tuple sample(const Law& law, py::array t_arr, const char* names) {
 
 py::array copy_of(const double* data, long count) {
   const py::ssize_t shape[1] = {count};
-  py::array a = new_float64(1, shape);
+  py::array a = new_array(1, shape);
   std::copy(data, data + count, float64_data(a));
   return a;
 }
@@ -149,7 +149,7 @@ py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_n
             xdd = law[3].cast<py::array>();
   const long count = static_cast<long>(t.size());
   const py::ssize_t pshape[3] = {count, 4, 4};
-  py::array poses = new_float64(3, pshape), vel = new_samples(count, 6), acc = new_samples(count, 6);
+  py::array poses = new_array(3, pshape), vel = new_samples(count, 6), acc = new_samples(count, 6);
   {
     const double *xp = float64_data(x), *xdp = float64_data(xd), *xddp = float64_data(xdd);
     double *pp = float64_data(poses), *vp = float64_data(vel), *ap = float64_data(acc);
