@@ -39,6 +39,8 @@ CORE_KWARGS = {
     "RRR3.connect": ["RRR3ConnectOptions"],
     "RRR3.plan_loop": ["RRR3LoopOptions"],  # and the plan's but phi and closed, as its doc says
     "IKSolver.__init__": ["IKOptions"],
+    "RRR3.ik_newton": ["RRR3NewtonOptions"],
+    "RRR3.fk": ["RRR3NewtonOptions"],
 }
 
 PUBLIC_MODULES = ["robokin"] + sorted(

@@ -221,7 +221,7 @@ def test_ik_batch_with_any_arguments(robot, poses, mode):
 @given(robot=robots, pose=arrays(shape=[(3,), (2,), (6,)]),
        guess=arrays(shape=[(6,), (2, 3), (3, 2), (3,), (7,)]), max_iter=int_options, tol=options)
 def test_ik_newton_with_any_arguments(robot, pose, guess, max_iter, tol):
-    res = run(lambda: robot.ik_newton(pose, guess, max_iter, tol), "pose", "guess", "max_iter", "tol")
+    res = run(lambda: robot.ik_newton(pose, guess, max_iter=max_iter, tol=tol), "pose", "guess", "max_iter", "tol")
     if res is None:
         return
     alpha, beta = res
@@ -236,7 +236,7 @@ def test_ik_newton_with_any_arguments(robot, pose, guess, max_iter, tol):
 @given(robot=robots, alpha=arrays(shape=[(3,), (2,), (4,), (1, 3)]), guess=arrays(shape=[(3,), (6,)]),
        max_iter=int_options, tol=options)
 def test_fk_with_any_arguments(robot, alpha, guess, max_iter, tol):
-    res = run(lambda: robot.fk(alpha, guess, max_iter, tol), "alpha", "guess", "max_iter", "tol")
+    res = run(lambda: robot.fk(alpha, guess, max_iter=max_iter, tol=tol), "alpha", "guess", "max_iter", "tol")
     if res is not None:
         assert res.pose.shape == (3,)
         assert_finite(res.pose, res.error)
@@ -601,7 +601,7 @@ def test_ik_newton_converged_iff_verified(data, robot, max_iter, tol, spread):
     else:
         guess = np.concatenate([alpha, beta]) + spread * np.array(data.draw(st.lists(st.floats(-1, 1), min_size=6,
                                                                                      max_size=6)))
-    res = robot.ik_newton(pose, guess, max_iter, tol)
+    res = robot.ik_newton(pose, guess, max_iter=max_iter, tol=tol)
     event(f"converged={res.converged}")
     assert_finite(res.alpha, res.beta, res.error)
     check_newton(robot, pose, res, tol)
@@ -624,7 +624,7 @@ def test_fk_converged_iff_verified(data, robot, max_iter, tol, spread, random_al
                                                                                st.floats(-1e12, 1e12)))])
     else:
         guess = pose + spread * np.array([size(robot), size(robot), 1.0]) * noise[:3]
-    res = robot.fk(alpha, guess, max_iter, tol)
+    res = robot.fk(alpha, guess, max_iter=max_iter, tol=tol)
     event(f"converged={res.converged}")
     assert_finite(res.pose, res.error)
     check_fk(robot, alpha, res, tol)
@@ -765,11 +765,11 @@ def test_ik_newton_error_and_flag_are_those_of_the_wrapped_answer():
     robot = rk.RRR3(0.25, 0.25, 0.25, 0.25)
     pose = np.array([0.75, 0.0, 0.0])
     for max_iter in (0, 50):
-        res = robot.ik_newton(pose, [0, 0, 0, 0, 0, 165994.0], max_iter, 1e-14)
+        res = robot.ik_newton(pose, [0, 0, 0, 0, 0, 165994.0], max_iter=max_iter, tol=1e-14)
         check_newton(robot, pose, res, 1e-14)
     pose = np.array([0.1, 0.05, 0.3])
     alpha = robot.ik(pose, (1, -1, 1))
-    res = robot.ik_newton(pose, np.concatenate([alpha + 2 * np.pi * 1e9, [1.0, -1.0, 1.0]]), 50, 1e-9)
+    res = robot.ik_newton(pose, np.concatenate([alpha + 2 * np.pi * 1e9, [1.0, -1.0, 1.0]]), max_iter=50, tol=1e-9)
     check_newton(robot, pose, res, 1e-9)
 
 
@@ -777,7 +777,7 @@ def test_fk_error_and_flag_are_those_of_the_wrapped_pose():
     # A far-off orientation guess: the error was measured before phi was wrapped.
     robot = rk.RRR3(0.25, 0.25, 0.25, 0.375)
     for max_iter in (0, 50):
-        res = robot.fk([0.0, 0.0, 0.0], [0.0, 0.0, 41649.0], max_iter, 1e-14)
+        res = robot.fk([0.0, 0.0, 0.0], [0.0, 0.0, 41649.0], max_iter=max_iter, tol=1e-14)
         check_fk(robot, np.zeros(3), res, 1e-14)
 
 

@@ -52,20 +52,26 @@ py::array_t<double> ik_all(const RRR3& r, ArrayLike pose_obj) {
   return out;
 }
 
-RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, int max_iter, double tol) {
+RRR3NewtonOptions newton_options(const py::kwargs& kwargs) {
+  const RRR3NewtonOptions o = OptionsClass<RRR3NewtonOptions>::from_kwargs(kwargs);
+  o.validate();
+  return o;
+}
+
+RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, const py::kwargs& kwargs) {
   const Pose pose = as_pose(pose_obj);
   Array g = as_array(guess_obj, "guess");
   if (g.size() != 6 || !(g.ndim() == 1 || (g.ndim() == 2 && g.shape(0) == 2)))
     fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
   require_finite(g.data(), 6, "guess");
   return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
-                     max_iter, tol);
+                     newton_options(kwargs));
 }
 
-RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, int max_iter, double tol) {
+RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, const py::kwargs& kwargs) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
-  return r.fk(alpha, guess, max_iter, tol);
+  return r.fk(alpha, guess, newton_options(kwargs));
 }
 
 py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {
@@ -180,9 +186,14 @@ void def_geometry(py::class_<RRR3>& cls) {
       }, "The 8 working modes (m_0, m_1, m_2), m_i = sign(beta_i), in ik_all's row order.");
 }
 
-
 // RRR3's inverse and forward models, drawing points, Jacobians and singularities.
 void def_kinematics(py::class_<RRR3>& cls) {
+  static const std::string ik_newton_doc = keyword_list<RRR3NewtonOptions>("ik_newton(pose, guess, *") +
+                                           "\n\nNewton-Raphson on the 6 loop equations from guess (alpha, beta); "
+                                           "options keyword-only (RRR3NewtonOptions).";
+  static const std::string fk_doc = keyword_list<RRR3NewtonOptions>("fk(alpha, guess, *") +
+                                    "\n\nOne assembly mode by Newton from a guess pose; options keyword-only "
+                                    "(RRR3NewtonOptions).";
   cls.def("ik", [](const RRR3& r, ArrayLike pose, ModeLike mode) {
         return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
@@ -190,10 +201,8 @@ void def_kinematics(py::class_<RRR3>& cls) {
       .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
       .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
            "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
-      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), py::arg("max_iter") = kNewtonMaxIter,
-           py::arg("tol") = kNewtonTol, "Newton-Raphson on the 6 loop equations from guess (alpha, beta).")
-      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), py::arg("max_iter") = kNewtonMaxIter, py::arg("tol") = kNewtonTol,
-           "One assembly mode by Newton from a guess pose.")
+      .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), ik_newton_doc.c_str())
+      .def("fk", &fk, py::arg("alpha"), py::arg("guess"), fk_doc.c_str())
       .def("fk_all", &fk_all, py::arg("alpha"),
            "(k, 3) every assembly mode, k <= 6, sorted by phi; each once (a double root at a parallel\n"
            "singularity too; modes closer than the loops can tell in floating point, some 1e-7 of the\n"
@@ -239,6 +248,8 @@ void def_value(py::class_<RRR3>& cls) {
 }  // namespace
 
 void bind_rrr3(py::module_& m) {
+  OptionsClass<RRR3NewtonOptions>(m, "RRR3NewtonOptions", "The options of RRR3.ik_newton and RRR3.fk (keywords).")
+      .fields();
   bind_kinematics_results(m);
   bind_defaults(m);
   py::class_<RRR3> cls(m, "RRR3", "The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).");

@@ -99,21 +99,18 @@ Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {
   return alpha;
 }
 
-namespace {
-
-// Newton's bounds (ik_newton, fk): std::invalid_argument naming the one out of range.
-void check_newton(int max_iter, double tol) {
+void RRR3NewtonOptions::validate() const {
   if (max_iter < 0 || max_iter > kMaxNewtonIterations)
     throw std::invalid_argument("max_iter: must be in [0, " + std::to_string(kMaxNewtonIterations) + "], got " +
                                 std::to_string(max_iter));
   if (!(std::isfinite(tol) && tol > 0)) throw std::invalid_argument("tol: must be a positive finite number");
 }
 
-}  // namespace
-
 RRR3Newton RRR3::ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
-                           int max_iter, double tol) const {
-  check_newton(max_iter, tol);
+                           const RRR3NewtonOptions& options) const {
+  options.validate();
+  const int max_iter = options.max_iter;
+  const double tol = options.tol;
   RRR3Newton res;
   res.alpha = alpha0;
   res.beta = beta0;
@@ -167,8 +164,10 @@ double RRR3::loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::V
   return err;
 }
 
-RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const {
-  check_newton(max_iter, tol);
+RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, const RRR3NewtonOptions& options) const {
+  options.validate();
+  const int max_iter = options.max_iter;
+  const double tol = options.tol;
   const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
   RRR3Fk res;
   Pose x = guess;

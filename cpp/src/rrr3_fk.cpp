@@ -347,12 +347,12 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   error.reserve(2 * kDegree);
   auto add = [&](const Pose& guess, double phi) {
     if (!guess.allFinite()) return;
-    RRR3Fk polished = fk(alpha, guess, 8, 1e-13);
+    RRR3Fk polished = fk(alpha, guess, {8, 1e-13});
     if (!(polished.error < close)) return;
     // Closed to rounding where Newton gets there and stays on the same root (at a double root it
     // converges only linearly and may jump once at rounding level): two distinct modes close
     // together then close much better than the loops between them, which same_mode needs to see.
-    const RRR3Fk finer = fk(alpha, polished.pose, 8, 4 * eps * size);
+    const RRR3Fk finer = fk(alpha, polished.pose, {8, 4 * eps * size});
     if (finer.error < polished.error && same_mode(A, polished.pose, polished.error, finer.pose, finer.error))
       polished = finer;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two

@@ -9,7 +9,7 @@ from . import pose, traj
 from ._core import (RRR3, RRR3_DEFAULTS, Chain, ReachOptions, ReachResult, RRR3ConnectOptions, RRR3PlanOptions,
                     TrackResult, joint_limit_cost)
 from ._core import RRR3LoopOptions
-from ._core import RRR3WorkspaceOptions
+from ._core import RRR3NewtonOptions, RRR3WorkspaceOptions
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
@@ -31,6 +31,7 @@ __all__ = [
     "RRR3_DEFAULTS",
     "RRR3ConnectOptions",
     "RRR3LoopOptions",
+    "RRR3NewtonOptions",
     "RRR3PlanOptions",
     "RRR3WorkspaceOptions",
     "ReachOptions",

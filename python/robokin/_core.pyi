@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -277,6 +277,45 @@ class TrackResult:
         """
         (K, dof) joints after each point.
         """
+class RRR3NewtonOptions:
+    """
+    The options of RRR3.ik_newton and RRR3.fk (keywords).
+    """
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('max_iter', 'tol')
+    kinds: typing.ClassVar[tuple] = ('int', 'float')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError naming an option out of range.
+        """
+    @property
+    def max_iter(self) -> int:
+        """
+        Newton steps at most, in [0, 100000].
+        """
+    @max_iter.setter
+    def max_iter(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tol(self) -> float:
+        """
+        Converged when the largest loop-closure residual (m) is below tol.
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class RRR3Newton:
     """
     Answer of RRR3.ik_newton; unpacks as (alpha, beta).
@@ -420,9 +459,11 @@ class RRR3:
         why there is none (the two poses are in different singularity-free regions of the mode);
         options keyword-only (RRR3ConnectOptions).
         """
-    def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Fk:
+    def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, **kwargs) -> RRR3Fk:
         """
-        One assembly mode by Newton from a guess pose.
+        fk(alpha, guess, *, max_iter=50, tol=1e-12)
+        
+        One assembly mode by Newton from a guess pose; options keyword-only (RRR3NewtonOptions).
         """
     def fk_all(self, alpha: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -444,9 +485,11 @@ class RRR3:
         """
         (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
         """
-    def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, max_iter: typing.SupportsInt | typing.SupportsIndex = 50, tol: typing.SupportsFloat | typing.SupportsIndex = 1e-12) -> RRR3Newton:
+    def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, **kwargs) -> RRR3Newton:
         """
-        Newton-Raphson on the 6 loop equations from guess (alpha, beta).
+        ik_newton(pose, guess, *, max_iter=50, tol=1e-12)
+        
+        Newton-Raphson on the 6 loop equations from guess (alpha, beta); options keyword-only (RRR3NewtonOptions).
         """
     def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
         """

@@ -37,6 +37,22 @@ constexpr double kSerialMargin = 0.02;
 constexpr int kNewtonMaxIter = 50, kMaxNewtonIterations = 100000;
 constexpr double kNewtonTol = 1e-12;
 
+// The options of a Newton run on the loop equations (RRR3::ik_newton, RRR3::fk).
+struct RRR3NewtonOptions {
+  int max_iter = kNewtonMaxIter;  // Newton steps at most, in [0, kMaxNewtonIterations]
+  double tol = kNewtonTol;        // converged when the largest residual (m) is below tol
+
+  // Every option, its Python keyword and its doc, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("max_iter", &RRR3NewtonOptions::max_iter, "Newton steps at most, in [0, 100000].");
+    field("tol", &RRR3NewtonOptions::tol, "Converged when the largest loop-closure residual (m) is below tol.");
+  }
+
+  // Throws std::invalid_argument("name: ...") for an option out of range.
+  void validate() const;
+};
+
 // Throws std::invalid_argument unless every m_i is +1 or -1.
 inline void check_mode(const Mode& mode) {
   for (int m : mode)
@@ -108,10 +124,10 @@ class RRR3 {
   // The seed's numerical inverse model: Newton-Raphson on the 6 loop-closure equations
   // O_i + l1 u(alpha_i) + l2 u(alpha_i + beta_i) - B_i = 0 in (alpha_i, beta_i) from guess.
   RRR3Newton ik_newton(const Pose& pose, const Eigen::Vector3d& alpha0, const Eigen::Vector3d& beta0,
-                       int max_iter, double tol) const;
+                       const RRR3NewtonOptions& options = {}) const;
 
   // Forward model by Newton on |A_i B_i|^2 = l2^2 in (x, y, phi) from a guess pose.
-  RRR3Fk fk(const Eigen::Vector3d& alpha, const Pose& guess, int max_iter, double tol) const;
+  RRR3Fk fk(const Eigen::Vector3d& alpha, const Pose& guess, const RRR3NewtonOptions& options = {}) const;
   // Largest | |A_i B_i| - l2 | of the actuated angles alpha at pose: how far pose is from closing the loops.
   double closure_error(const Eigen::Vector3d& alpha, const Pose& pose) const;
   // Every assembly mode of alpha (at most 6), sorted by phi in [-pi, pi). Each closes the loops
