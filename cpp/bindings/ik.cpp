@@ -240,8 +240,8 @@ void bind_ik(py::module_& m) {
                           "Like robokin.ik, solve releases the GIL when it may be long (a timeout, or more than\n"
                           "~1700 iterations in all); calls from several threads are serialised: one solver per\n"
                           "thread for parallel solves (ik_batch is the parallel route).");
-  static const std::string init_doc = keyword_list<IkOptions>("IKSolver(chain, *, seed=None") +
-                                      "\n\nThe solver of chain with these options (keyword-only, IKOptions).";
+  static const std::string init_doc =
+      kwargs_doc<IkOptions>("IKSolver(chain, *, seed=None", "The solver of chain with these options.");
   solver.def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
              return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
                                                   options_arg(kwargs), !seed.is_none(), seed_arg(seed));

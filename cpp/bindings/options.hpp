@@ -93,14 +93,37 @@ std::vector<std::string> field_names() {
   return names;
 }
 
-// "plan(points, *, phi=0.0, mode=(1, 1, 1), ...)": head and T's options with their defaults, for
-// the docstring of a core call that takes them as **kwargs (T bound before).
+// A field's default as a docstring shows it: its repr, or "RRR3LoopOptions().nominals" when that
+// is long (a table of values).
 template <class T>
-std::string keyword_list(const std::string& head) {
-  py::object defaults = py::cast(T{});
+std::string default_text(const std::string& name) {
+  const py::object value = py::cast(T{}).attr(name.c_str());
+  const std::string text = py::repr(value).cast<std::string>();
+  if (text.size() <= 40) return text;
+  return py::str(py::type::of<T>().attr("__name__")).cast<std::string>() + "()." + name;
+}
+
+// "Options (keyword-only, RRR3PlanOptions):" and a line per field of T (bound before): its name,
+// kind, default and doc (the header's), as robokin._options.options_section writes them in Python.
+template <class T>
+std::string options_doc() {
+  const py::object cls = py::type::of<T>();
+  std::string s = "Options (keyword-only, " + py::str(cls.attr("__name__")).cast<std::string>() + "):";
+  for (const FieldInfo& f : fields_of<T>()) {
+    const py::object doc = cls.attr(f.name.c_str()).attr("__doc__");
+    s += "\n    " + f.name + " (" + f.kind + ", default " + default_text<T>(f.name) +
+         "): " + (doc.is_none() ? std::string() : doc.cast<std::string>());
+  }
+  return s;
+}
+
+// The docstring of a core call that takes T's fields as **kwargs: "plan(points, *, phi=0.0, ...)"
+// from head and the options' defaults, the text, then options_doc<T>().
+template <class T>
+std::string kwargs_doc(const std::string& head, const std::string& text) {
   std::string s = head;
-  for (const std::string& n : field_names<T>()) s += ", " + n + "=" + py::repr(defaults.attr(n.c_str())).cast<std::string>();
-  return s + ")";
+  for (const std::string& n : field_names<T>()) s += ", " + n + "=" + default_text<T>(n);
+  return s + ")\n\n" + text + "\n\n" + options_doc<T>();
 }
 
 // `ClassName(a=1, b=array(...))` from the named attributes of obj; arrays of more than 8 numbers

@@ -188,12 +188,10 @@ void def_geometry(py::class_<RRR3>& cls) {
 
 // RRR3's inverse and forward models, drawing points, Jacobians and singularities.
 void def_kinematics(py::class_<RRR3>& cls) {
-  static const std::string ik_newton_doc = keyword_list<RRR3NewtonOptions>("ik_newton(pose, guess, *") +
-                                           "\n\nNewton-Raphson on the 6 loop equations from guess (alpha, beta); "
-                                           "options keyword-only (RRR3NewtonOptions).";
-  static const std::string fk_doc = keyword_list<RRR3NewtonOptions>("fk(alpha, guess, *") +
-                                    "\n\nOne assembly mode by Newton from a guess pose; options keyword-only "
-                                    "(RRR3NewtonOptions).";
+  static const std::string ik_newton_doc = kwargs_doc<RRR3NewtonOptions>(
+      "ik_newton(pose, guess, *", "Newton-Raphson on the 6 loop equations from guess (alpha, beta).");
+  static const std::string fk_doc =
+      kwargs_doc<RRR3NewtonOptions>("fk(alpha, guess, *", "One assembly mode by Newton from a guess pose.");
   cls.def("ik", [](const RRR3& r, ArrayLike pose, ModeLike mode) {
         return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),

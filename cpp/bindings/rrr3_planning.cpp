@@ -201,12 +201,12 @@ void bind_options(py::module_& m) {
 
 // rrr3_region_areas: the design study's areas (robokin.rrr3_design).
 void bind_design_study(py::module_& m) {
-  static const std::string doc = keyword_list<RRR3WorkspaceOptions>("rrr3_region_areas(robots, *") + "\n\n"
+  static const std::string doc = kwargs_doc<RRR3WorkspaceOptions>(
+      "rrr3_region_areas(robots, *",
       "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots, on the maps of the\n"
-      "options (RRR3WorkspaceOptions). Use robokin.rrr3_design.";
+      "options. Use robokin.rrr3_design.");
   m.def("rrr3_region_areas", &study_areas, py::arg("robots"), doc.c_str());
 }
-
 
 }  // namespace
 
@@ -216,30 +216,27 @@ void def_rrr3_planning(py::module_& m, py::class_<RRR3>& cls) {
   bind_workspace_result(m);
   bind_options(m);
   bind_design_study(m);
-  // Docstrings that list the options with their defaults (kept for the module's lifetime).
-  static const std::string plan_doc =
-      keyword_list<RRR3PlanOptions>("plan(points, *") + "\n\n"
-      "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;\n"
-      "options keyword-only (RRR3PlanOptions).";
-  static const std::string connect_doc =
-      keyword_list<RRR3ConnectOptions>("connect(start, goal, *") + "\n\n"
+  // Docstrings that list the options with their defaults and docs (kept for the module's lifetime).
+  static const std::string plan_doc = kwargs_doc<RRR3PlanOptions>(
+      "plan(points, *",
+      "Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.");
+  static const std::string connect_doc = kwargs_doc<RRR3ConnectOptions>(
+      "connect(start, goal, *",
       "Poses from start to goal along which det A keeps its sign and the distance to parallel\n"
       "singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says\n"
-      "why there is none (the two poses are in different singularity-free regions of the mode);\n"
-      "options keyword-only (RRR3ConnectOptions).";
-  static const char* loop_doc =
-      "plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)\n\n"
+      "why there is none (the two poses are in different singularity-free regions of the mode).");
+  static const std::string loop_doc = kwargs_doc<RRR3LoopOptions>(
+      "plan_loop(points, *",
       "The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all\n"
       "along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or\n"
-      "why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).";
-  static const std::string workspace_doc =
-      keyword_list<RRR3WorkspaceOptions>("workspace(*") + "\n\n"
-      "Constant-orientation workspace on an n x n grid with singular cells (every core); options\n"
-      "keyword-only (RRR3WorkspaceOptions).";
+      "why none ('start', 'plan'). It takes the plan's options too, but phi (searched over nominals)\n"
+      "and closed (always true).") + "\n\n" + options_doc<RRR3PlanOptions>();
+  static const std::string workspace_doc = kwargs_doc<RRR3WorkspaceOptions>(
+      "workspace(*", "Constant-orientation workspace on an n x n grid with singular cells (every core).");
   cls.def("workspace", &workspace_map, workspace_doc.c_str())
       .def("plan", &plan, py::arg("points"), plan_doc.c_str())
       .def("connect", &connect_poses, py::arg("start"), py::arg("goal"), connect_doc.c_str())
-      .def("plan_loop", &loop_plan, py::arg("points"), loop_doc);
+      .def("plan_loop", &loop_plan, py::arg("points"), loop_doc.c_str());
 }
 
 

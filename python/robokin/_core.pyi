@@ -456,14 +456,26 @@ class RRR3:
         
         Poses from start to goal along which det A keeps its sign and the distance to parallel
         singularities stays >= clearance (less only where an end is itself nearer); NoRouteError says
-        why there is none (the two poses are in different singularity-free regions of the mode);
-        options keyword-only (RRR3ConnectOptions).
+        why there is none (the two poses are in different singularity-free regions of the mode).
+        
+        Options (keyword-only, RRR3ConnectOptions):
+            mode ((m_0, m_1, m_2) of +-1, default (1, 1, 1)): The working mode, kept along the path.
+            clearance (float, default 0.05): Smallest distance to parallel singularities, in [0, 1).
+            serial_margin (float, default 0.02): Smallest |det B| / l1^3, in [0, 1).
+            max_step (float, default 0.001): Largest move of E between consecutive poses (m).
+            max_turn (float, default 0.01): Largest rotation between consecutive poses (rad).
+            resolution (float, default 0.005): Grid step in x and y (m), max_step to 1000 max_step.
+            span (float, default 1.5): Orientations searched beyond the ends' (rad), in [0, pi].
         """
     def fk(self, alpha: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, **kwargs) -> RRR3Fk:
         """
         fk(alpha, guess, *, max_iter=50, tol=1e-12)
         
-        One assembly mode by Newton from a guess pose; options keyword-only (RRR3NewtonOptions).
+        One assembly mode by Newton from a guess pose.
+        
+        Options (keyword-only, RRR3NewtonOptions):
+            max_iter (int, default 50): Newton steps at most, in [0, 100000].
+            tol (float, default 1e-12): Converged when the largest loop-closure residual (m) is below tol.
         """
     def fk_all(self, alpha: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -489,7 +501,11 @@ class RRR3:
         """
         ik_newton(pose, guess, *, max_iter=50, tol=1e-12)
         
-        Newton-Raphson on the 6 loop equations from guess (alpha, beta); options keyword-only (RRR3NewtonOptions).
+        Newton-Raphson on the 6 loop equations from guess (alpha, beta).
+        
+        Options (keyword-only, RRR3NewtonOptions):
+            max_iter (int, default 50): Newton steps at most, in [0, 100000].
+            tol (float, default 1e-12): Converged when the largest loop-closure residual (m) is below tol.
         """
     def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
         """
@@ -499,16 +515,44 @@ class RRR3:
         """
         plan(points, *, phi=0.0, mode=(1, 1, 1), avoid=True, max_step=0.01, margin=0.05, serial_margin=0.02, span=1.0, resolution=0.005, smoothing=10.0, closed=False)
         
-        Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities;
-        options keyword-only (RRR3PlanOptions).
+        Poses to follow (K, 2) points at nominal orientation phi, leaving it only near parallel singularities.
+        
+        Options (keyword-only, RRR3PlanOptions):
+            phi (float, default 0.0): Nominal orientation (rad).
+            mode ((m_0, m_1, m_2) of +-1, default (1, 1, 1)): The working mode used along the whole path.
+            avoid (bool, default True): False: every pose at the nominal orientation.
+            max_step (float, default 0.01): Largest orientation change between consecutive points (rad).
+            margin (float, default 0.05): Wanted distance to parallel singularities (RRR3Singularity.distance).
+            serial_margin (float, default 0.02): Smallest |det B| / l1^3 allowed.
+            span (float, default 1.0): Largest departure from the nominal orientation (rad), in [0, pi].
+            resolution (float, default 0.005): Orientation grid step (rad), at most max_step.
+            smoothing (float, default 10.0): Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.
+            closed (bool, default False): The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).
         """
     def plan_loop(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Loop:
         """
-        plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals, **plan options but phi and closed)
+        plan_loop(points, *, sign=1, nominals=RRR3LoopOptions().nominals)
         
         The closed plan (K, 2) points about the first of nominals whose plan keeps det A of sign all
         along (with avoid: clear of parallel singularities by margin); RRR3Loop says which nominal, or
-        why none ('start', 'plan'). Options keyword-only (RRR3LoopOptions, RRR3PlanOptions).
+        why none ('start', 'plan'). It takes the plan's options too, but phi (searched over nominals)
+        and closed (always true).
+        
+        Options (keyword-only, RRR3LoopOptions):
+            sign (int, default 1): The sign det A keeps all along (+1 or -1): the side of the parallel singularities.
+            nominals (sequence of float, default RRR3LoopOptions().nominals): Nominal orientations tried in order (rad); default 0, +-0.05, ... +-1.5.
+        
+        Options (keyword-only, RRR3PlanOptions):
+            phi (float, default 0.0): Nominal orientation (rad).
+            mode ((m_0, m_1, m_2) of +-1, default (1, 1, 1)): The working mode used along the whole path.
+            avoid (bool, default True): False: every pose at the nominal orientation.
+            max_step (float, default 0.01): Largest orientation change between consecutive points (rad).
+            margin (float, default 0.05): Wanted distance to parallel singularities (RRR3Singularity.distance).
+            serial_margin (float, default 0.02): Smallest |det B| / l1^3 allowed.
+            span (float, default 1.0): Largest departure from the nominal orientation (rad), in [0, pi].
+            resolution (float, default 0.005): Orientation grid step (rad), at most max_step.
+            smoothing (float, default 10.0): Weight of (phi_k - phi_{k-1})^2 against (phi_k - phi)^2.
+            closed (bool, default False): The points are a loop (the last joins the first): the plan joins up too (feasible checks the join).
         """
     def points(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> dict:
         """
@@ -522,8 +566,13 @@ class RRR3:
         """
         workspace(*, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
         
-        Constant-orientation workspace on an n x n grid with singular cells (every core); options
-        keyword-only (RRR3WorkspaceOptions).
+        Constant-orientation workspace on an n x n grid with singular cells (every core).
+        
+        Options (keyword-only, RRR3WorkspaceOptions):
+            phi (float, default 0.0): The platform's orientation (rad).
+            mode ((m_0, m_1, m_2) of +-1, default (1, 1, 1)): The working mode.
+            n (int, default 200): n x n cells, n in [2, 5000].
+            tol (float, default 0.001): Singular cell: |det B| / l1^3 or |det A| / R_e below tol.
         """
     @property
     def base_joints(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -1215,7 +1264,18 @@ class IKSolver:
         """
         IKSolver(chain, *, seed=None, method='lm', task=None, tol_p=1e-09, tol_r=1e-09, max_iter=100, restarts=None, timeout=None, damping=None, stall_window=6)
         
-        The solver of chain with these options (keyword-only, IKOptions).
+        The solver of chain with these options.
+        
+        Options (keyword-only, IKOptions):
+            method (str, default 'lm'): 'lm', 'gn', 'nr' or 'halley' (robokin.ik's module docstring).
+            task (None or str, default None): Which part of the tool pose is solved for: 'pose', 'position', 'xy' or 'xyphi'; None: the chain's natural task ('pose' for arms of six joints or more, 'position' for fewer, 'xyphi' / 'xy' for planar arms).
+            tol_p (float, default 1e-09): Position tolerance (m).
+            tol_r (float, default 1e-09): Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); unused for the other tasks.
+            max_iter (int, default 100): Iterations per attempt.
+            restarts (None or int, default None): Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+            timeout (None or float, default None): Time budget in seconds for all the attempts (checked every few iterations), counted in the solving thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable target costs the whole budget.
+            damping (None or float, default None): lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse (default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.
+            stall_window (int, default 6): With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
         """
     def __repr__(self) -> str:
         ...
@@ -1529,7 +1589,13 @@ def rrr3_region_areas(robots: numpy.typing.ArrayLike, **kwargs) -> numpy.typing.
     rrr3_region_areas(robots, *, phi=0.0, mode=(1, 1, 1), n=200, tol=0.001)
     
     RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots, on the maps of the
-    options (RRR3WorkspaceOptions). Use robokin.rrr3_design.
+    options. Use robokin.rrr3_design.
+    
+    Options (keyword-only, RRR3WorkspaceOptions):
+        phi (float, default 0.0): The platform's orientation (rad).
+        mode ((m_0, m_1, m_2) of +-1, default (1, 1, 1)): The working mode.
+        n (int, default 200): n x n cells, n in [2, 5000].
+        tol (float, default 0.001): Singular cell: |det B| / l1^3 or |det A| / R_e below tol.
     """
 def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> ServoResult:
     """
