@@ -84,7 +84,7 @@ def main() -> list:
     print(f"fk_all: {t_fk * 1e6:.2f} us per call from Python ({count / len(alphas):.2f} assembly modes on average, "
           f"goal <= 10 us: {'met' if g['met'] else 'MISSED'})")
 
-    t_ws = best_time(lambda: robot.workspace(0.0, (1, 1, 1), 400), repeat=10)
+    t_ws = best_time(lambda: robot.workspace(phi=0.0, mode=(1, 1, 1), n=400), repeat=10)
     g = goal(goals, "RRR3.workspace, a 400 x 400 map at phi = 0, mode (1, 1, 1)", t_ws * 1e3, "ms", 50.0,
              NO_REFERENCE, note="best of 10, every core")
     print(f"workspace 400 x 400: {t_ws * 1e3:.1f} ms (goal <= 50 ms: {'met' if g['met'] else 'MISSED'})")
