@@ -3,7 +3,9 @@
 #include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
-#include "fast_math.hpp"
+#include "kernel/fast_math.hpp"
+#include "kernel/isa.hpp"
+#include "kernel/paging.hpp"
 
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
@@ -18,10 +20,6 @@
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #include <immintrin.h>
-#endif
-
-#if defined(__linux__)
-#include <sys/mman.h>
 #endif
 
 namespace robokin {
@@ -218,16 +216,12 @@ void Chain::build_masks() {
 constexpr int kBlock = 32;  // lanes of a batch block
 constexpr long kJointMajor = -1;  // run_lanes' stride for joint values stored joint by joint
 
-// The kernel is forced inline into its callers, so that the batch loop is compiled three times: for
-// the baseline ISA (2 doubles per vector), AVX2 (4) and AVX-512 (8), chosen at run time on x86-64.
-// Contraction into fused multiply-adds is turned off in those copies, so they round exactly as the
-// baseline: the same results, bit for bit, as single calls.
-#if defined(__GNUC__) && defined(__x86_64__)
-#define ROBOKIN_KERNEL inline __attribute__((always_inline))
-#define ROBOKIN_AVX2 1
-#else
-#define ROBOKIN_KERNEL inline
-#endif
+// The kernel is forced inline into its callers (ROBOKIN_KERNEL, kernel/isa.hpp), so that the batch
+// loop is compiled three times: for the baseline ISA (2 doubles per vector), AVX2 (4) and AVX-512
+// (8), chosen by detected_isa(). Contraction into fused multiply-adds is turned off in those
+// copies, so they round exactly as the baseline: the same results, bit for bit, as single calls.
+using kernel::detected_isa;
+using kernel::Isa;
 
 // The products of run_lanes on N lanes, each lane's operations as a single call's. Restrict on
 // parameters (which GCC honours, where it ignores it on local pointers): else the fully unrolled
@@ -382,11 +376,11 @@ ROBOKIN_KERNEL void lanes_to_4x4(const Lanes<N>& L, int count, double* m) {
     m[15] = 1.0;
   }
 }
-#ifdef ROBOKIN_AVX2
+#ifdef ROBOKIN_DISPATCH
 // The same for a whole block, 4 lanes at a time: each row of R and p transposed in registers into
 // the 4 lanes' matrix rows, one 32-byte store per row (48 loads and 16 stores of 8 bytes per lane
 // before). The same bits, moved.
-__attribute__((target("avx2"))) void block_to_4x4_avx2(const Lanes<kBlock>& L, double* m) {
+ROBOKIN_TARGET_AVX2 void block_to_4x4_avx2(const Lanes<kBlock>& L, double* m) {
   static_assert(kBlock % 4 == 0, "whole vectors of lanes");
   const __m256d last = _mm256_set_pd(1.0, 0.0, 0.0, 0.0);
   for (int k = 0; k < kBlock; k += 4, m += 64) {
@@ -414,7 +408,7 @@ __attribute__((target("avx512f"), always_inline)) inline __m512d odd_pairs(__m51
 // block_to_4x4_avx2 with AVX-512, 8 lanes at a time: lane k's rows 0 and 1 in one 64-byte store,
 // rows 2 and 3 in another (an 8 x 8 transpose of R's rows 0, 1 and p's; a 4 x 8 one completed by
 // the constant row). The same bits, moved in fewer, wider stores.
-__attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>& L, double* m) {
+ROBOKIN_TARGET_AVX512 void block_to_4x4_avx512(const Lanes<kBlock>& L, double* m) {
   static_assert(kBlock % 8 == 0, "whole vectors of lanes");
   const __m512d row3 = _mm512_set_pd(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // (0 0 0 1) unpacked, gathered
   const int lane[4] = {0, 2, 1, 3};  // the first lane of the pairs (even, odd) of each vector below
@@ -448,24 +442,11 @@ __attribute__((target("avx512f"))) void block_to_4x4_avx512(const Lanes<kBlock>&
     }
   }
 }
-// The widest vector ISA of this CPU for the lane kernels, read once: 2 AVX-512, 1 AVX2, 0 the
-// baseline (SSE2).
-int lanes_isa() {
-  static const int isa = [] {
-    __builtin_cpu_init();  // this may run before libgcc's own initialiser
-    return __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
-  }();
-  return isa;
-}
-// A batch block's joint values gathered joint by joint with AVX-512 and its frames stored with
-// AVX-512 (2); its frames stored with AVX2 (1); plain loads and stores (0).
-const int kBlockIsa = lanes_isa();
-
 // The joint values of a batch block (kBlock configurations of dof joints at q) joint by joint:
 // qT[j * kBlock + k] = q[k * dof + j], 8 lanes per gather. Read with a stride of dof, run_lanes
 // loaded them one value at a time (the gain is in benchmarks/README.md).
 constexpr int kGatherJoints = 16;
-__attribute__((target("avx512f"))) void gather_block_avx512(const double* q, int dof, double* qT) {
+ROBOKIN_TARGET_AVX512 void gather_block_avx512(const double* q, int dof, double* qT) {
   const long d = dof;
   for (int k = 0; k < kBlock; k += 8) {
     const __m512i at = _mm512_set_epi64((k + 7) * d, (k + 6) * d, (k + 5) * d, (k + 4) * d, (k + 3) * d,
@@ -541,41 +522,6 @@ void Chain::fk_jacobian(const double* q, Rigid& T, double* jac) const {
   }
 }
 
-namespace {
-// Faults in every page that [begin, end) touches with one system call (Linux >= 5.14), instead of
-// one trap per page on first write (4 KB pages), and zeroes them in the kernel; with numpy's huge
-// pages (it asks for them on large arrays) one call may fault in 2 MB. Nothing is written: a page
-// shared with a neighbouring range (another thread's) is left as it is. Without the call (older
-// kernels, other systems) the pages fault in as they are written.
-void populate_for_writing(double* begin, double* end) {
-#if defined(__linux__)
-#ifndef MADV_POPULATE_WRITE
-#define MADV_POPULATE_WRITE 23
-#endif
-  const std::uintptr_t page = 4096;
-  const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(begin) & ~(page - 1);
-  const std::uintptr_t b = (reinterpret_cast<std::uintptr_t>(end) + page - 1) & ~(page - 1);
-  if (b > a) madvise(reinterpret_cast<void*>(a), b - a, MADV_POPULATE_WRITE);
-#else
-  (void)begin, (void)end;
-#endif
-}
-
-// A large frame output is faulted in a 2 MB page at a time (numpy's huge pages, else 512 small
-// ones with one call), one page ahead of the stores, so that they find lines the kernel zeroed
-// shortly before. Faulting in the whole output first, then streaming the frames past the cache,
-// writes it to memory twice. One page ahead measured faster than chunks, than just in time and
-// than two pages ahead (benchmarks/README.md); why it beats just in time was not isolated.
-constexpr std::uintptr_t kFaultAhead = std::uintptr_t{1} << 21;
-
-// The first configuration after `upto` whose frame lies wholly beyond the next 2 MB boundary from
-// the frame of `upto` on (at most `end`): faulting in [.., that) faults in the page after upto's.
-long next_page_end(const double* out, long width, long upto, long end) {
-  const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(out + width * upto);
-  const std::uintptr_t edge = (at + kFaultAhead) & ~(kFaultAhead - 1);
-  return std::min(end, upto + static_cast<long>((edge - at) / (sizeof(double) * width)) + 1);
-}
-}  // namespace
 
 // Configurations [begin, end) of a batch, in blocks of kBlock lanes; false when a joint value or a
 // result is not finite. With `populate`, the output's pages are faulted in ahead of the stores.
@@ -587,19 +533,22 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
   long b = begin, populated = begin;
   auto fault_in = [&](long upto) {
     if (!populate || upto <= populated) return;
-    const long to = next_page_end(out, width, upto, end);
-    populate_for_writing(out + width * populated, out + width * to);
+    const long to = kernel::next_page_end(out, width, upto, end);
+    kernel::populate_for_writing(out + width * populated, out + width * to);
     populated = to;
   };
-#ifdef ROBOKIN_AVX2
-  const bool gather = kBlockIsa == 2 && dof_ <= kGatherJoints;
+#ifdef ROBOKIN_DISPATCH
+  // A batch block's joint values gathered joint by joint and its frames stored with AVX-512 or AVX2
+  // where the CPU has them; else plain loads and stores.
+  const Isa isa = detected_isa();
+  const bool gather = isa == Isa::Avx512 && dof_ <= kGatherJoints;
   alignas(64) double qT[kGatherJoints * kBlock];
 #endif
   for (; b + kBlock <= end; b += kBlock) {
     const double* qb = q + b * dof_;
     const double* lanes_q = qb;  // the block's joint values as run_lanes reads them
     long lanes_stride = dof_;
-#ifdef ROBOKIN_AVX2
+#ifdef ROBOKIN_DISPATCH
     if (gather) {
       gather_block_avx512(qb, dof_, qT);
       lanes_q = qT, lanes_stride = kJointMajor;
@@ -626,9 +575,9 @@ ROBOKIN_KERNEL bool Chain::batch_range_kernel(const double* q, long begin, long 
     }
     finite &= values_finite(qb, kBlock * dof_) & lanes_finite(L, kBlock);
     fault_in(b + kBlock);
-#ifdef ROBOKIN_AVX2
-    if (what == FkOutput::Frame && kBlockIsa > 0) {
-      if (kBlockIsa == 2) block_to_4x4_avx512(L, out + width * b);
+#ifdef ROBOKIN_DISPATCH
+    if (what == FkOutput::Frame && isa != Isa::Baseline) {
+      if (isa == Isa::Avx512) block_to_4x4_avx512(L, out + width * b);
       else block_to_4x4_avx2(L, out + width * b);
       continue;
     }
@@ -650,13 +599,13 @@ bool Chain::batch_range(const double* q, long begin, long end, double* out, FkOu
   return batch_range_kernel(q, begin, end, out, what, populate);
 }
 
-#ifdef ROBOKIN_AVX2
-__attribute__((target("avx2"), optimize("fp-contract=off"))) bool Chain::batch_range_avx2(
+#ifdef ROBOKIN_DISPATCH
+ROBOKIN_TARGET_AVX2 ROBOKIN_NO_CONTRACT bool Chain::batch_range_avx2(
     const double* q, long begin, long end, double* out, FkOutput what, bool populate) const {
   return batch_range_kernel(q, begin, end, out, what, populate);
 }
 
-__attribute__((target("avx512f"), optimize("fp-contract=off"))) bool Chain::batch_range_avx512(
+ROBOKIN_TARGET_AVX512 ROBOKIN_NO_CONTRACT bool Chain::batch_range_avx512(
     const double* q, long begin, long end, double* out, FkOutput what, bool populate) const {
   return batch_range_kernel(q, begin, end, out, what, populate);
 }
@@ -678,9 +627,8 @@ ROBOKIN_KERNEL void Chain::fk_few_kernel(const double* q, int count, Rigid* out)
 
 void Chain::fk_few_lanes(const double* q, int count, Rigid* out) const { fk_few_kernel(q, count, out); }
 
-#ifdef ROBOKIN_AVX2
-__attribute__((target("avx2"), optimize("fp-contract=off"))) void Chain::fk_few_avx2(const double* q, int count,
-                                                                                      Rigid* out) const {
+#ifdef ROBOKIN_DISPATCH
+ROBOKIN_TARGET_AVX2 ROBOKIN_NO_CONTRACT void Chain::fk_few_avx2(const double* q, int count, Rigid* out) const {
   fk_few_kernel(q, count, out);
 }
 #endif
@@ -691,10 +639,10 @@ void Chain::fk_few(const double* q, int count, Rigid* out) const {
     return;
   }
   if (count <= 0) return;
-#ifdef ROBOKIN_AVX2
+#ifdef ROBOKIN_DISPATCH
   // AVX2 (4 lanes per vector) measured faster than the baseline's 2 for a UR closed-form call; an
   // AVX-512 build of the same kernel did not, so none is made (benchmarks/README.md).
-  if (lanes_isa() >= 1) return fk_few_avx2(q, count, out);
+  if (detected_isa() != Isa::Baseline) return fk_few_avx2(q, count, out);
 #endif
   fk_few_lanes(q, count, out);
 }
@@ -703,15 +651,15 @@ void Chain::fk_few(const double* q, int count, Rigid* out) const {
 bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
   // A large frame output (beyond the caches) is faulted in chunk by chunk as it is written.
   const bool populate = what == FkOutput::Frame && count >= 32768;
-#ifdef ROBOKIN_AVX2
-  const int isa = lanes_isa();
+#ifdef ROBOKIN_DISPATCH
+  const Isa isa = detected_isa();
 #endif
   std::atomic<bool> finite{true};
   parallel_for(count, 20000, [&](long begin, long end) {
     bool ok;
-#ifdef ROBOKIN_AVX2
-    if (isa == 2) ok = batch_range_avx512(q, begin, end, out, what, populate);
-    else if (isa == 1) ok = batch_range_avx2(q, begin, end, out, what, populate);
+#ifdef ROBOKIN_DISPATCH
+    if (isa == Isa::Avx512) ok = batch_range_avx512(q, begin, end, out, what, populate);
+    else if (isa == Isa::Avx2) ok = batch_range_avx2(q, begin, end, out, what, populate);
     else ok = batch_range(q, begin, end, out, what, populate);
 #else
     ok = batch_range(q, begin, end, out, what, populate);
