@@ -1,4 +1,4 @@
-"""The batch paths' sin, cos and atan2 (SLEEF's 1.0-ulp routines, cpp/src/fast_math.hpp) against
+"""The batch paths' sin, cos and atan2 (SLEEF's 1.0-ulp routines, cpp/src/kernel/fast_math.hpp) against
 libm's (math.sin, math.cos, math.atan2: correctly rounded in practice, under 1 ulp): at most
 2 ulp apart (1 ulp each side of the exact value), any argument, NaN in -> NaN out; a value gives
 the same bits alone and inside a batch (single calls and batches agree)."""

@@ -2,6 +2,8 @@
 // the comparison of two chains' kinematics.
 #include "robokin/chain.hpp"
 
+#include "kernel/fk_path.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -96,15 +98,16 @@ bool Chain::named() const {
 }
 
 bool Chain::same_kinematics(const Chain& o) const {
-  if (dof_ != o.dof_ || links_.size() != o.links_.size()) return false;
+  const std::vector<kernel::Link>&links = path_->links, &other = o.path_->links;
+  if (dof_ != o.dof_ || links.size() != other.size()) return false;
   if (!same_bits(lower_.data(), o.lower_.data(), dof_) || !same_bits(upper_.data(), o.upper_.data(), dof_))
     return false;
   auto same_rigid = [](const Rigid& a, const Rigid& b) {
     return same_bits(a.R.data(), b.R.data(), 9) && same_bits(a.p.data(), b.p.data(), 3);
   };
-  if (!same_rigid(base_, o.base_)) return false;
-  for (size_t i = 0; i < links_.size(); ++i) {
-    const Link &a = links_[i], &b = o.links_[i];
+  if (!same_rigid(path_->base, o.path_->base)) return false;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const kernel::Link &a = links[i], &b = other[i];
     if (a.prismatic != b.prismatic || !same_bits(&a.scale, &b.scale, 1) || !same_rigid(a.after.F, b.after.F))
       return false;
   }
@@ -122,8 +125,8 @@ std::size_t Chain::kinematics_hash() const {
   };
   mix(lower_.data(), dof_);
   mix(upper_.data(), dof_);
-  mix(base_.p.data(), 3);
-  for (const Link& l : links_) {
+  mix(path_->base.p.data(), 3);
+  for (const kernel::Link& l : path_->links) {
     const double prismatic = l.prismatic ? 1.0 : 0.0;
     mix(&prismatic, 1);
     mix(&l.scale, 1);

@@ -3,7 +3,7 @@
 #include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
 
-#include "fast_math.hpp"
+#include "kernel/fast_math.hpp"
 
 #include <kdl/segment.hpp>
 

@@ -4,7 +4,7 @@
 
 #include "robokin/parallel.hpp"
 
-#include "fast_math.hpp"
+#include "kernel/fast_math.hpp"
 #include "rrr3_leg.hpp"
 #include "rrr3_pose_eval.hpp"
 

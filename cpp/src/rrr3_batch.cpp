@@ -4,7 +4,8 @@
 #include "robokin/parallel.hpp"
 #include "robokin/rrr3.hpp"
 
-#include "fast_math.hpp"
+#include "kernel/fast_math.hpp"
+#include "kernel/isa.hpp"
 #include "rrr3_leg.hpp"
 
 #include <algorithm>
@@ -18,10 +19,10 @@ namespace {
 constexpr long kBlock = 256;
 
 // One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (a loop the
-// vectoriser takes over contiguous arrays; cloned for AVX2, 4 doubles per vector instead of SSE2's
-// 2, picked at load time, no FMA in either clone, so both give RRR3::ik's bits), SLEEF's atan2,
-// the unreachable rows NaN.
-__attribute__((target_clones("avx2", "default"))) void leg_args_block(
+// vectoriser takes over contiguous arrays; built for AVX2 too, 4 doubles per vector instead of
+// SSE2's 2, picked by detected_isa() (kernel/isa.hpp), no FMA in either build, so both give
+// RRR3::ik's bits), SLEEF's atan2, the unreachable rows NaN.
+ROBOKIN_KERNEL void leg_args_kernel(
     long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
     const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1, double l2,
     double* __restrict Y, double* __restrict X, double* __restrict ok) {
@@ -29,6 +30,25 @@ __attribute__((target_clones("avx2", "default"))) void leg_args_block(
     const bool reach = leg_alpha_args(x[k], y[k], c[k], s[k], ox, oy, bx, by, m, l1, l2, Y[k], X[k]);
     ok[k] = reach ? ok[k] : 0.0;
   }
+}
+
+#ifdef ROBOKIN_DISPATCH
+ROBOKIN_TARGET_AVX2 void leg_args_avx2(long nb, const double* __restrict x, const double* __restrict y,
+                                       const double* __restrict c, const double* __restrict s, double ox, double oy,
+                                       double bx, double by, double m, double l1, double l2, double* __restrict Y,
+                                       double* __restrict X, double* __restrict ok) {
+  leg_args_kernel(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
+}
+#endif
+
+void leg_args_block(long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
+                    const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1,
+                    double l2, double* __restrict Y, double* __restrict X, double* __restrict ok) {
+#ifdef ROBOKIN_DISPATCH
+  if (kernel::detected_isa() != kernel::Isa::Baseline)
+    return leg_args_avx2(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
+#endif
+  leg_args_kernel(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
 }
 
 void ik_block(const double* p, long nb, const double* o, const double* b, const double* m, double l1, double l2,

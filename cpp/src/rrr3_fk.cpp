@@ -20,6 +20,8 @@
 #include "robokin/rrr3.hpp"
 #include "robokin/angles.hpp"
 
+#include "kernel/isa.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -215,8 +217,9 @@ void search(const TrigPoly& p, double curvature, double jerk, double lo, double 
   }
 }
 // F on the scan, f[kScan] = f[0] (the wrap): the same sums as term by term at each phi, term k
-// over every phi at once (a loop the vectoriser takes; cloned for AVX2, no FMA: the same bits).
-__attribute__((target_clones("avx2", "default"))) void scan(const TrigPoly& p, const Tables& t, double* __restrict f) {
+// over every phi at once (a loop the vectoriser takes; built for AVX2 too, kernel/isa.hpp, no FMA:
+// the same bits).
+ROBOKIN_KERNEL void scan_kernel(const TrigPoly& p, const Tables& t, double* __restrict f) {
   for (int j = 0; j < kScan; ++j) f[j] = p.a[0];
   for (int k = 1; k <= kDegree; ++k) {
     const double ak = p.a[k], bk = p.b[k];
@@ -227,12 +230,22 @@ __attribute__((target_clones("avx2", "default"))) void scan(const TrigPoly& p, c
   f[kScan] = f[0];
 }
 
+#ifdef ROBOKIN_DISPATCH
+ROBOKIN_TARGET_AVX2 void scan_avx2(const TrigPoly& p, const Tables& t, double* __restrict f) { scan_kernel(p, t, f); }
+#endif
+
+void scan(const TrigPoly& p, const Tables& t, double* __restrict f) {
+#ifdef ROBOKIN_DISPATCH
+  if (kernel::detected_isa() != kernel::Isa::Baseline) return scan_avx2(p, t, f);
+#endif
+  scan_kernel(p, t, f);
+}
+
 // quiet[j]: interval j has no zero at its ends, no sign change and min(|F(lo)|, |F(hi)|) >
 // max|F''| h^2 / 8, the test search() starts with (the same expression: the same decision), for
-// every interval in one branch-free loop.
-__attribute__((target_clones("avx2", "default"))) void quiet_intervals(const double* __restrict f,
-                                                                      const double* __restrict h, double curvature,
-                                                                      unsigned char* __restrict quiet) {
+// every interval in one branch-free loop (built for AVX2 too, as scan).
+ROBOKIN_KERNEL void quiet_intervals_kernel(const double* __restrict f, const double* __restrict h, double curvature,
+                                           unsigned char* __restrict quiet) {
   for (int j = 0; j < kScan; ++j) {
     const double lo = f[j], hi = f[j + 1];
     const bool same = (lo < 0) == (hi < 0);
@@ -240,6 +253,21 @@ __attribute__((target_clones("avx2", "default"))) void quiet_intervals(const dou
     const bool certified = std::min(std::abs(lo), std::abs(hi)) > curvature * h[j] * h[j] / 8;
     quiet[j] = same & nonzero & certified;
   }
+}
+
+#ifdef ROBOKIN_DISPATCH
+ROBOKIN_TARGET_AVX2 void quiet_intervals_avx2(const double* __restrict f, const double* __restrict h, double curvature,
+                                              unsigned char* __restrict quiet) {
+  quiet_intervals_kernel(f, h, curvature, quiet);
+}
+#endif
+
+void quiet_intervals(const double* __restrict f, const double* __restrict h, double curvature,
+                     unsigned char* __restrict quiet) {
+#ifdef ROBOKIN_DISPATCH
+  if (kernel::detected_isa() != kernel::Isa::Baseline) return quiet_intervals_avx2(f, h, curvature, quiet);
+#endif
+  quiet_intervals_kernel(f, h, curvature, quiet);
 }
 
 // F's exact coefficients from kFit samples, divided by the largest; false when F vanishes or

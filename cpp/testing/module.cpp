@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "../src/fast_math.hpp"
+#include "../src/kernel/fast_math.hpp"
 #include "arrays.hpp"
 #include "kdl_ik_reference.hpp"
 #include "progress.hpp"
@@ -42,7 +42,7 @@ void bind_hooks(pybind11::module_& m) {
         return ran.load();
       },
       pybind11::arg("count"), pybind11::arg("on_caller"));
-  // The batch paths' vectorised sin, cos and atan2 (cpp/src/fast_math.hpp) on float64 arrays.
+  // The batch paths' vectorised sin, cos and atan2 (cpp/src/kernel/fast_math.hpp) on float64 arrays.
   using Doubles = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
   m.def("vmath_sincos", [](const Doubles& x) {
     pybind11::array_t<double> s(x.size()), c(x.size());

@@ -1,5 +1,6 @@
 // A serial kinematic chain: a KDL::Chain (the model and the reference) plus joint limits and a
-// specialised evaluation path for the hot calls (forward kinematics and the Jacobian).
+// specialised evaluation path for the hot calls (forward kinematics and the Jacobian), which the
+// core's kernel (cpp/src/kernel/) builds and runs.
 #pragma once
 
 #include "robokin/limits.hpp"
@@ -8,6 +9,7 @@
 #include <Eigen/Dense>
 #include <kdl/chain.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,8 +73,9 @@ struct DHTable {
 // What a batch FK writes per configuration: the tool frame (4 x 4, row-major) or its point (x, y, z).
 enum class FkOutput { Frame, Position };
 
-template <int N>
-struct Lanes;  // N configurations evaluated together (chain.cpp)
+namespace kernel {
+struct FkPath;  // the evaluation path (cpp/src/kernel/fk_path.hpp)
+}  // namespace kernel
 
 class Chain {
  public:
@@ -100,7 +103,7 @@ class Chain {
   int dof() const { return dof_; }
   const Vector& lower() const { return lower_; }
   const Vector& upper() const { return upper_; }
-  bool prismatic(int joint) const { return links_[joint].prismatic; }
+  bool prismatic(int joint) const;
   // Every joint moves the tool in planes parallel to the base xy plane: revolute axes along the
   // base z axis, prismatic axes perpendicular to it (rows v_z, w_x, w_y of the Jacobian zero; read
   // at q = 0, which decides for every q: turns about z keep the axes' angles with z). natural_task
@@ -145,42 +148,6 @@ class Chain {
   Eigen::Vector3d point_in_frame(const Vector& q, const Eigen::Vector3d& point, int frame, int in_frame) const;
 
  private:
-  // A constant frame applied on the right (T <- T * F); move / turn say whether its translation /
-  // rotation differ from the identity (the evaluation skips what changes nothing).
-  struct Fixed {
-    Rigid F;
-    bool move = false, turn = false;
-  };
-  // Joint motion (a rotation about the local z axis, or a translation along `axis`), then a fixed
-  // frame. The masks say which products can be non-zero at this point of the chain, from the zeros
-  // of the base, the axes and the fixed frames (e.g. a planar chain's rotations leave the third row
-  // alone): bit i of `rows` turns row i of R in the joint's rotation; bit 3 i + k of `slide` adds
-  // R(i, k) axis(k) to p(i), of `move` R(i, k) after.p(k); bit i of `turn` turns row i by after.R.
-  struct Link {
-    bool prismatic;
-    double scale;
-    Eigen::Vector3d axis;
-    Fixed after;
-    unsigned rows = 7, slide = 0, move = 0, turn = 0;
-  };
-  void build_masks();
-  static Fixed make_fixed(const Rigid& F);
-  struct NoHook {
-    void operator()(int) const {}
-  };
-  // after_joint(i) runs once joint i's products are done (the batch issues its prefetches there).
-  template <int N, class AfterJoint = NoHook>
-  void run_lanes(Lanes<N>& lanes, const double* q, long stride, double* axes, AfterJoint after_joint = {}) const;
-  // Batch evaluation of configurations [begin, end): the kernel, and its baseline / AVX2 / AVX-512 builds.
-  bool batch_range_kernel(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
-  bool batch_range(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
-  bool batch_range_avx2(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
-  bool batch_range_avx512(const double* q, long begin, long end, double* out, FkOutput what, bool populate) const;
-  // fk_few's lanes (count <= kFkFew, dof <= 32): the kernel, and its baseline and AVX2 builds.
-  void fk_few_kernel(const double* q, int count, Rigid* out) const;
-  void fk_few_lanes(const double* q, int count, Rigid* out) const;
-  void fk_few_avx2(const double* q, int count, Rigid* out) const;
-  void build_fast_path();
   bool moves_in_base_plane() const;  // planar(), from the Jacobian at q = 0
 
   KDL::Chain kdl_;
@@ -189,8 +156,8 @@ class Chain {
   std::string base_name_;
   int dof_ = 0;
   Vector lower_, upper_;
-  Rigid base_;  // fixed frame before the first joint's motion
-  std::vector<Link> links_;
+  // Built once by the constructor, never changed: copies share it, const calls only read it.
+  std::shared_ptr<const kernel::FkPath> path_;
   bool planar_ = false;
 };
 

@@ -1,7 +1,7 @@
 // The AVX-512F build of fast_math.hpp's loops (CMakeLists.txt compiles this file alone with
 // -mavx512f: sleef.h declares its AVX-512 routines only then), on SLEEF's deterministic ("finz")
 // routines: the bits of fast_math_avx2.cpp's. Called for arrays of 32 values or more when the CPU
-// has it (fast_math.cpp checks).
+// has it (fast_math.cpp asks detected_isa(), isa.hpp).
 #include <sleef.h>
 
 #include "fast_math_loops.hpp"

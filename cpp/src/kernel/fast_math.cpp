@@ -1,7 +1,9 @@
 // SLEEF behind fast_math.hpp: the SSE2 loops (x86-64's baseline) here, the AVX2 + FMA ones in
 // fast_math_avx2.cpp and the AVX-512 ones in fast_math_avx512.cpp (all from fast_math_loops.hpp),
-// the choice made once per process from what the CPU has.
+// chosen by detected_isa() (isa.hpp).
 #include "fast_math.hpp"
+
+#include "isa.hpp"
 
 #include <cmath>
 
@@ -36,17 +38,8 @@ struct Sse2 {
   }
 };
 
-enum class Isa { Sse2, Avx2, Avx512 };
-
-Isa isa() {
-  static const Isa best = [] {
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
-      return __builtin_cpu_supports("avx512f") ? Isa::Avx512 : Isa::Avx2;
-    return Isa::Sse2;
-  }();
-  return best;
-}
+using kernel::detected_isa;
+using kernel::Isa;
 
 // Arrays of at least this many values (batch FK's blocks: 32 lanes a joint) go through AVX-512
 // where the CPU has it; shorter ones, a single call's few, through AVX2, because AVX-512 for every
@@ -57,14 +50,16 @@ constexpr long kWide = 32;
 }  // namespace
 
 void sincos(const double* x, double* s, double* c, long n) {
-  if (isa() == Isa::Avx512 && n >= kWide) return sincos_avx512(x, s, c, n);
-  if (isa() != Isa::Sse2) return sincos_avx2(x, s, c, n);
+  const Isa isa = detected_isa();
+  if (isa == Isa::Avx512 && n >= kWide) return sincos_avx512(x, s, c, n);
+  if (isa != Isa::Baseline) return sincos_avx2(x, s, c, n);
   sincos_loop<Sse2>(x, s, c, n);
 }
 
 void atan2(const double* y, const double* x, double* out, long n) {
-  if (isa() == Isa::Avx512 && n >= kWide) return atan2_avx512(y, x, out, n);
-  if (isa() != Isa::Sse2) return atan2_avx2(y, x, out, n);
+  const Isa isa = detected_isa();
+  if (isa == Isa::Avx512 && n >= kWide) return atan2_avx512(y, x, out, n);
+  if (isa != Isa::Baseline) return atan2_avx2(y, x, out, n);
   atan2_loop<Sse2>(y, x, out, n);
 }
 #else

@@ -1,7 +1,7 @@
 // The AVX2 + FMA build of fast_math.hpp's loops (CMakeLists.txt compiles this file alone with
 // -mavx2 -mfma: sleef.h declares its AVX2 routines only then), on SLEEF's deterministic ("finz")
 // routines: the bits of fast_math_avx512.cpp's. Called only when the CPU has both (fast_math.cpp
-// checks).
+// asks detected_isa(), isa.hpp).
 #include <sleef.h>
 
 #include "fast_math_loops.hpp"
