@@ -3,6 +3,7 @@
 #include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
+#include "kernel/fk_lanes.hpp"
 #include "kernel/fk_path.hpp"
 
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -123,7 +124,7 @@ void Chain::fk(const double* q, Rigid& T) const { kernel::fk(*path_, q, T); }
 
 void Chain::fk_jacobian(const double* q, Rigid& T, double* jac) const {
   // Joint axes and points land in the Jacobian's columns (6 per joint, column-major); finished below.
-  kernel::fk_axes(*path_, q, T, jac);
+  kernel::fk(*path_, q, T, jac);
   Eigen::Map<Matrix6X> J(jac, 6, dof_);
   const std::vector<kernel::Link>& links = path_->links;
   for (int i = 0; i < dof_; ++i) {

@@ -18,18 +18,6 @@ namespace robokin {
 
 namespace kernel {
 
-void fk(const FkPath& path, const double* q, Rigid& T) {
-  Lanes<1> L;
-  run_lanes<1>(path, L, q, 0, nullptr);
-  lane_to_rigid(L, 0, T);
-}
-
-void fk_axes(const FkPath& path, const double* q, Rigid& T, double* axes) {
-  Lanes<1> L;
-  run_lanes<1>(path, L, q, 0, axes);
-  lane_to_rigid(L, 0, T);
-}
-
 namespace {
 
 #ifdef ROBOKIN_DISPATCH

@@ -211,6 +211,14 @@ ROBOKIN_KERNEL bool values_finite(const double* q, long count) {
   return sum == 0.0;
 }
 
+// One configuration, Chain's hot single calls: the tool frame; with `axes`, also each joint's point
+// and direction (z, or the sliding axis) after its motion, axes[6 i .. 6 i + 5].
+inline void fk(const FkPath& path, const double* q, Rigid& T, double* axes = nullptr) {
+  Lanes<1> L;
+  run_lanes<1>(path, L, q, 0, axes);
+  lane_to_rigid(L, 0, T);
+}
+
 }  // namespace kernel
 
 }  // namespace robokin

@@ -44,11 +44,8 @@ struct FkPath {
 // The path of a chain with at least one joint.
 FkPath build_fk_path(const KDL::Chain& chain);
 
-// The kernel's entry points (fk_batch.cpp), Chain's hot calls: the tool frame; the tool frame and
-// each joint's point and direction (z, or the sliding axis) after its motion, axes[6 i .. 6 i + 5];
-// Chain::fk_few; Chain::fk_batch.
-void fk(const FkPath& path, const double* q, Rigid& out);
-void fk_axes(const FkPath& path, const double* q, Rigid& out, double* axes);
+// The kernel's entry points for many configurations (fk_batch.cpp): Chain::fk_few, Chain::fk_batch.
+// A single configuration's (fk) is inline in fk_lanes.hpp.
 void fk_few(const FkPath& path, const double* q, int count, Rigid* out);
 bool fk_batch(const FkPath& path, const double* q, long count, double* out, FkOutput what, Progress* progress);
 
