@@ -10,7 +10,6 @@ import inspect
 import pkgutil
 import re
 
-import pytest
 
 import robokin
 from robokin import _core
