@@ -4,7 +4,9 @@ Ctrl-C) leaves neither a truncated file under the requested name nor the tempora
 
 The temporary file is named ``.NAME.PID.RANDOM.partEXT`` (PID: the writing process). A process
 killed outright (SIGKILL, a power cut) cannot remove it; the next AtomicPath for the same target
-removes the temporary files of that target whose process is gone, and only those.
+removes the temporary files of that target whose process is gone, and only those. A line-oriented
+file (a CSV log streamed row by row) can be kept instead: :func:`keep_stale` renames what a dead
+writer left to ``NAME.partial.EXT``, its complete lines only, before a new writer starts.
 
 Used by robokin's figures and demos and by the simulator (recordings, CSV logs, screenshots); a
 program of your own that writes results can use it the same way.
@@ -16,7 +18,7 @@ import os
 import re
 import tempfile
 
-__all__ = ["AtomicPath", "remove_own", "remove_stale"]
+__all__ = ["AtomicPath", "keep_stale", "remove_own", "remove_stale"]
 
 
 class AtomicPath:
@@ -122,3 +124,72 @@ def remove_own(path) -> list:
     directory = os.path.dirname(os.path.abspath(path))
     stem, ext = os.path.splitext(os.path.basename(path))
     return _remove_parts(directory, _part_pattern(stem, str(os.getpid()), ext), lambda pid: True)
+
+
+def keep_stale(path) -> list:
+    """Keeps what killed writers of ``path`` left: each temporary file ``.STEM.PID.RANDOM.partEXT``
+    of a process that no longer exists is cut after its last complete line (a trailing partial
+    line is dropped) and renamed to ``STEM.partialEXT`` (``STEM.partial.2EXT``, ... when taken: an
+    existing file is never overwritten). Returns the paths kept. A file holding no complete line
+    after its first (a header alone, or nothing) has no data and is removed. For line-oriented files
+    such as CSV logs; call it before the :class:`AtomicPath` of ``path`` (which would remove them)."""
+    path = os.fspath(path)
+    directory = os.path.dirname(os.path.abspath(path))
+    stem, ext = os.path.splitext(os.path.basename(path))
+    pattern = _part_pattern(stem, r"\d{1,10}", ext)
+    kept = []
+    try:
+        names = sorted(os.listdir(directory))
+    except OSError:
+        return kept
+    for name in names:
+        match = pattern.match(name)
+        if not match or _alive(int(match.group(1))):
+            continue
+        part = os.path.join(directory, name)
+        # Claimed first under a name of this process: of two runs starting at once, one keeps it.
+        claimed = os.path.join(directory, f".{stem}.{os.getpid()}.keep{ext}")
+        try:
+            if not os.path.isfile(part) or os.path.islink(part):
+                continue
+            os.rename(part, claimed)
+        except OSError:
+            continue
+        kept_path = _keep_lines(claimed, os.path.join(directory, stem + ".partial"), ext)
+        if kept_path is not None:
+            kept.append(kept_path)
+    return kept
+
+
+def _keep_lines(claimed: str, base: str, ext: str):
+    """Cuts ``claimed`` after its last newline and links it to the first free ``BASE[.N]EXT``
+    (None, and the file removed, when it holds no line after the first)."""
+    try:
+        with open(claimed, "rb+") as f:
+            data = f.read()
+            end = data.rfind(b"\n") + 1
+            if data[:end].count(b"\n") < 2:
+                end = 0
+            f.truncate(end)
+        number = 1
+        while end:
+            target = base + ("" if number == 1 else f".{number}") + ext
+            try:
+                os.link(claimed, target)  # fails on an existing name, where a rename would overwrite
+                return target
+            except FileExistsError:
+                number += 1
+            except OSError:  # a file system without hard links: rename to a name not taken
+                if os.path.lexists(target):
+                    number += 1
+                    continue
+                os.rename(claimed, target)
+                return target
+    except OSError:
+        pass
+    finally:
+        try:
+            os.remove(claimed)
+        except OSError:
+            pass
+    return None

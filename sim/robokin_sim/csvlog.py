@@ -4,6 +4,10 @@ Floats are written with ``repr`` (shortest round-trip form), so a test reading t
 exact values the simulator had. The file is written under a temporary name
 (``.NAME.PID.RANDOM.part.csv`` next to it) and renamed when closed; with ``flush`` every row
 reaches that temporary file at once, so a window run's log can be followed while it runs.
+
+A run killed outright (SIGKILL) leaves its temporary file; the next log of the same name keeps
+that file's complete rows as ``NAME.partial.csv`` (:func:`robokin.files.keep_stale`) rather than
+removing them, and names what it kept in :attr:`CsvLog.kept`.
 """
 
 from __future__ import annotations
@@ -11,7 +15,7 @@ from __future__ import annotations
 import csv
 from typing import Optional, Sequence
 
-from robokin.files import AtomicPath
+from robokin.files import AtomicPath, keep_stale
 
 from .outputs import OutputError, reason_of
 
@@ -30,6 +34,7 @@ class CsvLog:
         self.columns = tuple(columns)
         self.rows = 0
         self.flush = bool(flush)
+        self.kept = keep_stale(path)
         self._out = AtomicPath(path)
         self._written: Optional[str] = None
         self._file = open(self._out.tmp, "w", newline="", encoding="utf-8")

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import sys
 import time
 from typing import Iterator, Optional
 
@@ -174,6 +175,13 @@ class _Outputs:
             self.surface = pygame.Surface(size)
             self.renderer = make_renderer(config.robot, size)
         self.log = CsvLog(config.log, scene.columns, flush=not config.headless) if config.log else None
+        for kept in self.log.kept if self.log is not None else ():
+            # Before the loop starts (nothing is printed inside it): one line per file kept.
+            try:
+                print(f"robokin-sim: kept the rows a killed run had written for {config.log} in {kept}",
+                      file=sys.stderr, flush=True)
+            except OSError:  # no terminal to say it on: the file is kept all the same
+                pass
 
     def log_step(self, scene) -> None:
         if self.log is not None:
