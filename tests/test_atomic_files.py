@@ -7,7 +7,6 @@ import os
 
 import pytest
 import sim_helpers  # noqa: F401  (SDL dummy drivers before pygame is imported)
-from PIL import Image
 from sim_helpers import run_sim
 
 import robokin.demo
@@ -35,16 +34,28 @@ def test_atomic_path_commits_or_leaves_nothing(tmp_path):
     assert files(tmp_path) == ["sub/a.txt"] and target.read_text() == "whole"  # the old file is kept
 
 
-def _half_then_interrupt(path, *args, **kwargs):
-    with open(path, "wb") as f:
-        f.write(b"GIF89a half a file")
+def _half_then_interrupt(*args, **kwargs):
     raise KeyboardInterrupt
 
 
 def test_gif_writer_interrupted(tmp_path, monkeypatch):
+    """Frames stream to the temporary file: a frame or the end interrupted leaves nothing."""
+    from PIL import GifImagePlugin
+
+    from robokin_sim import recording
+
+    frame = __import__("numpy").zeros((20, 30, 3), dtype="uint8")
     rec = Recorder(str(tmp_path / "a.gif"), every=1)
-    rec.add(__import__("numpy").zeros((20, 30, 3), dtype="uint8"))
-    monkeypatch.setattr(Image.Image, "save", lambda self, fp, *a, **k: _half_then_interrupt(fp))
+    rec.add(frame)
+    with monkeypatch.context() as patch:
+        patch.setattr(GifImagePlugin, "getdata", _half_then_interrupt)
+        with pytest.raises(KeyboardInterrupt):
+            rec.add(frame + 1)
+    rec.discard()  # what the run does on an exception
+    assert files(tmp_path) == []
+    rec = Recorder(str(tmp_path / "a.gif"), every=1)
+    rec.add(frame)
+    monkeypatch.setattr(recording.GifStream, "close", _half_then_interrupt)
     with pytest.raises(KeyboardInterrupt):
         rec.close()
     assert files(tmp_path) == []
