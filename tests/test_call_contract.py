@@ -180,7 +180,6 @@ def test_the_options_of_python_wrappers_are_their_class_fields_with_the_core_def
 def test_every_options_class_is_some_calls():
     used = {getattr(f, "options_class", None) for _, _, f in public_calls()}
     used |= {OPTIONS_CLASSES[c] for classes in CORE_KWARGS.values() for c in classes}
-    used |= {_core.RateOptions, _core.ReachOptions, _core.RRR3PlanOptions}  # via the wrappers and plan_loop
     assert set(OPTIONS_CLASSES.values()) <= used, set(OPTIONS_CLASSES) - {c.__name__ for c in used if c}
 
 

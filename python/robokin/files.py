@@ -89,24 +89,29 @@ def _part_pattern(stem: str, pid: str, ext: str):
     return re.compile(r"\." + re.escape(stem) + r"\.(" + pid + r")\.[A-Za-z0-9_]+\.part" + re.escape(ext) + r"\Z")
 
 
-def _remove_parts(directory: str, pattern, dead) -> list:
-    """Removes the regular files of ``directory`` whose names match ``pattern`` and whose writer's
-    PID (the pattern's group) ``dead(pid)`` says is gone; returns their paths."""
-    removed = []
+def _parts(directory: str, pattern, dead):
+    """The regular files of ``directory`` (paths, in name order) whose names match ``pattern`` and
+    whose writer's PID (the pattern's group) ``dead(pid)`` says is gone."""
     try:
-        names = os.listdir(directory)
+        names = sorted(os.listdir(directory))
     except OSError:
-        return removed
+        return
     for name in names:
         match = pattern.match(name)
-        if match and dead(int(match.group(1))):
-            path = os.path.join(directory, name)
-            try:
-                if os.path.isfile(path) and not os.path.islink(path):
-                    os.remove(path)
-                    removed.append(path)
-            except OSError:
-                pass
+        path = os.path.join(directory, name)
+        if match and dead(int(match.group(1))) and os.path.isfile(path) and not os.path.islink(path):
+            yield path
+
+
+def _remove_parts(directory: str, pattern, dead) -> list:
+    """Removes the files :func:`_parts` lists; returns their paths."""
+    removed = []
+    for path in _parts(directory, pattern, dead):
+        try:
+            os.remove(path)
+            removed.append(path)
+        except OSError:
+            pass
     return removed
 
 
@@ -138,20 +143,10 @@ def keep_stale(path) -> list:
     stem, ext = os.path.splitext(os.path.basename(path))
     pattern = _part_pattern(stem, r"\d{1,10}", ext)
     kept = []
-    try:
-        names = sorted(os.listdir(directory))
-    except OSError:
-        return kept
-    for name in names:
-        match = pattern.match(name)
-        if not match or _alive(int(match.group(1))):
-            continue
-        part = os.path.join(directory, name)
+    for part in _parts(directory, pattern, lambda pid: not _alive(pid)):
         # Claimed first under a name of this process: of two runs starting at once, one keeps it.
         claimed = os.path.join(directory, f".{stem}.{os.getpid()}.keep{ext}")
         try:
-            if not os.path.isfile(part) or os.path.islink(part):
-                continue
             os.rename(part, claimed)
         except OSError:
             continue
