@@ -47,7 +47,6 @@ std::string mode_text(const Mode& m) {
 
 // What every pose of the path must satisfy.
 struct Rules {
-  const RRR3* robot;
   Mode mode;
   int sign;
   double clearance, serial_margin;
@@ -121,7 +120,7 @@ struct Segments {
 };
 
 Segments segments_for(const RRR3& robot, const Ends& e, const RRR3ConnectOptions& o) {
-  return Segments{robot, o, Rules{&robot, o.mode, sign_of(e.es.det_a), o.clearance, o.serial_margin},
+  return Segments{robot, o, Rules{o.mode, sign_of(e.es.det_a), o.clearance, o.serial_margin},
                   std::min({o.clearance, e.es.distance, e.eg.distance}),
                   std::min({o.serial_margin, std::abs(e.es.det_b), std::abs(e.eg.det_b)})};
 }
