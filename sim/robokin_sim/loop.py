@@ -20,6 +20,7 @@ from typing import Iterator, Optional
 
 from .config import Config
 from .keys import HELD_KEYS, NO_INPUT, Input
+from .outputs import save_png, surface_rgb
 from .scene import DT
 from .scenes import entry
 from .signals import deferred, requested
@@ -197,7 +198,7 @@ class _Outputs:
             return
         state = state or scene.state()
         self.renderer.draw(self.surface, state, dataclasses.replace(hud, fps=None, recording=False))
-        self.recorder.add(pygame.surfarray.array3d(self.surface).swapaxes(0, 1))
+        self.recorder.add(surface_rgb(pygame, self.surface))
 
     def discard(self) -> None:
         if self.recorder is not None:
@@ -324,8 +325,6 @@ class _Session:
         """The PNG of the last frame drawn (drawn now if none was), when asked for."""
         if not (self.config.screenshot and self.renderer is not None):
             return None
-        from .outputs import save_png
-
         if not self.drawn:
             self.renderer.draw(self.screen, self.scene.state(), dataclasses.replace(self.hud, recording=False))
         return save_png(self.pg, self.screen, self.config.screenshot)

@@ -35,16 +35,25 @@ def reason_of(exc: BaseException) -> str:
     return (lines[0] if lines else type(exc).__name__)[:200]
 
 
+def surface_rgb(pygame, surface):
+    """The surface's pixels as a new (H, W, 3) uint8 RGB array, rows top to bottom. SDL copies its
+    rows as they are; surfarray's (W, H) view would need a transposing copy per frame."""
+    import numpy as np
+
+    w, h = surface.get_size()
+    return np.frombuffer(pygame.image.tobytes(surface, "RGB"), dtype=np.uint8).reshape(h, w, 3)
+
+
 def save_png(pygame, surface, path: str) -> str:
     """Saves ``surface`` as a PNG at ``path`` (atomically); OutputError when it cannot. (Pillow
     writes it: SDL's libpng would also print its complaint on stderr.)"""
     from PIL import Image
     from robokin.files import AtomicPath
 
-    rgb = pygame.surfarray.array3d(surface).swapaxes(0, 1)
+    rgb = surface_rgb(pygame, surface)
     try:
         with AtomicPath(path) as tmp:
-            Image.fromarray(rgb.copy(), "RGB").save(tmp, format="PNG")
+            Image.fromarray(rgb, "RGB").save(tmp, format="PNG")
     except OSError as exc:
         raise OutputError(path, reason_of(exc)) from None
     return path
