@@ -278,8 +278,9 @@ def test_results_unpickled_from_unaligned_state_arrays():
     assert pickle.loads(pickle.dumps(res, protocol=5)).q.tobytes() == res.q.tobytes()
 
 
-# Chain.fk, Chain.jacobian, _core.ik and IKSolver.solve are bound without pybind11's dispatcher
-# (cpp/bindings/fastcall.hpp): the argument handling Python users expect, written out there.
+# Chain.fk, Chain.jacobian and Chain.manipulability are bound without pybind11's dispatcher
+# (cpp/bindings/internals.hpp, fast_calls.cpp): the argument handling Python users expect, written
+# out there; ik's checks of its own arguments are here too.
 UR5 = rk.robots.ur5()
 Q5 = np.zeros(6)
 FAST_CALL_ERRORS = [
@@ -292,10 +293,8 @@ FAST_CALL_ERRORS = [
     (lambda: UR5.jacobian(q=Q5, task="nope"), ValueError, "task"),
     (lambda: UR5.jacobian(Q5, 3), TypeError, "task: expected None or a string"),
     (lambda: rk._core.Chain.fk(1, Q5), TypeError, "doesn't apply to a 'int' object"),
-    (lambda: rk._core.ik(1, np.eye(4), Q5), TypeError, "ik(): chain: expected Chain, got int"),
-    (lambda: rk._core.ik(UR5, np.eye(4)), TypeError, "ik() missing required argument 'q0'"),
-    (lambda: rk._core.ik(UR5, np.eye(4), Q5, 5), TypeError, "ik() takes at most 3 positional arguments (4 given)"),
-    (lambda: rk._core.ik(UR5, np.eye(4), Q5, chain=UR5), TypeError, "ik() got multiple values for argument 'chain'"),
+    (lambda: rk.ik(1, np.eye(4), Q5), TypeError, "chain: expected a robokin.Chain, got int"),
+    (lambda: rk.ik_batch(1, np.eye(4)[None], Q5), TypeError, "chain: expected a robokin.Chain, got int"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, seed="x"), ValueError, "seed: expected None or an int"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, tol_p=-1.0), ValueError, "tol_p: must be a positive number"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, bogus=1), TypeError, "bogus"),
@@ -303,10 +302,7 @@ FAST_CALL_ERRORS = [
     (lambda: UR5.manipulability(Q5, "yoshikawa", "pose", 1), TypeError, "takes at most 3 positional arguments"),
     (lambda: UR5.manipulability(Q5, measure="nope"), ValueError, "measure"),
     (lambda: UR5.manipulability(Q5, task=1), TypeError, "task: expected None or a string"),
-    (lambda: rk._core._URSolver(UR5).solve(), TypeError, "solve() missing required argument 'target'"),
     (lambda: rk._core._URSolver(UR5).solve(np.eye(3)), ValueError, "target"),
-    (lambda: rk.IKSolver(UR5).solve(np.eye(4)), TypeError, "solve() missing required argument 'q0'"),
-    (lambda: rk.IKSolver(UR5).solve(np.eye(4), Q5, Q5), TypeError, "solve() takes at most 2 positional arguments"),
 ]
 
 

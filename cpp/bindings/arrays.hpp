@@ -5,6 +5,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "internals.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -19,54 +21,36 @@ namespace robokin::bind {
 
 namespace py = pybind11;
 
-// A parameter that takes anything numpy can convert (arrays, lists, numbers): any object is
-// accepted here and converted, with errors naming the argument, by the helpers below. The type
-// stubs show it as numpy.typing.ArrayLike.
-class ArrayLike : public py::object {
- public:
-  using py::object::object;
-  static bool check_(py::handle) { return true; }
-};
-
-// A parameter of several accepted forms, taken as any object and converted by the bindings'
-// helpers (errors naming it), shown in the stubs as Tag::name says.
-template <class Tag>
-class Typed : public py::object {
- public:
-  using py::object::object;
-  static bool check_(py::handle) { return true; }
-};
-
+// The texts that signatures and stubs show for the Typed<Tag> parameters (internals.hpp).
 struct LimitsTag {  // limits_arg
-  static constexpr auto name = py::detail::const_name("tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None");
+  static constexpr char text[] = "tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
 };
 struct ChainLimitsTag {  // limits_or_default
-  static constexpr auto name =
-      py::detail::const_name("typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None");
+  static constexpr char text[] = "typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
 };
 struct ModeTag {  // the 3-RRR's working mode
-  static constexpr auto name = py::detail::const_name("tuple[int, int, int]");
+  static constexpr char text[] = "tuple[int, int, int]";
 };
 struct SeedTag {
-  static constexpr auto name = py::detail::const_name("int | None");
+  static constexpr char text[] = "int | None";
 };
 struct TaskTag {  // task_of: a task's name, or None for the chain's natural task
-  static constexpr auto name = py::detail::const_name("typing.Literal['pose', 'position', 'xy', 'xyphi'] | None");
+  static constexpr char text[] = "typing.Literal['pose', 'position', 'xy', 'xyphi'] | None";
 };
 struct OutTag {  // output_array: the caller's array to write into, or None for a new one
-  static constexpr auto name = py::detail::const_name("numpy.typing.NDArray[numpy.float64] | None");
+  static constexpr char text[] = "numpy.typing.NDArray[numpy.float64] | None";
 };
 struct FrameOrPositionTag {
-  static constexpr auto name = py::detail::const_name("typing.Literal['frame', 'position']");
+  static constexpr char text[] = "typing.Literal['frame', 'position']";
 };
 struct MeasureTag {
-  static constexpr auto name = py::detail::const_name("typing.Literal['yoshikawa', 'condition', 'min_singular']");
+  static constexpr char text[] = "typing.Literal['yoshikawa', 'condition', 'min_singular']";
 };
 struct NullspaceTag {
-  static constexpr auto name = py::detail::const_name("typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None");
+  static constexpr char text[] = "typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None";
 };
 struct OptionalArrayTag {
-  static constexpr auto name = py::detail::const_name("numpy.typing.ArrayLike | None");
+  static constexpr char text[] = "numpy.typing.ArrayLike | None";
 };
 using LimitsLike = Typed<LimitsTag>;
 using ChainLimitsLike = Typed<ChainLimitsTag>;
@@ -81,18 +65,8 @@ using OptionalArrayLike = Typed<OptionalArrayTag>;
 
 }  // namespace robokin::bind
 
-namespace pybind11::detail {
-template <>
-struct handle_type_name<robokin::bind::ArrayLike> {
-  static constexpr auto name = const_name("numpy.typing.ArrayLike");
-};
-template <class Tag>
-struct handle_type_name<robokin::bind::Typed<Tag>> {
-  static constexpr auto name = Tag::name;
-};
-}  // namespace pybind11::detail
-
 namespace robokin::bind {
+
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // The bindings' two errors, as robokin's Python checks raise them: a value out of range or of the
@@ -121,7 +95,7 @@ py::array_t<T, py::array::c_style | py::array::forcecast> aligned_array(py::hand
     PyErr_Clear();
     return a;
   }
-  if (!(py::detail::array_proxy(a.ptr())->flags & py::detail::npy_api::NPY_ARRAY_ALIGNED_)) {
+  if (!has_flags(a, kAligned)) {
     A copy(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
     if (a.size()) std::memcpy(copy.mutable_data(), a.data(), static_cast<std::size_t>(a.size()) * sizeof(T));
     return copy;
@@ -146,37 +120,6 @@ inline Array as_array(py::handle obj, const char* name) {
   return a;
 }
 
-// The fast path: obj is exactly a numpy.ndarray of native-order float64, C-contiguous and aligned,
-// so its buffer is used as it is (no conversion object, no dtype object, no reference counting).
-// Anything else (lists, other dtypes, strided views, subclasses) goes through as_array.
-struct Float64View {
-  const double* data = nullptr;
-  int ndim = 0;
-  const py::ssize_t* shape = nullptr;
-  py::ssize_t size = 0;
-};
-
-inline bool float64_view(py::handle obj, Float64View& view) {
-  using py::detail::npy_api;
-  const npy_api& api = npy_api::get();
-  if (Py_TYPE(obj.ptr()) != api.PyArray_Type_) return false;
-  const auto* a = py::detail::array_proxy(obj.ptr());
-  const auto* d = py::detail::array_descriptor_proxy(a->descr);
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  constexpr char kSwapped = '<';
-#else
-  constexpr char kSwapped = '>';
-#endif
-  constexpr int kNeed = npy_api::NPY_ARRAY_C_CONTIGUOUS_ | npy_api::NPY_ARRAY_ALIGNED_;
-  if (d->type_num != npy_api::NPY_DOUBLE_ || d->byteorder == kSwapped || (a->flags & kNeed) != kNeed) return false;
-  view.data = reinterpret_cast<const double*>(a->data);
-  view.ndim = a->nd;
-  view.shape = a->dimensions;
-  view.size = 1;
-  for (int i = 0; i < a->nd; ++i) view.size *= a->dimensions[i];
-  return true;
-}
-
 inline Float64View view_of(const Array& a) {
   Float64View v;
   v.data = a.data();
@@ -184,25 +127,6 @@ inline Float64View view_of(const Array& a) {
   v.shape = a.shape();
   v.size = a.size();
   return v;
-}
-
-// A new, uninitialised C-contiguous float64 array: every output the bindings fill comes from here.
-// Made by numpy's C API directly (pybind11's array_t constructor builds shape and stride vectors and
-// a dtype object first).
-inline py::array_t<double> new_array(int ndim, const py::ssize_t* shape) {
-  using py::detail::npy_api;
-  const npy_api& api = npy_api::get();
-  PyObject* descr = api.PyArray_DescrFromType_(npy_api::NPY_DOUBLE_);  // the reference is stolen below
-  PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, ndim, shape, nullptr, nullptr, 0, nullptr);
-  if (!a) throw py::error_already_set();
-  return py::reinterpret_steal<py::array_t<double>>(a);
-}
-inline py::array_t<double> new_array(std::initializer_list<py::ssize_t> shape) {
-  return new_array(static_cast<int>(shape.size()), shape.begin());
-}
-
-inline double* float64_data(const py::array& a) {
-  return reinterpret_cast<double*>(py::detail::array_proxy(a.ptr())->data);
 }
 
 // The array a batch call writes its result into: a new one when `out` is None, else the caller's
@@ -219,9 +143,7 @@ inline py::array output_array(py::handle out, int ndim, const py::ssize_t* shape
     throw py::type_error("out: expected a float64 array, got " + py::str(a.dtype()).cast<std::string>());
   if (a.ndim() != ndim || !std::equal(shape, shape + ndim, a.shape()))
     fail("out: expected shape " + shape_of(ndim, shape) + ", got " + shape_of(a));
-  const int need = py::detail::npy_api::NPY_ARRAY_C_CONTIGUOUS_ | py::detail::npy_api::NPY_ARRAY_ALIGNED_ |
-                   py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  if ((py::detail::array_proxy(a.ptr())->flags & need) != need)
+  if (!has_flags(a, kCContiguous | kAligned | kWriteable))
     fail("out: expected a writable, aligned, C-contiguous array (np.empty gives one)");
   const char* o = static_cast<const char*>(a.data());
   const char* i = reinterpret_cast<const char*>(in);

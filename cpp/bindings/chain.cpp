@@ -3,7 +3,6 @@
 #include "bindings.hpp"
 #include "chain_parts.hpp"
 #include "chain_args.hpp"
-#include "fastcall.hpp"
 #include "progress.hpp"
 
 #include "robokin/chain.hpp"
@@ -119,7 +118,10 @@ FkOutput fk_part_of(py::handle obj) {
   fail("part: expected 'frame' or 'position', got '" + s + "'");
 }
 
-py::array fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj) {
+}  // namespace
+
+// Chain.fk and Chain.jacobian, bound as fast methods (fast_calls.cpp).
+py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj) {
   const FkOutput what = fk_part_of(part_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
   Array holder;
@@ -156,7 +158,7 @@ py::array fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj)
   return out;
 }
 
-py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray out_obj) {
+py::array chain_jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray out_obj) {
   const Task task = task_of(task_obj, c);
   Array holder;
   const Float64View q = q_view(q_obj, holder);
@@ -181,6 +183,8 @@ py::array jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray 
   return out;
 }
 
+namespace {
+
 py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
   py::array_t<double> out = new_array({static_cast<py::ssize_t>(f.size()), 4, 4});
@@ -201,33 +205,6 @@ py::array_t<double> point_in_frame(const Chain& c, ArrayLike q_obj, ArrayLike po
   const Eigen::VectorXd out = c.point_in_frame(q, p, static_cast<int>(frame), static_cast<int>(in_frame));
   require_finite_result(out.data(), 3, "q, point");
   return to_numpy(out);
-}
-
-// Chain.fk(q, part='frame', *, out=None) and Chain.jacobian(q, task='pose', *, out=None) through
-// fastcall.hpp.
-template <class Second, py::array (*F)(const Chain&, ArrayLike, Second, OutArray)>
-PyObject* fast_method(const char* fname, const char* second, PyObject* fallback, PyObject* self,
-                      PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  return guarded([&]() -> py::object {
-    const char* const names[] = {"q", second, "out"};
-    PyObject* a[3];
-    parse_args(fname, args, nargs, kwnames, names, 3, 2, a);
-    if (!a[0]) missing(fname, "q");
-    return F(self_of<Chain>(self), py::reinterpret_borrow<ArrayLike>(a[0]),
-             py::reinterpret_borrow<Second>(a[1] ? a[1] : fallback), py::reinterpret_borrow<OutArray>(a[2] ? a[2] : Py_None));
-  });
-}
-
-constexpr const char* kFkPart = "frame";  // Chain.fk's default part
-
-PyObject* fk_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  static PyObject* const part = interned(kFkPart);  // kept for the process
-  return fast_method<FkPart, &fk>("fk", "part", part, self, args, nargs, kwnames);
-}
-
-PyObject* jacobian_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  static PyObject* const task = interned(task_name(Task::Pose));  // kept for the process
-  return fast_method<TaskName, &jacobian>("jacobian", "task", task, self, args, nargs, kwnames);
 }
 
 std::string joint_types(const Chain& c) {
@@ -263,23 +240,12 @@ void def_chain_model(py::class_<Chain>& chain) {
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
       .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
-  // The two hottest methods without pybind11's dispatcher (fastcall.hpp).
-  const std::string q = "(self: robokin._core.Chain, q: " + type_text<ArrayLike>();
-  const std::string out = ", *, out: " + type_text<OutArray>() + " = None) -> numpy.ndarray";
-  add_fast_method(chain, fast_def("fk", &fk_fast, q + ", part: " + type_text<FkPart>() + " = '" + kFkPart + "'" + out,
-                                  "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). part='position': the tool\n"
-                                  "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"
-                                  "out: an array of the result's shape to write it into (returned), for repeated calls.\n"));
-  add_fast_method(chain, fast_def("jacobian", &jacobian_fast,
-                                  q + ", task: " + type_text<TaskName>() + " = '" + task_name(Task::Pose) + "'" + out,
-                                  "Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)\n"
-                                  "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"
-                                  "out: an array of the result's shape to write it into (returned), for repeated calls.\n"));
 }
 
 void bind_chain(py::module_& m) {
   py::class_<Chain> cls(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).");
   def_chain_model(cls);
+  def_chain_fast_calls(cls);
   def_chain_names(cls);
   def_chain_from_urdf(cls);
   def_chain_manipulability(cls);

@@ -17,10 +17,10 @@ namespace robokin::bind {
 namespace {
 
 struct JointMappingTag {
-  static constexpr auto name = py::detail::const_name("collections.abc.Mapping[str, float]");
+  static constexpr char text[] = "collections.abc.Mapping[str, float]";
 };
 struct JointDefaultTag {
-  static constexpr auto name = py::detail::const_name("float | numpy.typing.ArrayLike | None");
+  static constexpr char text[] = "float | numpy.typing.ArrayLike | None";
 };
 using JointMapping = Typed<JointMappingTag>;
 using JointDefault = Typed<JointDefaultTag>;

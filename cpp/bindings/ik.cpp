@@ -1,7 +1,6 @@
 // Numerical inverse kinematics (use robokin.ik / robokin.ik_batch) and KDL's solvers as references.
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "fastcall.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "results.hpp"
@@ -155,36 +154,6 @@ struct BoundSolver {
   }
 };
 
-// ik(chain, target, q0, *, seed=None, **kwargs) and IKSolver.solve(target, q0) through fastcall.hpp.
-PyObject* ik_fast(PyObject*, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  return guarded([&]() -> py::object {
-    static const char* const names[] = {"chain", "target", "q0", "seed"};
-    PyObject* a[4];
-    py::dict options;  // the keywords that name no parameter: IkOptions' fields
-    auto option = [&](PyObject* name, PyObject* value) {
-      if (PyDict_SetItem(options.ptr(), name, value) != 0) throw py::error_already_set();
-    };
-    parse_args("ik", args, nargs, kwnames, names, 4, 3, a, &option);
-    const Chain& chain = instance_arg<Chain>("ik", "chain", a[0]);
-    if (!a[1]) missing("ik", "target");
-    if (!a[2]) missing("ik", "q0");
-    return py::cast(ik(chain, py::reinterpret_borrow<ArrayLike>(a[1]), py::reinterpret_borrow<ArrayLike>(a[2]),
-                       py::reinterpret_borrow<SeedLike>(a[3] ? a[3] : Py_None), py::reinterpret_borrow<py::kwargs>(options)));
-  });
-}
-
-PyObject* solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  return guarded([&]() -> py::object {
-    static const char* const names[] = {"target", "q0"};
-    PyObject* a[2];
-    parse_args("solve", args, nargs, kwnames, names, 2, 2, a);
-    if (!a[0]) missing("solve", "target");
-    if (!a[1]) missing("solve", "q0");
-    return py::cast(self_of<BoundSolver>(self).solve(py::reinterpret_borrow<ArrayLike>(a[0]),
-                                                     py::reinterpret_borrow<ArrayLike>(a[1])));
-  });
-}
-
 // Pickling: a versioned state tuple (check_state, arrays.hpp).
 std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
   check_state(t, 6, "IKSolver");  // (version, chain, options, seeded, seed, calls)
@@ -226,11 +195,8 @@ void bind_ik(py::module_& m) {
   defaults["timeout"] = d.budget();
   defaults.attr("pop")("damping");  // None: the method's (default_damping)
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
-  add_fast_function(m, fast_def("ik", &ik_fast,  // robokin.ik's core, without pybind11's dispatcher (fastcall.hpp)
-                                "(chain: robokin._core.Chain, target: " + type_text<ArrayLike>() + ", q0: " +
-                                    type_text<ArrayLike>() + ", *, seed: " + type_text<SeedLike>() +
-                                    " = None, **kwargs) -> robokin._core.IKResult",
-                                "Numerical IK; options as keywords (IKOptions). Use robokin.ik.\n"));
+  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::kw_only(), py::arg("seed") = py::none(),
+        "Numerical IK; options as keywords (IKOptions). Use robokin.ik.");
   m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
         py::arg("seed") = py::none(), py::arg("path") = false,
         "Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.");
@@ -247,6 +213,7 @@ void bind_ik(py::module_& m) {
                                                   options_arg(kwargs), !seed.is_none(), seed_arg(seed));
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>(), init_doc.c_str())
+      .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")
       .def_property_readonly("method", [](const BoundSolver& b) { return name_of(b.options.method); })
       .def_property_readonly("task", [](const BoundSolver& b) { return task_name(*b.options.task); },
                              "The task solved for (task=None: the chain's natural_task).")
@@ -261,10 +228,6 @@ void bind_ik(py::module_& m) {
         const std::string options = py::repr(self.attr("options")).cast<std::string>();
         return "IKSolver" + options.substr(options.find('('));
       });
-  add_fast_method(solver, fast_def("solve", &solve_fast,  // without pybind11's dispatcher (fastcall.hpp)
-                                   "(self: robokin._core.IKSolver, target: " + type_text<ArrayLike>() +
-                                       ", q0: " + type_text<ArrayLike>() + ") -> robokin._core.IKResult",
-                                   "Solves one target from q0 -> IKResult.\n"));
 }
 
 }  // namespace robokin::bind

@@ -1,6 +1,5 @@
 // Closed-form inverse kinematics: every solution, labelled by posture (use robokin.closed).
 #include "arrays.hpp"
-#include "fastcall.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
 #include "progress.hpp"
@@ -127,18 +126,6 @@ struct URSolver {
   }
   py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
 };
-
-// _URSolver.solve(target) through fastcall.hpp (robokin.closed.ur's call: the dispatcher was a
-// tenth of it).
-PyObject* ur_solve_fast(PyObject* self, PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames) {
-  return guarded([&]() -> py::object {
-    static const char* const names[] = {"target"};
-    PyObject* a[1];
-    parse_args("solve", args, nargs, kwnames, names, 1, 1, a);
-    if (!a[0]) missing("solve", "target");
-    return py::cast(self_of<URSolver>(self).solve(py::reinterpret_borrow<ArrayLike>(a[0])));
-  });
-}
 
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
@@ -299,11 +286,8 @@ void bind_solvers(py::module_& m) {
              return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
            }),
            py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
+      .def("solve", &URSolver::solve, py::arg("target"))
       .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
-  add_fast_method(ur_solver, fast_def("solve", &ur_solve_fast,  // without pybind11's dispatcher (fastcall.hpp)
-                                      "(self: robokin._core._URSolver, target: " + type_text<ArrayLike>() +
-                                          ") -> robokin._core.IKSolutions",
-                                      ""));
 }
 
 }  // namespace

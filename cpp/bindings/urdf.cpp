@@ -18,10 +18,10 @@ namespace robokin::bind {
 namespace {
 
 struct UrdfSourceTag {
-  static constexpr auto name = py::detail::const_name("str | bytes | os.PathLike");
+  static constexpr char text[] = "str | bytes | os.PathLike";
 };
 struct LinkNameTag {
-  static constexpr auto name = py::detail::const_name("str | None");
+  static constexpr char text[] = "str | None";
 };
 using UrdfSource = Typed<UrdfSourceTag>;
 using LinkName = Typed<LinkNameTag>;

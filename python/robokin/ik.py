@@ -43,7 +43,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from . import _core
+from . import _checks, _core
 from ._core import IKBatchResult, IKOptions, IKResult, IKSolver
 from ._options import with_options
 
@@ -73,9 +73,10 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
 
     Raises:
         ValueError: For a bad value (the message names the argument).
-        TypeError: For an unknown option or one of the wrong kind (the message names it).
+        TypeError: For a chain that is not a robokin.Chain, an unknown option or one of the wrong
+            kind (the message names it).
     """
-    return _core.ik(chain, target, q0, seed=seed, **options)
+    return _core.ik(_checks.chain(chain), target, q0, seed=seed, **options)
 
 
 @with_options(IKOptions)
@@ -101,4 +102,4 @@ def ik_batch(chain: _core.Chain, targets, q0, *, seed: Optional[int] = None, pat
         ``attempts``, ``error_p``, ``error_r`` (N,). Every row is finite: a target not solved
         has ``success`` False and its row holds the best point found (no NaN rows).
     """
-    return _core.ik_batch(chain, targets, q0, seed=seed, path=path, **options)
+    return _core.ik_batch(_checks.chain(chain), targets, q0, seed=seed, path=path, **options)
