@@ -74,7 +74,7 @@ def _slope(samples) -> float:
 def _report(what: str, steps: int, result: dict) -> None:
     rss = [s[1] for s in result["samples"]]
     files = ", ".join(f"{name} {size / 1e6:.1f} MB" for name, size in sorted(result["sizes"].items()))
-    print(f"  {what:<12}{steps:>9,} steps in {result['seconds']:6.1f} s  RSS {min(rss):6.1f} .. {max(rss):6.1f} MB "
+    print(f"  {what:<14}{steps:>10,} steps in {result['seconds']:6.1f} s  RSS {min(rss):6.1f} .. {max(rss):6.1f} MB "
           f"(last {rss[-1]:.1f})  slope {result['slope']:+7.2f} MB/min  [{files}]")
 
 
