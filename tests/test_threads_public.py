@@ -9,6 +9,7 @@ must be per call or per thread: a thread handed another's would give a different
 import dataclasses
 import sys
 import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -17,10 +18,12 @@ import thread_cases
 from test_fuzz_coverage import public_api
 
 THREADS = 8
-LIGHT_ROUNDS = 10  # passes each thread makes over the quick calls, each in an order of its own
+LIGHT_ROUNDS = 5  # passes each thread makes over the quick calls, each in an order of its own
 #: Calls that take tenths of a second (figures, the demo, Dask, reachability maps, simulator
-#: scenes): each is made by half of the threads, once, amid the others' calls.
+#: scenes): each is made once by half of the threads (the demo, which draws and saves a large
+#: figure, by two), amid the others' calls.
 HEAVY = ("plots", "demo", "dask", "sim.", "reachability", "rrr3_design")
+STRIDE = {"demo.main": 4}  # thread i makes heavy call n when n % stride == i % stride; default 2
 
 
 def digest(value, depth=0):
@@ -56,13 +59,14 @@ def _calls():
 
 
 def _schedule(calls):
-    """Each thread's list of calls: every quick call LIGHT_ROUNDS times, the heavy calls of its
-    parity once, all in an order of its own."""
+    """Each thread's list of calls: every quick call LIGHT_ROUNDS times, its share of the heavy
+    calls once, all in an order of its own."""
     light = [j for j, (name, _, _) in enumerate(calls) if not name.startswith(HEAVY)]
     heavy = [j for j, (name, _, _) in enumerate(calls) if name.startswith(HEAVY)]
     orders = []
     for i in range(THREADS):
-        mine = light * LIGHT_ROUNDS + [j for n, j in enumerate(heavy) if n % 2 == i % 2]
+        mine = light * LIGHT_ROUNDS + [j for n, j in enumerate(heavy)
+                                       if n % STRIDE.get(calls[j][0], 2) == i % STRIDE.get(calls[j][0], 2)]
         orders.append(np.random.default_rng(100 + i).permutation(mine))
     return orders
 
@@ -70,7 +74,7 @@ def _schedule(calls):
 @pytest.fixture
 def fast_switching():
     before = sys.getswitchinterval()
-    sys.setswitchinterval(1e-5)  # threads interleave often, inside Python and around released GILs
+    sys.setswitchinterval(1e-4)  # threads interleave often, inside Python and around released GILs
     yield
     sys.setswitchinterval(before)
 
@@ -127,3 +131,38 @@ def test_the_digest_sees_one_bit():
     b.view(np.uint64)[1] ^= 1
     assert digest(a) != digest(b) and digest(a) == digest(a.copy())
     assert digest({"x": [a]}) != digest({"x": [b]})
+
+
+def test_figures_leave_pyplot_alone():
+    """The figures are made outside pyplot: its list of open figures is one global state (and
+    not safe to change from several threads at once)."""
+    import matplotlib.pyplot as plt
+
+    before = plt.get_fignums()
+    for name, calls in thread_cases.CASES.items():
+        if name.startswith(("plots", "demo")):
+            for call in calls:
+                call()
+                assert plt.get_fignums() == before, name
+
+
+def test_scenes_stepped_from_threads_leave_the_warning_filters_as_they_were(fast_switching):
+    """The scenes silence Reach's PrecisionWarning (they report precision themselves) in blocks that
+    save and restore the process's warning filters: blocks of several threads must nest, not put
+    back each other's filters (which would leave the silencing on for the whole process)."""
+    scenes = [thread_cases.RprScene("line", True) if i % 2 else thread_cases.SerialScene(
+        thread_cases.M["ur5"], "ur5") for i in range(THREADS)]
+    before = list(warnings.filters)
+    start = threading.Barrier(THREADS)
+
+    def work(scene):
+        start.wait()
+        for _ in range(60):
+            scene.step(frozenset({"right"}))
+
+    threads = [threading.Thread(target=work, args=(s,)) for s in scenes]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert warnings.filters == before
