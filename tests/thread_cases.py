@@ -182,6 +182,11 @@ def _numeric_cases():
     c["reach"] = _each_chain(reach)
     c["track"] = _each_chain(lambda ch, k: rk.track(ch, _target(ch, _q(ch, k) + np.linspace(0, 0.05, 8)[:, None]),
                                                     _q(ch, k), nullspace="joint_limits"))
+    # Long paths: the loop runs for milliseconds with the GIL released, beside the other threads'
+    # calls (a buffer shared between two Reach loops would mix their errors).
+    c["track"] += [lambda n=n: rk.track(M[n], _target(M[n], _q(M[n], 8) + np.linspace(0, 0.3, 1500)[:, None]),
+                                        _q(M[n], 8), nullspace="joint_limits" if n == "rpr" else None)
+                   for n in ("rpr", "ur5", "panda")]
     c["servo"] = _each_chain(lambda ch, k: rk.servo(ch, ch.fk(_q(ch, k) + np.linspace(0, 0.05, 6)[:, None]), _q(ch, k),
                                                     0.01, damping=0.01 * (k % 3)), [n for n in SERIAL if M[n].dof == 6])
     c["resolved_rate"] = _each_chain(lambda ch, k: rk.resolved_rate(
