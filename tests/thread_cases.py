@@ -6,11 +6,11 @@ answer. A call that writes a file writes its own (a name per call) and answers w
 
 EXCLUDED names the public callables that cannot be called concurrently at all, each with why."""
 
-import contextlib
-import io
+import atexit
 import itertools
 import os
 import pathlib
+import shutil
 import sys
 import tempfile
 
@@ -43,6 +43,7 @@ UR3_DH = [(0.0, np.pi / 2, 0.1519, 0.0), (-0.24365, 0.0, 0.0, 0.0), (-0.21325, 0
 UR_DICT = {"d1": 0.2, "a2": -0.5, "a3": -0.4, "d4": 0.12, "d5": 0.1, "d6": 0.09}
 GEOMETRIES = [(0.13, 0.07, 0.12, 0.12), (0.15, 0.06, 0.13, 0.11), (0.12, 0.08, 0.11, 0.12)]
 _OUT = tempfile.mkdtemp(prefix="robokin-threads-")
+atexit.register(shutil.rmtree, _OUT, True)
 _names = itertools.count()
 
 
@@ -222,7 +223,11 @@ def _ur_cases():
         calls.append(lambda ch=ch, k=k, limits=limits: rk.closed.ur(ch.fk(_q(ch, k + 7)), ch, limits=limits))
     calls.append(lambda: rk.closed.ur(M["ur_dict"].fk(_q(M["ur_dict"], 3)), UR_DICT))
     calls.append(lambda: rk.closed.ur(M["ur5"].fk(_q(M["ur5"], 4)), M["ur5"], limits=(np.full(6, -1.0), np.full(6, 1.0))))
-    batches = [lambda ch=M[n], k=k: rk.closed.ur_batch(ch.fk(_q(ch, k + 20, 5)), ch, limits=("default", None)[k % 2])
+    # A new chain at each call: ids of freed chains are reused, and must not find their solvers.
+    calls += [lambda f=f, k=k: rk.closed.ur(M[f.__name__].fk(_q(M[f.__name__], k)), f(), limits=(None, "default")[k])
+              for k, f in enumerate((rk.robots.ur10, rk.robots.ur3e))]
+    # The other limits than closed.ur's for each arm: more bound solvers than the cache keeps.
+    batches = [lambda ch=M[n], k=k: rk.closed.ur_batch(ch.fk(_q(ch, k + 20, 5)), ch, limits=(None, "default")[k % 2])
                for k, n in enumerate(UR_ARMS)]
     return {"closed.ur": calls, "closed.ur_batch": batches}
 
