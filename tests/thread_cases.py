@@ -128,8 +128,8 @@ def _chain_cases():
     c["Chain.from_dh"] = [lambda k=k: rk.Chain.from_dh([(0.3 + 0.1 * k, 0.2 * k, 0.1, 0.0, "R"), (0.5, 0.0, 0.0, 0.1, "P")],
                                                        modified=bool(k % 2)).fk([0.3, 0.2]) for k in range(3)]
     c["Chain.from_segments"] = [lambda k=k: rk.Chain.from_segments(
-        [("R", (0, 0, 1), np.diag([1.0, 1.0, 1.0, 1.0])), ("P", (1, 0, 0), np.eye(4)), ("R", (0, 1, 0), np.eye(4))],
-        tool=np.eye(4) * (1 + k) / (1 + k)).frames([0.1 * k, 0.2, -0.3]) for k in range(2)]
+        [("R", (0, 0, 1), np.eye(4)), ("P", (1, 0, 0), np.eye(4)), ("R", (0, 1, 0), np.eye(4))],
+        tool=rk.pose.from_rpy((0.0, 0.1 * k, 0.0), (0.2, 0.0, 0.1 * k))).frames([0.1 * k, 0.2, -0.3]) for k in range(2)]
     c["Chain.from_urdf"] = [lambda: rk.Chain.from_urdf(SMALL_URDF).frames([0.2, 0.3, 0.1]),
                             lambda: rk.Chain.from_urdf(str(ROOT / "examples" / "arm.urdf")).link_names]
     for attr in ("dof", "joint_names", "joint_types", "limits", "link_names", "natural_task"):
@@ -190,9 +190,7 @@ def _numeric_cases():
                    for n in ("rpr", "ur5", "panda")]
     c["servo"] = _each_chain(lambda ch, k: rk.servo(ch, ch.fk(_q(ch, k) + np.linspace(0, 0.05, 6)[:, None]), _q(ch, k),
                                                     0.01, damping=0.01 * (k % 3)), [n for n in SERIAL if M[n].dof == 6])
-    c["resolved_rate"] = _each_chain(lambda ch, k: rk.resolved_rate(
-        ch, _q(ch, k), np.random.default_rng(k).normal(size=len(_target(ch, _q(ch, k)).ravel()) if ch.natural_task != "pose"
-                                                     else 6) * 0.1, damping=0.01 * (k % 3)))
+    c["resolved_rate"] = _each_chain(lambda ch, k: rk.resolved_rate(ch, _q(ch, k), twist(ch, k), damping=0.01 * (k % 3)))
     c["track_postures"] = [lambda: rk.track_postures(M["puma560"], M["puma560"].fk(_q(M["puma560"], 3, 4)), 0.1),
                            lambda: rk.track_postures(M["ur5"], M["ur5"].fk(_q(M["ur5"], 4, 4)), 0.1),
                            lambda: rk.track_postures(M["panda"], M["panda"].fk(_q(M["panda"], 5, 3)), 0.1,
@@ -206,6 +204,12 @@ def _numeric_cases():
 # Solvers shared by every thread. Call k of a seeded solver draws its restarts from seed + k, so
 # shared calls would depend on their order: these make no restarts (nothing drawn), and are long
 # enough (> 1700 iterations allowed) for the solve to release the GIL.
+def twist(chain, k):
+    """A small rate of the chain's natural task (6 for a pose, else the size of its target)."""
+    rows = 6 if chain.natural_task == "pose" else len(_target(chain, np.zeros(chain.dof)))
+    return np.random.default_rng(k).normal(size=rows) * 0.1
+
+
 SOLVERS = [rk.IKSolver(M[n], seed=k, restarts=0, max_iter=1800, method=("lm", "gn", "nr")[k % 3])
            for k, n in enumerate(SERIAL)]
 
