@@ -5,6 +5,7 @@
 // It shares robokin._core's types (Chain) and exception translators: import robokin first.
 #include <kdl/utilities/error.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <new>
@@ -12,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "../src/ik_starts.hpp"
 #include "../src/kernel/fast_math.hpp"
 #include "arrays.hpp"
 #include "kdl_ik_reference.hpp"
@@ -82,6 +84,16 @@ void bind_references(py::module_& m) {
         return to_numpy(out);
       },
       py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  // The chain's stored IK restart configurations (cpp/src/ik_starts.hpp), (kCount, dof).
+  m.def(
+      "ik_starts",
+      [](const Chain& chain) {
+        const IkStarts& starts = chain.ik_starts();
+        py::array_t<double> out({static_cast<py::ssize_t>(IkStarts::kCount), static_cast<py::ssize_t>(chain.dof())});
+        std::copy(starts.q(0), starts.q(0) + IkStarts::kCount * chain.dof(), out.mutable_data());
+        return out;
+      },
+      py::arg("chain"));
   // Chain::fk_few (the closed forms' check: up to 8 configurations in one pass of the lane kernel,
   // its AVX2 build where the CPU has it) on the rows of Q: (k, 4, 4) frames, for the test that
   // they are fk's bits.

@@ -1121,7 +1121,7 @@ class IKOptions:
     @property
     def restarts(self) -> int | None:
         """
-        Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+        Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
         """
     @restarts.setter
     def restarts(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -1272,7 +1272,7 @@ class IKSolver:
             tol_p (float, default 1e-09): Position tolerance (m).
             tol_r (float, default 1e-09): Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); unused for the other tasks.
             max_iter (int, default 100): Iterations per attempt.
-            restarts (None or int, default None): Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+            restarts (None or int, default None): Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
             timeout (None or float, default None): Time budget in seconds for all the attempts (checked every few iterations), counted in the solving thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable target costs the whole budget.
             damping (None or float, default None): lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse (default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.
             stall_window (int, default 6): With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
