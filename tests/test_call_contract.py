@@ -212,7 +212,7 @@ def test_the_checker_finds_a_stray_keyword_a_loose_kwargs_and_a_restated_default
 def test_the_checker_reads_core_signatures():
     assert core_parameters(_core.RRR3.workspace) == [("kwargs", "kwargs")]
     assert core_parameters(_core.ik) == [("chain", "positional"), ("target", "positional"), ("q0", "positional"),
-                                         ("seed", "keyword"), ("kwargs", "kwargs")]
+                                         ("seed", "positional"), ("kwargs", "kwargs")]
     assert problems_of("robokin", "RRR3.workspace", _core.RRR3.workspace, field_defaults()) == []
     assert problems_of("robokin", "RRR3.nothing", _core.RRR3.workspace, field_defaults()) == [
         "RRR3.nothing: **kwargs is no options class's (add it to CORE_KWARGS)"]

@@ -84,6 +84,21 @@ void bind_references(py::module_& m) {
         return to_numpy(out);
       },
       py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  // Seconds per IkSolver::solve with the default options, timed in C++ over `count` solves of one
+  // target from q0: the solver's own work, for the benchmark of what a call from Python adds.
+  m.def(
+      "ik_solve_seconds",
+      [](const Chain& chain, py::handle target, py::handle q0_obj, long count) {
+        const IkOptions o;
+        const Target t = one_target(chain, o.task_for(chain), target);
+        const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
+        if (count < 1) fail("count: must be at least 1");
+        IkSolver solver(chain, o);
+        const auto start = std::chrono::steady_clock::now();
+        for (long k = 0; k < count; ++k) solver.solve(t, q0.data(), static_cast<std::uint64_t>(k));
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / count;
+      },
+      py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("count"));
   // The chain's stored IK restart configurations (cpp/src/ik_starts.hpp), (kCount, dof).
   m.def(
       "ik_starts",

@@ -1498,7 +1498,7 @@ def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIn
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, **kwargs) -> IKResult:
+def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, seed: int | None = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """

@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import robokin._core
 import typing
-__all__: list[str] = ['KdlIk', 'fk_few', 'hessian_times', 'ik_starts', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
+__all__: list[str] = ['KdlIk', 'fk_few', 'hessian_times', 'ik_solve_seconds', 'ik_starts', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
 class KdlIk:
     """
     Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.
@@ -24,6 +24,8 @@ def hessian_times(chain: robokin._core.Chain, q: typing.Any, a: typing.Any) -> n
     """
     sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.
     """
+def ik_solve_seconds(chain: robokin._core.Chain, target: typing.Any, q0: typing.Any, count: typing.SupportsInt | typing.SupportsIndex) -> float:
+    ...
 def ik_starts(chain: robokin._core.Chain) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def parallel_for_throwing(count: typing.SupportsInt | typing.SupportsIndex, on_caller: bool) -> int:

@@ -77,7 +77,7 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
         TypeError: For a chain that is not a robokin.Chain, an unknown option or one of the wrong
             kind (the message names it).
     """
-    return _core.ik(_checks.chain(chain), target, q0, seed=seed, **options)
+    return _core.ik(_checks.chain(chain), target, q0, seed, **options)
 
 
 @with_options(IKOptions)
