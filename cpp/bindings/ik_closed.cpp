@@ -2,6 +2,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
+#include "closed_parts.hpp"
 #include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
@@ -92,6 +93,8 @@ struct SphericalWrist {
   }
 };
 
+}  // namespace
+
 // ---- The UR family (robokin.closed.ur) ----
 
 URArm ur_arm_arg(const Chain& chain) {
@@ -103,29 +106,16 @@ URArm ur_arm_arg(const Chain& chain) {
 }
 
 // limits: "default" (the chain's), None, or a pair.
-ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
+static ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
-py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
-
-py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
+static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
   const URArm arm = ur_arm_arg(chain);
   const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
-
-// The UR closed form with its arm and limits read once (robokin.closed.ur keeps a few).
-struct URSolver {
-  const Chain* chain;  // kept alive by the Python object (keep_alive)
-  URArm arm;
-  JointLimits limits;
-  ClosedFormSolutions solve(ArrayLike target) const {
-    return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
-  }
-  py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
-};
 
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
   Array a = as_array(targets_obj, "targets");
@@ -155,6 +145,8 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
   }
   return py::make_tuple(q, singular, within);
 }
+
+namespace {
 
 py::tuple ur_geometry(const Chain& chain) {
   const URArm g = ur_arm_arg(chain);
@@ -280,14 +272,6 @@ void bind_solvers(py::module_& m) {
            py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
            py::arg("limits") = py::none())
       .def("solve", &SphericalWrist::solve, py::arg("target"));
-  py::class_<URSolver> ur_solver(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.");
-  ur_solver
-      .def(py::init([](const Chain& chain, ChainLimitsLike limits) {
-             return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
-           }),
-           py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
-      .def("solve", &URSolver::solve, py::arg("target"))
-      .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
 }
 
 }  // namespace

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1061,16 +1061,43 @@ class _SphericalWrist6R:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
-class _URSolver:
+class ClosedSolver:
     """
-    The UR closed form with its chain's arm and limits read once.
+    The closed-form inverse kinematics of one arm, read from its chain once: solve(T) costs only the
+    solve. Nothing changes during a call: one solver may be shared by every thread; it pickles
+    with its chain and limits.
     """
+    def __getstate__(self) -> tuple[int, typing.Any, typing.Any]:
+        ...
     def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> None:
+        """
+        The closed form of chain (a UR-family arm: three parallel axes 2, 3, 4, as
+        robokin.closed.ur reads it; ValueError otherwise). limits: 'default' for the chain's,
+        None for none, or (lower, upper): for within_limits (every solution is returned).
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
-        ...
+        """
+        Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.ur.
+        """
     def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
-        ...
+        """
+        solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, 6), singular (N,),
+        within_limits (N, 8)), as robokin.closed.ur_batch.
+        """
+    @property
+    def chain(self) -> typing.Any:
+        """
+        The chain solved for.
+        """
+    @property
+    def limits(self) -> typing.Any:
+        """
+        None or (lower, upper): the limits within_limits is measured against.
+        """
 class IKOptions:
     """
     The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.

@@ -22,16 +22,16 @@ from __future__ import annotations
 
 import functools
 import math
-import threading
 
 import numpy as np
 
 from . import _core
 from . import robots as _robots
-from ._core import UR_POSTURES, Chain, IKSolutions
+from ._core import UR_POSTURES, Chain, ClosedSolver, IKSolutions
 from ._ur_dh import ur_dh_rows
 
 __all__ = [
+    "ClosedSolver",
     "IKSolutions",
     "anthropomorphic",
     "general_3r",
@@ -208,7 +208,13 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
 
 
 _UR_KEYS = ("d1", "a2", "a3", "d4", "d5", "d6")
-_UR_CHAINS: dict = {}
+
+
+@functools.lru_cache(maxsize=64)
+def _ur_table_chain(key) -> Chain:
+    """The UR arm of a table ``(d1, a2, a3, d4, d5, d6)`` as a Chain, built once per table (looked up
+    by value: a table is a tuple of numbers, not an object whose id could be reused)."""
+    return Chain.from_dh(ur_dh_rows(*key))
 
 
 def _ur_chain(robot) -> Chain:
@@ -223,44 +229,7 @@ def _ur_chain(robot) -> Chain:
         raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
     if not all(math.isfinite(v) for v in key):
         raise ValueError("robot: the lengths must be finite")
-    with _UR_LOCK:
-        chain = _UR_CHAINS.get(key)
-        if chain is None:
-            if len(_UR_CHAINS) > 64:
-                _UR_CHAINS.clear()
-            chain = _UR_CHAINS[key] = Chain.from_dh(ur_dh_rows(*key))
-    return chain
-
-
-# The caches of the UR solvers are shared by every thread: they change only under _UR_LOCK, and the
-# last call's entry is one tuple replaced whole, so a reader that took it sees one call's robot,
-# limits and solver together, never one call's robot with another's solver.
-_UR_LOCK = threading.Lock()
-_UR_SOLVERS: dict = {}
-_ur_last = (None, None, None)  # (robot, limits, solver) of the last cached call
-
-
-def _ur_solver(robot, limits):
-    """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
-    used last; a chain is held by its entry, so its id cannot be reused while cached. The same
-    Chain with the same "default" / None limits as the call before is answered first."""
-    global _ur_last
-    last = _ur_last
-    if robot is last[0] and limits is last[1]:
-        return last[2]
-    chain = _ur_chain(robot)
-    if not (limits is None or (isinstance(limits, str) and limits == "default")):
-        return _core._URSolver(chain, limits)
-    key = (id(chain), limits)
-    with _UR_LOCK:
-        hit = _UR_SOLVERS.get(key)
-        if hit is None or hit[0] is not chain:
-            if len(_UR_SOLVERS) >= 16:
-                _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
-            hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
-        if robot is chain:  # a Chain (a dict's chain is looked up by value each time)
-            _ur_last = (chain, limits, hit[1])
-    return hit[1]
+    return _ur_table_chain(key)
 
 
 def ur(target, robot, limits="default") -> IKSolutions:
@@ -270,7 +239,9 @@ def ur(target, robot, limits="default") -> IKSolutions:
     The arm is read off ``robot``: standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``,
     ``(0, pi/2, d4)``, ``(0, -pi/2, d5)``, ``(0, 0, d6)`` (theta offsets, a fixed base before joint 1,
     offsets along the parallel axes, joints turning about -z and any tool after joint 6 allowed);
-    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``.
+    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``. Each call reads
+    the arm off the chain again: a loop over many poses of one arm holds a :class:`ClosedSolver`
+    (``ClosedSolver(chain, limits).solve(T)``, the same answers), which reads it once.
 
     Args:
         target: Tool frame (4, 4).
@@ -293,10 +264,7 @@ def ur(target, robot, limits="default") -> IKSolutions:
         1e-3 of the wrist's singularity, where q2 + q3 + q4 is known only to ~1e-16 / |sin q5|, an
         elbow within that rounding of straight or folded is returned straight or folded.
     """
-    last = _ur_last  # _ur_solver's first test, inline: the same Chain and limits as the call before
-    if robot is last[0] and limits is last[1]:
-        return last[2].solve(target)
-    return _ur_solver(robot, limits).solve(target)
+    return _core.ik_ur(target, _ur_chain(robot), limits)
 
 
 def ur_batch(targets, robot, limits="default"):
@@ -314,7 +282,7 @@ def ur_batch(targets, robot, limits="default"):
         out of reach, or, at a singularity, its posture coincides with another (the one solution
         is kept in the first slot of the postures that coincide). No row is NaN for its limits.
     """
-    return _ur_solver(robot, limits).solve_batch(targets)
+    return ClosedSolver(_ur_chain(robot), limits).solve_batch(targets)
 
 
 def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
