@@ -1,4 +1,4 @@
-"""Property tests of rk.closed.ClosedSolver: any arguments give a result or a ValueError /
+"""Property tests of rk.closed.ClosedSolver, rk.closed.family and rk.closed.solve: any arguments give a result or a ValueError /
 TypeError naming one; every solution it returns reaches its pose (the chain's forward model) and,
 off singularities, the joints a pose was made from are among them."""
 
@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import robokin as rk
 
 COVERS = {"ClosedSolver.__init__", "ClosedSolver.solve", "ClosedSolver.solve_batch", "ClosedSolver.chain",
-          "ClosedSolver.limits"}
+          "ClosedSolver.limits", "ClosedSolver.family", "closed.family", "closed.solve"}
 
 P = math.pi
 UR5 = rk.robots.ur5()
@@ -49,3 +49,30 @@ def test_closed_solver_reaches_and_finds_the_source(q):
     q8, singular, within = solver.solve_batch(T[None])
     rows = q8[0][~np.isnan(q8[0, :, 0])]
     assert len(rows) == len(s) and bool(singular[0]) == s.singular
+
+
+dh_rows = st.lists(st.tuples(st.floats(-1, 1), st.sampled_from([0.0, P / 2, -P / 2, 0.7]), st.floats(-1, 1),
+                             st.floats(-P, P), st.sampled_from(["R", "R", "R", "P"])), min_size=1, max_size=7)
+
+
+@settings(max_examples=80)
+@given(dh_rows, st.one_of(st.just(1e-6), wild_floats), joints)
+def test_family_and_solve_any_chain(rows, tol, q):
+    """Any chain: a Family or a ValueError naming tol; solve answers with solutions that reach the
+    pose, or a ValueError naming the chain (no closed form) or tol."""
+    chain = rk.Chain.from_dh(rows)
+    f = check_call(lambda: rk.closed.family(chain, tol=tol), "tol")
+    if f is None:
+        return
+    assert f.solvable == (f.reason == "") and (f.name == "none") != f.solvable
+    assert f.tol_distance >= 0
+    if chain.dof != 6:
+        return
+    T = chain.fk(q[:chain.dof])
+    s = check_call(lambda: rk.closed.solve(T, chain, None, tol=tol), "chain", "tol")
+    if s is not None:
+        assert_finite(s.q)
+        if len(s):
+            size = sum(abs(r[0]) + abs(r[2]) for r in rows)
+            assert np.all(np.abs(chain.fk(s.q)[:, :3, 3] - T[:3, 3]) <= 1e-9 * size + 1e-12)
+        assert rk.closed.ClosedSolver(chain, None, tol=tol).family == f.name

@@ -117,11 +117,11 @@ static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimits
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
 
-py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
-  Array a = as_array(targets_obj, "targets");
+std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
+  Array a = as_array(targets_obj, name);
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
-    fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
-  require_finite(a.data(), a.size(), "targets");
+    fail(std::string(name) + ": expected shape (N, 4, 4), got " + shape_of(a));
+  require_finite(a.data(), a.size(), name);
   const long count = a.shape(0);
   std::vector<Rigid> targets(count);
   for (long k = 0; k < count; ++k) {
@@ -129,9 +129,15 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
     const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
     if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
         (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)
-      fail("targets: frame " + std::to_string(k) + " is not a rigid transform");
+      fail(std::string(name) + ": frame " + std::to_string(k) + " is not a rigid transform");
     targets[k] = Rigid::from_matrix(m);
   }
+  return targets;
+}
+
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
+  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
+  const long count = static_cast<long>(targets.size());
   py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
   py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
   py::array_t<bool> singular(static_cast<py::ssize_t>(count));
