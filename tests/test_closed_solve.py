@@ -140,3 +140,24 @@ def test_batch_pickle_and_limits(rng):
     assert copy.family == solver.family and np.array_equal(copy.solve(poses[0]).q, solver.solve(poses[0]).q)
     narrow = rk.closed.solve(poses[0], chain, (np.full(6, -0.5), np.full(6, 0.5)))
     assert np.all(np.abs(narrow.q[narrow.within_limits]) <= 0.5)
+
+
+@pytest.mark.parametrize("arm", ["ur5 urdf", "puma560", "irb120"])
+@pytest.mark.parametrize("joint, value", [(4, 0.0), (4, P), (4, 1e-7), (2, 0.0), (2, 1e-9)])
+def test_near_singular_poses(arm, joint, value, rng):
+    """The wrist's singularity (q5 at 0 or pi, and 1e-7 from it: a subproblem's two roots within
+    its margin) and the stretched elbow (q3 = 0, 1e-9 from it; axis 3 through the line from axis 2
+    to the wrist for these arms only approximately): a solution is found, every one within the
+    verified tolerance (position 1e-9 x the arm's size, rotation entries 1e-8)."""
+    chain = rk.Chain.from_urdf(UR5_URDF, "base", "tool0") if arm == "ur5 urdf" else rk.robots.get(arm)
+    size = 3.0
+    for q in rng.uniform(-P, P, (100, 6)):
+        q[joint] = value
+        T = chain.fk(q)
+        s = rk.closed.solve(T, chain, None)
+        assert len(s) >= 1, q
+        F = chain.fk(s.q)
+        assert np.max(np.abs(F[:, :3, 3] - T[:3, 3])) <= 1e-9 * size
+        assert np.max(np.abs(F[:, :3, :3] - T[:3, :3])) <= 1e-8
+        if joint == 4 and value in (0.0, P) and arm == "ur5 urdf":
+            assert s.singular

@@ -4,6 +4,9 @@
 #include "robokin/parallel.hpp"
 #include "robokin/subproblems.hpp"
 
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -123,6 +126,32 @@ void solve_spherical(const JointAxes& g, const V3& center, const Rigid& G, Candi
   }
 }
 
+// q6 (into q6) and q2 + q3 + q4 (returned) of the three-parallel family for q1 and q5: R16 = R1^T
+// R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
+// singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
+// representative puts the elbow at a right angle, or as near as the continuum allows.
+double parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const M3& R5, const V3& A, bool& singular,
+                      double& q6) {
+  const V3 &h2 = g.axis[1], &h6 = g.axis[5];
+  const SubproblemAngles t6 = subproblem1(h6, R5.transpose() * h2, R16.transpose() * h2);
+  if (!(singular || t6.singular)) {
+    q6 = -t6.theta[0];
+    const V3 y = h2.unitOrthogonal();
+    return subproblem1(h2, y, R16 * (R5 * axis_rotation(h6, q6)).transpose() * y).theta[0];
+  }
+  singular = true;
+  const auto flat = [&](const V3& x) { return V3(x - x.dot(h2) * h2); };
+  const V3 a = flat(A), b = flat(center - g.point[3]);
+  const double l2 = flat(g.point[2] - g.point[1]).squaredNorm(), l3 = flat(g.point[3] - g.point[2]).squaredNorm();
+  const double reach = a.norm() * b.norm() * (1.0 - 1e-12);
+  const double d = std::clamp(0.5 * (a.squaredNorm() + b.squaredNorm() - l2 - l3), -reach, reach);
+  const SubproblemAngles t = subproblem4(a, h2, b, d);
+  const double q234 = t.count ? t.theta[0] : 0.0;
+  const V3 x = h6.unitOrthogonal();
+  q6 = subproblem1(h6, x, R5.transpose() * axis_rotation(h2, -q234) * R16 * x).theta[0];
+  return q234;
+}
+
 // Three parallel axes 2, 3, 4 (axes 5, 6 meeting at c): per q1, q5 (4) and q6 (1), then q234 (1)
 // and the planar arm of joints 2, 3 (3, 1).
 void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
@@ -139,15 +168,20 @@ void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candid
     for (int k = 0; k < t5.count; ++k) {
       q[4] = t5.theta[k];
       const M3 R5 = axis_rotation(h5, q[4]);
-      const SubproblemAngles t6 = subproblem1(h6, R5.transpose() * h2, R16.transpose() * h2);
-      const bool wrist_singular = t5.singular || t6.singular;
-      out.singular = out.singular || wrist_singular;
-      q[5] = -t6.theta[0];
-      const M3 R56 = R5 * axis_rotation(h6, q[5]);
-      const V3 y = h2.unitOrthogonal();
-      const double q234 = subproblem1(h2, y, R16 * R56.transpose() * y).theta[0];
-      const V3 v = R1.transpose() * (c - p1) - (p2 - p1) - axis_rotation(h2, q234) * (center - p4);
-      const SubproblemAngles t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
+      const V3 A = R1.transpose() * (c - p1) - (p2 - p1);
+      bool wrist_singular = t5.singular && t5.count == 1;  // q5 exactly at the singularity
+      double q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
+      V3 v = A - axis_rotation(h2, q234) * (center - p4);
+      SubproblemAngles t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
+      if (t3.count == 0 && t5.singular && !wrist_singular) {
+        // Within the margin of the wrist's singularity q234 is split from q6 by rounding alone and
+        // may leave the elbow out of reach: the representative instead (polished in closed_solve).
+        wrist_singular = true;
+        q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
+        v = A - axis_rotation(h2, q234) * (center - p4);
+        t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
+      }
+      out.singular = out.singular || wrist_singular || t5.singular;
       out.singular = out.singular || t3.singular;
       for (int j = 0; j < t3.count; ++j) {
         q[2] = t3.theta[j];
@@ -162,6 +196,33 @@ void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candid
       }
     }
   }
+}
+
+// Newton steps on the chain's forward model from a candidate that misses T by rounding alone: near a
+// singularity a subproblem's two solutions are taken as one (a cosine within kSubproblemEps of 1,
+// ~1e-6 rad) and the angles that follow carry that error. The pseudo-inverse (singular values below
+// 1e-10 of the largest dropped) takes the least step. F is the candidate's frame, updated.
+void polish(const Chain& chain, const Rigid& T, double* q, Rigid& F) {
+  Eigen::Matrix<double, 6, 6> J;
+  for (int step = 0; step < 4; ++step) {
+    chain.fk_jacobian(q, F, J.data());
+    Eigen::Matrix<double, 6, 1> e;
+    e.head<3>() = T.p - F.p;
+    const Eigen::AngleAxisd turn(T.R * F.R.transpose());
+    e.tail<3>() = turn.angle() * turn.axis();
+    if (e.norm() == 0.0) return;
+    const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const auto& sv = svd.singularValues();
+    Eigen::Matrix<double, 6, 1> dq = Eigen::Matrix<double, 6, 1>::Zero(), ut = svd.matrixU().transpose() * e;
+    for (int i = 0; i < 6; ++i)
+      if (sv(i) > 1e-10 * sv(0)) dq += (ut(i) / sv(i)) * svd.matrixV().col(i);
+    for (int i = 0; i < 6; ++i) q[i] += dq(i);
+  }
+  chain.fk(q, F);
+}
+
+bool reaches(const Rigid& F, const Rigid& T, double size) {
+  return (F.p - T.p).norm() <= kClosedTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
 }
 
 }  // namespace
@@ -184,14 +245,18 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   else solve_spherical(arm.axes, arm.family.center, G, c);
   out.singular = c.singular;
   if (c.m == 0) return out;
-  bool fits[8];
-  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
   Rigid F[8];
   chain.fk_few(c.q[0], c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
+  // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
+  // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
+  for (int k = 0; k < c.m; ++k)
+    if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) polish(chain, T, c.q[k], F[k]);
+  bool fits[8];
+  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
+  chain.fk_few(c.q[0], c.m, F);
   for (int k = 0; k < c.m; ++k) {
-    if (!((F[k].p - T.p).norm() <= kClosedTolP * size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR))
-      continue;
+    if (!reaches(F[k], T, size)) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
     out.add(c.q[k], label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }

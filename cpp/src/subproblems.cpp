@@ -22,12 +22,16 @@ SubproblemAngles sinusoid(double a, double b, double c, double scale) {
   const double ratio = c / r;
   if (!(std::abs(ratio) <= 1.0 + kSubproblemEps)) return out;  // also NaN
   const double base = std::atan2(b, a);
-  if (std::abs(ratio) >= 1.0 - kSubproblemEps) {
-    out.count = 1, out.singular = true;
-    out.theta[0] = ratio > 0 ? base : base + M_PI;
+  // Within the margin of +-1 the two solutions (nearly) coincide: flagged singular, and kept apart
+  // unless their spread is 0 (the margin's roots are ~1e-6 apart: each is needed where a pose near
+  // the singularity has both, its neighbours following them).
+  out.singular = std::abs(ratio) >= 1.0 - kSubproblemEps;
+  const double spread = std::acos(std::clamp(ratio, -1.0, 1.0));
+  if (spread == 0.0 || spread == M_PI) {
+    out.count = 1;
+    out.theta[0] = base + spread;
     return out;
   }
-  const double spread = std::acos(ratio);
   out.count = 2;
   out.theta[0] = base - spread, out.theta[1] = base + spread;
   return out;

@@ -17,7 +17,9 @@ constexpr double kSubproblemEps = 1e-12;
 struct SubproblemAngles {
   int count = 0;
   double theta[2] = {0, 0};
-  bool singular = false;  // a continuum (theta[0] = 0 chosen), or the two solutions coincide (count 1)
+  // A continuum (theta[0] = 0 chosen), or two solutions within the margin of coinciding (count 1
+  // when they are equal, else both, ~1e-6 apart at most).
+  bool singular = false;
 };
 
 // R(k, theta) as a matrix (Rodrigues' formula).
