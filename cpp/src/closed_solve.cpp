@@ -245,16 +245,19 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   else solve_spherical(arm.axes, arm.family.center, G, c);
   out.singular = c.singular;
   if (c.m == 0) return out;
+  bool fits[8];
+  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
   Rigid F[8];
   chain.fk_few(c.q[0], c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
   // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
   for (int k = 0; k < c.m; ++k)
-    if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) polish(chain, T, c.q[k], F[k]);
-  bool fits[8];
-  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
-  chain.fk_few(c.q[0], c.m, F);
+    if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
+      polish(chain, T, c.q[k], F[k]);
+      fits[k] = fit_limits(c.q[k], 6, limits);
+      chain.fk(c.q[k], F[k]);
+    }
   for (int k = 0; k < c.m; ++k) {
     if (!reaches(F[k], T, size)) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
