@@ -23,20 +23,23 @@ def angle_gap(a, b):
     return np.max(np.abs(np.remainder(np.asarray(a) - np.asarray(b) + P, 2 * P) - P), axis=-1)
 
 
-def random_spherical_wrist(rng):
-    """Axes 2, 3 parallel (alpha2 = 0), axes 4, 5, 6 through one point (a4 = a5 = d5 = 0)."""
+def random_spherical_wrist(rng, flip=False):
+    """Axes 2, 3 parallel (alpha2 = 0, or pi with flip: axis 3 pointing against axis 2), axes 4,
+    5, 6 through one point (a4 = a5 = d5 = 0)."""
     u = lambda: rng.uniform(-0.6, 0.6)  # noqa: E731
     tw = lambda: TWISTS[rng.integers(len(TWISTS))]  # noqa: E731
-    rows = [(u(), tw(), u(), u(), "R"), (rng.uniform(0.2, 0.8), 0.0, u(), u(), "R"), (u(), tw(), u(), u(), "R"),
-            (0.0, tw(), rng.uniform(0.2, 0.8), u(), "R"), (0.0, tw(), 0.0, u(), "R"), (u(), tw(), u(), u(), "R")]
+    rows = [(u(), tw(), u(), u(), "R"), (rng.uniform(0.2, 0.8), P if flip else 0.0, u(), u(), "R"),
+            (u(), tw(), u(), u(), "R"), (0.0, tw(), rng.uniform(0.2, 0.8), u(), "R"), (0.0, tw(), 0.0, u(), "R"),
+            (u(), tw(), u(), u(), "R")]
     return rk.Chain.from_dh(rows)
 
 
-def random_three_parallel(rng):
-    """Axes 2, 3, 4 parallel (alpha2 = alpha3 = 0), axes 5, 6 meeting (a5 = 0)."""
+def random_three_parallel(rng, flip=False):
+    """Axes 2, 3, 4 parallel (alpha2 = alpha3 = 0; with flip alpha2 = pi: axes 3 and 4 pointing
+    against axis 2), axes 5, 6 meeting (a5 = 0)."""
     u = lambda: rng.uniform(-0.6, 0.6)  # noqa: E731
     tw = lambda: TWISTS[rng.integers(len(TWISTS))]  # noqa: E731
-    rows = [(u(), tw(), u(), u(), "R"), (rng.uniform(0.2, 0.8), 0.0, u(), u(), "R"),
+    rows = [(u(), tw(), u(), u(), "R"), (rng.uniform(0.2, 0.8), P if flip else 0.0, u(), u(), "R"),
             (rng.uniform(0.2, 0.8), 0.0, u(), u(), "R"), (u(), tw(), u(), u(), "R"), (0.0, tw(), u(), u(), "R"),
             (u(), tw(), u(), u(), "R")]
     return rk.Chain.from_dh(rows)
@@ -69,11 +72,12 @@ def test_the_ur5_urdf(rng):
     assert max(counts) == 8
 
 
-@pytest.mark.parametrize("make", [random_spherical_wrist, random_three_parallel])
-def test_random_arms(make, rng):
+@pytest.mark.parametrize("make, flip", [(random_spherical_wrist, False), (random_three_parallel, False),
+                                        (random_spherical_wrist, True), (random_three_parallel, True)])
+def test_random_arms(make, flip, rng):
     names = set()
     for _ in range(25):
-        chain = make(rng)
+        chain = make(rng, flip)
         names.add(rk.closed.family(chain).name)
         check_arm(chain, rng, poses=40)
     assert len(names) == 1

@@ -153,7 +153,7 @@ double parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const
 }
 
 // Three parallel axes 2, 3, 4 (axes 5, 6 meeting at c): per q1, q5 (4) and q6 (1), then q234 (1)
-// and the planar arm of joints 2, 3 (3, 1).
+// and the planar arm of joints 2, 3 (3, 1). q234 is the angle about axis 2 of joints 2, 3, 4 together.
 void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
   const V3 c = G.R * center + G.p;
   const V3 &h2 = g.axis[1], &h5 = g.axis[4], &h6 = g.axis[5];
@@ -187,7 +187,9 @@ void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candid
         q[2] = t3.theta[j];
         const M3 R3 = axis_rotation(g.axis[2], q[2]);
         q[1] = subproblem1(h2, (p3 - p2) + R3 * (p4 - p3), v).theta[0];
-        q[3] = q234 - q[1] - q[2];
+        // Axes 3 and 4 may point against axis 2 (parallel lines): R(h3, q3) = R(h2, s3 q3).
+        const double s3 = g.axis[2].dot(h2) > 0 ? 1.0 : -1.0, s4 = g.axis[3].dot(h2) > 0 ? 1.0 : -1.0;
+        q[3] = s4 * (q234 - q[1] - s3 * q[2]);
         const M3 R12 = R1 * axis_rotation(h2, q[1]), R14 = R12 * R3 * axis_rotation(g.axis[3], q[3]);
         const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2), w4 = e3 + R12 * R3 * (p4 - p3);
         const int e = elbow_label(s2, e3, w4, R1 * h2, g.axis[0], t3.singular);
