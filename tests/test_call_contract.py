@@ -40,6 +40,7 @@ CORE_KWARGS = {
     "IKSolver.__init__": ["IKOptions"],
     "RRR3.ik_newton": ["RRR3NewtonOptions"],
     "RRR3.fk": ["RRR3NewtonOptions"],
+    "ClosedSolver.__init__": ["ClosedFamilyOptions"],
 }
 
 PUBLIC_MODULES = ["robokin"] + sorted(

@@ -21,6 +21,7 @@
 #include "robokin/angles.hpp"
 #include "robokin/ik.hpp"
 #include "robokin/parallel.hpp"
+#include "subproblems_hooks.hpp"
 #include "targets.hpp"
 
 namespace robokin::bind {
@@ -155,4 +156,5 @@ PYBIND11_MODULE(_testing, m) {
   pybind11::module_::import("robokin._core");  // its Chain type and exception translators
   robokin::bind::bind_hooks(m);
   robokin::bind::bind_references(m);
+  robokin::bind::bind_subproblem_hooks(m);
 }
