@@ -118,8 +118,8 @@ def test_every_public_call_has_a_case():
 def test_the_cases_tell_their_models_apart():
     """A call handed another model's solver must answer differently: the closed forms on the
     different UR arms (and the other per-model calls) give answers that all differ."""
-    for name in ("closed.ur", "closed.ur_batch", "closed.puma560", "ik", "Chain.fk", "RRR3.ik_batch", "RRR3.workspace",
-                 "sim.SerialScene", "plots_rrr3.plot_robot"):
+    for name in ("closed.ur", "closed.ur_batch", "closed.puma560", "closed.solve", "ClosedSolver.solve_batch", "ik",
+                 "Chain.fk", "RRR3.ik_batch", "RRR3.workspace", "sim.SerialScene", "plots_rrr3.plot_robot"):
         answers = [digest(call()) for call in thread_cases.CASES[name]]
         assert len(set(answers)) == len(answers), name
     assert len(thread_cases.CASES["closed.ur"]) >= 8
