@@ -262,6 +262,27 @@ def _closed_cases():
     return c
 
 
+FAMILY_ARMS = ["ur5", "puma560", "irb120", "ur3.urdf", "ur10e"]
+CLOSED_SOLVERS = [rk.closed.ClosedSolver(M[n], limits=(None, "default")[k % 2]) for k, n in enumerate(FAMILY_ARMS)]
+
+
+def _family_cases():
+    """The closed form read from a chain's geometry: family, solve and the held ClosedSolver."""
+    c = {"closed.family": [lambda n=n: rk.closed.family(M[n]) for n in FAMILY_ARMS + ["panda", "arm.urdf", "rpr"]]}
+    c["closed.family"].append(lambda: rk.closed.family(M["puma560"], tol=1e-3))
+    c["closed.solve"] = [lambda n=n, k=k: rk.closed.solve(M[n].fk(_q(M[n], k + 30)), M[n], limits=(None, "default")[k % 2])
+                         for k, n in enumerate(FAMILY_ARMS)]
+    c["ClosedSolver.__init__"] = [lambda n=n, k=k: rk.closed.ClosedSolver(M[n]).solve(M[n].fk(_q(M[n], k + 40)))
+                                  for k, n in enumerate(FAMILY_ARMS)]
+    c["ClosedSolver.solve"] = [lambda s=s, k=k: s.solve(s.chain.fk(_q(s.chain, k + 50)))
+                               for k, s in enumerate(CLOSED_SOLVERS)]
+    c["ClosedSolver.solve_batch"] = [lambda s=s, k=k: s.solve_batch(s.chain.fk(_q(s.chain, k + 60, 4)))
+                                     for k, s in enumerate(CLOSED_SOLVERS)]
+    for attr in ("chain", "family", "limits"):
+        c[f"ClosedSolver.{attr}"] = [lambda s=s, a=attr: getattr(s, a) for s in CLOSED_SOLVERS]
+    return c
+
+
 def _rrr3_cases():
     """The 3-RRR's constructor, properties and models on three geometries."""
     c = {}
@@ -468,7 +489,7 @@ def pointed(scene, k):
 
 def _cases():
     cases = {}
-    for group in (_chain_cases, _numeric_cases, _closed_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
+    for group in (_chain_cases, _numeric_cases, _closed_cases, _family_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
                   _sim_cases):
         cases.update(group())
     return cases
