@@ -283,6 +283,23 @@ def _family_cases():
     return c
 
 
+def _symbolic_cases():
+    """The DH models as sympy matrices, compared as their printed text (exact)."""
+    from robokin import symbolic
+
+    arms = ["prr", "r3", "planar_3r"]
+    c = {"symbolic.table": [lambda n=n, k=k: str(symbolic.table(M[n], lengths=("values", "symbols")[k % 2]))
+                            for k, n in enumerate(arms)]}
+    # One simplified model (simplification is slow: the others unsimplified, the same rule on each thread).
+    c["symbolic.fk"] = [lambda: str(symbolic.fk(M["prr"]))]
+    c["symbolic.fk"] += [lambda n=n: str(symbolic.fk(M[n], simplify=False)) for n in arms[1:]]
+    c["symbolic.fk"].append(lambda: str(symbolic.fk(M["ur_dict"], q=(0.5, 0.2, -0.3, 0.1, 0.4, 0.9), simplify=False)))
+    c["symbolic.jacobian"] = [lambda n=n: str(symbolic.jacobian(M[n], simplify=False)) for n in arms]
+    c["symbolic.jacobian"].append(lambda: str(symbolic.jacobian(M["prr"], task="position", lengths="symbols",
+                                                                simplify=False)))
+    return c
+
+
 def _rrr3_cases():
     """The 3-RRR's constructor, properties and models on three geometries."""
     c = {}
@@ -489,7 +506,7 @@ def pointed(scene, k):
 
 def _cases():
     cases = {}
-    for group in (_chain_cases, _numeric_cases, _closed_cases, _family_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
+    for group in (_chain_cases, _numeric_cases, _closed_cases, _family_cases, _symbolic_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
                   _sim_cases):
         cases.update(group())
     return cases
