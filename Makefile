@@ -7,7 +7,7 @@ DEPS   := PYTHON=$(PYTHON) scripts/install-system-deps.sh
 # Everything the installed package is built from: a change re-installs it (incrementally).
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp python sim -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' -o -name '*.pyi' -o -name 'py.typed' \) 2>/dev/null)
 
-.PHONY: setup run demo-rpr demo-postures test fuzz test-asan mutate bench stubs wheel clean
+.PHONY: setup run demo-rpr demo-postures test docs fuzz test-asan mutate bench stubs wheel clean
 setup: $(VENV)/.installed
 
 # A virtual environment with the build tools (for .venv and .venv-asan alike).
@@ -23,6 +23,17 @@ $(VENV)/.installed: $(VENV)/.base $(SOURCES) scripts/install-system-deps.sh
 	$(DEPS)
 	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test,dask]"
 	touch $@
+
+# The documentation site, into build/docs/html: the API reference generated from the docstrings,
+# every notebook executed; a warning is an error. Then every public name is checked to be in it.
+$(VENV)/.docs: $(VENV)/.installed
+	$(VPY) -m pip install -q --no-build-isolation ".[sim,plot,test,dask,docs]"
+	touch $@
+
+docs: $(VENV)/.docs
+	rm -rf build/docs
+	$(VPY) -m sphinx -W --keep-going -q -b html -d build/docs/doctrees docs build/docs/html
+	$(VPY) docs/check_reference.py build/docs/html
 
 # The simulator: a window when there is a display; otherwise the clover, headless, recorded to out/.
 run: setup

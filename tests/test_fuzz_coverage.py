@@ -25,6 +25,8 @@ import robokin.plots_reachability  # noqa: E402
 import sys  # noqa: E402
 MODULES.update({"reachability": sys.modules["robokin.reachability"], "plots_reachability": robokin.plots_reachability,
                 "dask": robokin.dask})
+import robokin.symbolic  # noqa: E402  (sympy: imported on first use, not by import robokin)
+MODULES["symbolic"] = robokin.symbolic
 MODEL_CLASSES = [rk.Chain, rk.RRR3, rk.IKSolver, _core.IKSolutions, rk.closed.ClosedSolver]
 # What the simulator takes from its user: the command line, key scripts, and scenes stepped by keys.
 SIM = {"sim.parse_args", "sim.parse_script", "sim.Rrr3Scene", "sim.RprScene", "sim.Scene.step", "sim.SerialScene",

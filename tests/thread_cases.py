@@ -290,6 +290,44 @@ def _closed_cases():
     return c
 
 
+FAMILY_ARMS = ["ur5", "puma560", "irb120", "ur3.urdf", "ur10e"]
+CLOSED_SOLVERS = [rk.closed.ClosedSolver(M[n], limits=(None, "default")[k % 2]) for k, n in enumerate(FAMILY_ARMS)]
+
+
+def _family_cases():
+    """The closed form read from a chain's geometry: family, solve and the held ClosedSolver."""
+    c = {"closed.family": [lambda n=n: rk.closed.family(M[n]) for n in FAMILY_ARMS + ["panda", "arm.urdf", "rpr"]]}
+    c["closed.family"].append(lambda: rk.closed.family(M["puma560"], tol=1e-3))
+    c["closed.solve"] = [lambda n=n, k=k: rk.closed.solve(M[n].fk(_q(M[n], k + 30)), M[n], limits=(None, "default")[k % 2])
+                         for k, n in enumerate(FAMILY_ARMS)]
+    c["ClosedSolver.__init__"] = [lambda n=n, k=k: rk.closed.ClosedSolver(M[n]).solve(M[n].fk(_q(M[n], k + 40)))
+                                  for k, n in enumerate(FAMILY_ARMS)]
+    c["ClosedSolver.solve"] = [lambda s=s, k=k: s.solve(s.chain.fk(_q(s.chain, k + 50)))
+                               for k, s in enumerate(CLOSED_SOLVERS)]
+    c["ClosedSolver.solve_batch"] = [lambda s=s, k=k: s.solve_batch(s.chain.fk(_q(s.chain, k + 60, 4)))
+                                     for k, s in enumerate(CLOSED_SOLVERS)]
+    for attr in ("chain", "family", "limits"):
+        c[f"ClosedSolver.{attr}"] = [lambda s=s, a=attr: getattr(s, a) for s in CLOSED_SOLVERS]
+    return c
+
+
+def _symbolic_cases():
+    """The DH models as sympy matrices, compared as their printed text (exact)."""
+    from robokin import symbolic
+
+    arms = ["prr", "r3", "planar_3r"]
+    c = {"symbolic.table": [lambda n=n, k=k: str(symbolic.table(M[n], lengths=("values", "symbols")[k % 2]))
+                            for k, n in enumerate(arms)]}
+    # One simplified model (simplification is slow: the others unsimplified, the same rule on each thread).
+    c["symbolic.fk"] = [lambda: str(symbolic.fk(M["prr"]))]
+    c["symbolic.fk"] += [lambda n=n: str(symbolic.fk(M[n], simplify=False)) for n in arms[1:]]
+    c["symbolic.fk"].append(lambda: str(symbolic.fk(M["ur_dict"], q=(0.5, 0.2, -0.3, 0.1, 0.4, 0.9), simplify=False)))
+    c["symbolic.jacobian"] = [lambda n=n: str(symbolic.jacobian(M[n], simplify=False)) for n in arms]
+    c["symbolic.jacobian"].append(lambda: str(symbolic.jacobian(M["prr"], task="position", lengths="symbols",
+                                                                simplify=False)))
+    return c
+
+
 def _rrr3_cases():
     """The 3-RRR's constructor, properties and models on three geometries."""
     c = {}
@@ -496,7 +534,7 @@ def pointed(scene, k):
 
 def _cases():
     cases = {}
-    for group in (_chain_cases, _numeric_cases, _closed_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
+    for group in (_chain_cases, _numeric_cases, _closed_cases, _family_cases, _symbolic_cases, _rrr3_cases, _toolkit_cases, _map_cases, _plot_cases,
                   _sim_cases):
         cases.update(group())
     return cases

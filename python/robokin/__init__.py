@@ -75,3 +75,12 @@ __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 from .reachability import ReachabilityMap, reachability  # noqa: E402
 
 __all__ += ["ReachabilityMap", "reachability"]
+
+
+def __getattr__(name):
+    # rk.symbolic on first use: sympy (the [symbolic] extra) is imported only by who asks for it.
+    if name == "symbolic":
+        import importlib
+
+        return importlib.import_module(".symbolic", __name__)
+    raise AttributeError(f"module 'robokin' has no attribute {name!r}")

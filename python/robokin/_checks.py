@@ -92,3 +92,17 @@ def frame_like(value):
     if matrix is None:
         return value
     return np.asarray(matrix) if isinstance(matrix, (list, tuple)) else matrix
+
+
+def choice(value, name: str, options):
+    """One of ``options`` (strings), as given.
+
+    Raises:
+        TypeError: not a string.
+        ValueError: a string that is not one of ``options``.
+    """
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: expected one of {tuple(options)}, got {type(value).__name__}")
+    if value not in options:
+        raise ValueError(f"{name}: expected one of {tuple(options)}, got {value!r}")
+    return value

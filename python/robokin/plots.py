@@ -46,7 +46,7 @@ def _line_figure_arguments(points, tracks):
 
 def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_samples: int = 60,
                     snapshots: int = 8, title: Optional[str] = None):
-    """Seed 000's Figure 2 for the RPR arm following a straight line.
+    """The RPR study's Figure 2: the RPR arm following a straight line.
 
     (a) the self-motion surface of the path's points inside the joint-limit box with every joint
     path drawn on it; (b) the joint-limit cost z along the path; then the robot's motion for each
