@@ -20,9 +20,9 @@ from test_fuzz_coverage import public_api
 THREADS = 8
 LIGHT_ROUNDS = 5  # passes each thread makes over the quick calls, each in an order of its own
 #: Calls that take tenths of a second (figures, the demo, Dask, reachability maps, simulator
-#: scenes): each is made once by half of the threads (the demo, which draws and saves a large
-#: figure, by two), amid the others' calls.
-HEAVY = ("plots", "demo", "dask", "sim.", "reachability", "rrr3_design")
+#: scenes, sympy's models): each is made once by half of the threads (the demo, which draws and
+#: saves a large figure, by two), amid the others' calls.
+HEAVY = ("plots", "demo", "dask", "sim.", "reachability", "rrr3_design", "symbolic")
 STRIDE = {"demo.main": 4}  # thread i makes heavy call n when n % stride == i % stride; default 2
 
 

@@ -201,15 +201,15 @@ def _numeric_cases():
     return c
 
 
-# Solvers shared by every thread. Call k of a seeded solver draws its restarts from seed + k, so
-# shared calls would depend on their order: these make no restarts (nothing drawn), and are long
-# enough (> 1700 iterations allowed) for the solve to release the GIL.
 def twist(chain, k):
     """A small rate of the chain's natural task (6 for a pose, else the size of its target)."""
     rows = 6 if chain.natural_task == "pose" else len(_target(chain, np.zeros(chain.dof)))
     return np.random.default_rng(k).normal(size=rows) * 0.1
 
 
+# Solvers shared by every thread. Call k of a seeded solver draws its restarts from seed + k, so
+# shared calls would depend on their order: these make no restarts (nothing drawn), and are long
+# enough (> 1700 iterations allowed) for the solve to release the GIL.
 SOLVERS = [rk.IKSolver(M[n], seed=k, restarts=0, max_iter=1800, method=("lm", "gn", "nr")[k % 3])
            for k, n in enumerate(SERIAL)]
 
@@ -236,32 +236,8 @@ def _ur_cases():
     return {"closed.ur": calls, "closed.ur_batch": batches}
 
 
-CLOSED_ARMS = ["puma560", "irb120", "ur5", "ur10", "ur3e", "ur3.urdf", "arm.urdf"]
-# Solvers shared by every thread (documented as safe to share: nothing changes during a call).
-CLOSED_SOLVERS = [rk.closed.ClosedSolver(M[n], limits=("default", None)[k % 2]) for k, n in enumerate(CLOSED_ARMS)]
-
-
-def _family_cases():
-    """The decomposition read from a chain's geometry and the closed forms it gives, on arms of
-    both families (DH and URDF chains), with new and shared solvers."""
-    c = {}
-    c["closed.family"] = [lambda n=n, k=k: rk.closed.family(M[n], tol=1e-6 * (k + 1))
-                          for k, n in enumerate(CLOSED_ARMS + ["panda", "gen3"])]
-    c["closed.solve"] = [lambda n=n, k=k: rk.closed.solve(M[n].fk(_q(M[n], k + 30)), M[n], limits=("default", None)[k % 2])
-                         for k, n in enumerate(CLOSED_ARMS)]
-    c["ClosedSolver.__init__"] = [lambda n=n, k=k: rk.closed.ClosedSolver(M[n], limits=(None, "default")[k % 2]).solve(
-        M[n].fk(_q(M[n], k + 40))) for k, n in enumerate(CLOSED_ARMS)]
-    c["ClosedSolver.solve"] = [lambda s=s, k=k: s.solve(s.chain.fk(_q(s.chain, k + 50))) for k, s in enumerate(CLOSED_SOLVERS)]
-    c["ClosedSolver.solve_batch"] = [lambda s=s, k=k: s.solve_batch(s.chain.fk(_q(s.chain, k + 60, 6)))
-                                     for k, s in enumerate(CLOSED_SOLVERS)]
-    for attr in ("chain", "family", "limits"):
-        c[f"ClosedSolver.{attr}"] = [lambda s=s, a=attr: getattr(s, a) for s in CLOSED_SOLVERS]
-    return c
-
-
 def _closed_cases():
     c = _ur_cases()
-    c.update(_family_cases())
     puma = M["puma560"]
     c["closed.puma560"] = [lambda k=k: rk.closed.puma560(puma.fk(_q(puma, k)), limits=("default", None, puma)[k % 3])
                            for k in range(3)]
