@@ -76,7 +76,7 @@ mutate: setup
 
 bench: setup
 	$(DEPS) python3-pykdl
-	$(VPY) -m pip install -q pin
+	$(VPY) -m pip install -q pin roboticstoolbox-python
 	$(VPY) benchmarks/run_all.py
 
 # The type stubs of the C++ modules, generated from the bindings (tests/test_stubs.py checks them).

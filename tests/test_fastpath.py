@@ -302,7 +302,7 @@ FAST_CALL_ERRORS = [
     (lambda: UR5.manipulability(Q5, "yoshikawa", "pose", 1), TypeError, "takes at most 3 positional arguments"),
     (lambda: UR5.manipulability(Q5, measure="nope"), ValueError, "measure"),
     (lambda: UR5.manipulability(Q5, task=1), TypeError, "task: expected None or a string"),
-    (lambda: rk._core._URSolver(UR5).solve(np.eye(3)), ValueError, "target"),
+    (lambda: rk.closed.ClosedSolver(UR5).solve(np.eye(3)), ValueError, "target"),
 ]
 
 
@@ -323,7 +323,7 @@ def test_fast_calls_take_keywords_positions_and_defaults_alike():
     by_position = rk._core.ik(UR5, T, q + 0.05, seed=1, tol_p=1e-10)
     by_keyword = rk._core.ik(q0=q + 0.05, target=T, chain=UR5, tol_p=1e-10, seed=1)
     assert by_position.success and np.array_equal(by_position.q, by_keyword.q)
-    ur = rk._core._URSolver(UR5)
+    ur = rk.closed.ClosedSolver(UR5)
     assert np.array_equal(ur.solve(T).q, ur.solve(target=T).q) and np.array_equal(ur.solve(T).q, rk.closed.ur(T, UR5).q)
     w = UR5.manipulability(q)
     assert w == UR5.manipulability(q, "yoshikawa", "pose") == UR5.manipulability(task="pose", q=q)

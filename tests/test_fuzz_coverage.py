@@ -1,7 +1,7 @@
 """Every public callable of robokin is driven by a property test: the COVERS sets of the
 test_fuzz_*.py files together name every public function of the package and its modules, every
 public method, property and constructor of its model classes (the objects users build and call:
-Chain, RRR3, IKSolver, IKSolutions), and the simulator's entry points (command line, key scripts,
+Chain, RRR3, IKSolver, IKSolutions, ClosedSolver), and the simulator's entry points (command line, key scripts,
 scenes). A new public call without a property test fails here."""
 
 import importlib
@@ -27,7 +27,7 @@ MODULES.update({"reachability": sys.modules["robokin.reachability"], "plots_reac
                 "dask": robokin.dask})
 import robokin.symbolic  # noqa: E402  (sympy: imported on first use, not by import robokin)
 MODULES["symbolic"] = robokin.symbolic
-MODEL_CLASSES = [rk.Chain, rk.RRR3, rk.IKSolver, _core.IKSolutions]
+MODEL_CLASSES = [rk.Chain, rk.RRR3, rk.IKSolver, _core.IKSolutions, rk.closed.ClosedSolver]
 # What the simulator takes from its user: the command line, key scripts, and scenes stepped by keys.
 SIM = {"sim.parse_args", "sim.parse_script", "sim.Rrr3Scene", "sim.RprScene", "sim.Scene.step", "sim.SerialScene",
        "sim.Scene.pointer"}

@@ -10,6 +10,7 @@ void bind_reach(pybind11::module_& m);
 void bind_rpr(pybind11::module_& m);
 void bind_rrr3(pybind11::module_& m);
 void bind_ik_closed(pybind11::module_& m);
+void bind_closed_solver(pybind11::module_& m);  // after bind_ik_closed (IKSolutions)
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // urdf_tree and its classes
 // The serial-arm toolkit: trajectories, velocity-level IK, pose helpers.

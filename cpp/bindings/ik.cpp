@@ -195,7 +195,9 @@ void bind_ik(py::module_& m) {
   defaults["timeout"] = d.budget();
   defaults.attr("pop")("damping");  // None: the method's (default_damping)
   m.attr("IK_DEFAULTS") = py::module_::import("types").attr("MappingProxyType")(defaults);
-  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::kw_only(), py::arg("seed") = py::none(),
+  // seed may come by position: a call with no keyword takes pybind11's quicker route (robokin.ik
+  // passes it so).
+  m.def("ik", &ik, py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("seed") = py::none(),
         "Numerical IK; options as keywords (IKOptions). Use robokin.ik.");
   m.def("ik_batch", &ik_batch_py, py::arg("chain"), py::arg("targets"), py::arg("q0"), py::kw_only(),
         py::arg("seed") = py::none(), py::arg("path") = false,

@@ -2,6 +2,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
+#include "closed_parts.hpp"
 #include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
@@ -92,6 +93,8 @@ struct SphericalWrist {
   }
 };
 
+}  // namespace
+
 // ---- The UR family (robokin.closed.ur) ----
 
 URArm ur_arm_arg(const Chain& chain) {
@@ -103,35 +106,22 @@ URArm ur_arm_arg(const Chain& chain) {
 }
 
 // limits: "default" (the chain's), None, or a pair.
-ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
+static ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
-py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim);
-
-py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
+static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
   const URArm arm = ur_arm_arg(chain);
   const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
 
-// The UR closed form with its arm and limits read once (robokin.closed.ur keeps a few).
-struct URSolver {
-  const Chain* chain;  // kept alive by the Python object (keep_alive)
-  URArm arm;
-  JointLimits limits;
-  ClosedFormSolutions solve(ArrayLike target) const {
-    return ik_ur(arm, *chain, Rigid::from_matrix(as_transform(target, "target")), limits);
-  }
-  py::tuple solve_batch(ArrayLike targets) const { return ur_batch_with(targets, *chain, arm, limits); }
-};
-
-py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
-  Array a = as_array(targets_obj, "targets");
+std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
+  Array a = as_array(targets_obj, name);
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
-    fail("targets: expected shape (N, 4, 4), got " + shape_of(a));
-  require_finite(a.data(), a.size(), "targets");
+    fail(std::string(name) + ": expected shape (N, 4, 4), got " + shape_of(a));
+  require_finite(a.data(), a.size(), name);
   const long count = a.shape(0);
   std::vector<Rigid> targets(count);
   for (long k = 0; k < count; ++k) {
@@ -139,9 +129,15 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
     const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
     if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
         (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)
-      fail("targets: frame " + std::to_string(k) + " is not a rigid transform");
+      fail(std::string(name) + ": frame " + std::to_string(k) + " is not a rigid transform");
     targets[k] = Rigid::from_matrix(m);
   }
+  return targets;
+}
+
+py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
+  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
+  const long count = static_cast<long>(targets.size());
   py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
   py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
   py::array_t<bool> singular(static_cast<py::ssize_t>(count));
@@ -155,6 +151,8 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
   }
   return py::make_tuple(q, singular, within);
 }
+
+namespace {
 
 py::tuple ur_geometry(const Chain& chain) {
   const URArm g = ur_arm_arg(chain);
@@ -280,14 +278,6 @@ void bind_solvers(py::module_& m) {
            py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
            py::arg("limits") = py::none())
       .def("solve", &SphericalWrist::solve, py::arg("target"));
-  py::class_<URSolver> ur_solver(m, "_URSolver", "The UR closed form with its chain's arm and limits read once.");
-  ur_solver
-      .def(py::init([](const Chain& chain, ChainLimitsLike limits) {
-             return URSolver{&chain, ur_arm_arg(chain), limits_or_default(chain, limits, 6)};
-           }),
-           py::arg("chain"), py::arg("limits") = "default", py::keep_alive<1, 2>())
-      .def("solve", &URSolver::solve, py::arg("target"))
-      .def("solve_batch", &URSolver::solve_batch, py::arg("targets"));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
+#include "ik_starts.hpp"
 #include "kernel/fk_lanes.hpp"
 #include "kernel/fk_path.hpp"
 
@@ -60,6 +61,7 @@ Chain::Chain(KDL::Chain chain, const Vector& lower, const Vector& upper)
   // and one rigid product (kernel/fk_path.cpp).
   path_ = std::make_shared<const kernel::FkPath>(kernel::build_fk_path(kdl_));
   planar_ = moves_in_base_plane();
+  lazy_ = std::make_shared<Lazy>();
 }
 
 Chain Chain::from_dh(const std::vector<DHRow>& rows, bool modified, const Matrix4& tool,

@@ -3,6 +3,7 @@
 #include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
+#include "ik_starts.hpp"
 #include "linalg.hpp"
 
 #include <algorithm>
@@ -19,6 +20,10 @@ namespace {
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
 
+// The first restarts start from the chain's stored configurations whose tools are nearest the
+// target (ik_starts.hpp); the rest from random configurations.
+constexpr int kNearStarts = 8;
+
 double wall_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -33,30 +38,37 @@ double thread_cpu_s() {
 
 // The time budget (IkOptions::timeout) is the solving thread's CPU time: a thread descheduled on a
 // busy machine (other processes, more threads than cores) does not see its search cut short, as a
-// wall-clock budget did on a loaded machine. The thread's CPU clock costs a system call, so it is
-// read only once the wall clock, which a thread's CPU time never exceeds, says the budget may be
-// spent.
+// wall-clock budget did on a loaded machine. The thread's CPU clock costs a system call, so a solve
+// that ends within the first 1 % of its budget by the wall clock (most solves of a reachable
+// target) never reads it. The CPU clock starts at the first check past that point, charged with
+// that 1 %: the CPU time before the check before it is at most its wall time, under 1 %, so the
+// charge errs by at most the few iterations between two checks (and never by a spell of being
+// descheduled, which charging the wall time would count). After that the CPU clock is read only
+// once the wall clock says the budget may be spent.
 class IkSolver::Budget {
  public:
   explicit Budget(double seconds) : seconds_(seconds) {
-    if (seconds_ > 0) {
-      cpu0_ = thread_cpu_s();
-      check_at_ = wall_s() + seconds_;
-    }
+    if (seconds_ > 0) check_at_ = wall_s() + kGrace * seconds_;
   }
-  bool limited() const { return seconds_ > 0; }
   bool spent() {
     if (!(seconds_ > 0)) return false;
     const double now = wall_s();
     if (now < check_at_) return false;
-    const double left = seconds_ - (thread_cpu_s() - cpu0_);
+    const double cpu = thread_cpu_s();
+    if (!cpu_started_) {
+      cpu0_ = cpu - kGrace * seconds_;
+      cpu_started_ = true;
+    }
+    const double left = seconds_ - (cpu - cpu0_);
     if (!(left > 0)) return true;
     check_at_ = now + left;
     return false;
   }
 
  private:
+  static constexpr double kGrace = 0.01;
   double seconds_, cpu0_ = 0.0, check_at_ = 0.0;
+  bool cpu_started_ = false;
 };
 
 void parse(const std::string& name, IkMethod& method) {
@@ -317,18 +329,6 @@ void hessian_times(const Chain& chain, const Matrix6X& J6, const Vector& a, Matr
   }
 }
 
-void IkSolver::random_q(std::mt19937_64& rng, Vector& q) const {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int i = 0; i < n_; ++i) {
-    double lo = chain_->lower()(i), hi = chain_->upper()(i);
-    const double span = chain_->prismatic(i) ? 1.0 : M_PI;
-    if (!std::isfinite(lo) && !std::isfinite(hi)) lo = -span, hi = span;
-    else if (!std::isfinite(lo)) lo = hi - 2 * span;
-    else if (!std::isfinite(hi)) hi = lo + 2 * span;
-    q(i) = lo + (hi - lo) * u(rng);
-  }
-}
-
 // The state of one attempt between its iterations: the cost |e|^2 at q, the lowest cost seen
 // (NR, Halley), LM's damping mu and its growth factor nu.
 struct IkSolver::Attempt {
@@ -470,12 +470,18 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
     if (!fit(i, q(i))) q(i) = clamp(i, q(i));
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
-  std::optional<std::mt19937_64> rng;  // seeded at the first restart (seeding costs ~2 % of a solve)
+  std::optional<std::mt19937_64> rng;  // seeded at the first random restart (seeding costs ~2 % of a solve)
+  int near[kNearStarts];
   for (int k = 0; k <= restarts_; ++k) {
     if (k > 0) {
       if (clock.spent()) break;
-      if (!rng) rng.emplace(seed);
-      random_q(*rng, q);
+      if (k == 1) chain_->ik_starts().nearest(target, kNearStarts, near);
+      if (k <= kNearStarts) {
+        q = Eigen::Map<const Vector>(chain_->ik_starts().q(near[k - 1]), n_);
+      } else {
+        if (!rng) rng.emplace(seed);
+        random_configuration(*chain_, *rng, q.data());
+      }
     }
     ++r.attempts;
     report(progress, k, restarts_ + 1);

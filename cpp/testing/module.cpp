@@ -5,6 +5,7 @@
 // It shares robokin._core's types (Chain) and exception translators: import robokin first.
 #include <kdl/utilities/error.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <new>
@@ -12,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "../src/ik_starts.hpp"
 #include "../src/kernel/fast_math.hpp"
 #include "arrays.hpp"
 #include "kdl_ik_reference.hpp"
@@ -19,6 +21,7 @@
 #include "robokin/angles.hpp"
 #include "robokin/ik.hpp"
 #include "robokin/parallel.hpp"
+#include "subproblems_hooks.hpp"
 #include "targets.hpp"
 
 namespace robokin::bind {
@@ -82,6 +85,31 @@ void bind_references(py::module_& m) {
         return to_numpy(out);
       },
       py::arg("chain"), py::arg("q"), py::arg("a"), "sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.");
+  // Seconds per IkSolver::solve with the default options, timed in C++ over `count` solves of one
+  // target from q0: the solver's own work, for the benchmark of what a call from Python adds.
+  m.def(
+      "ik_solve_seconds",
+      [](const Chain& chain, py::handle target, py::handle q0_obj, long count) {
+        const IkOptions o;
+        const Target t = one_target(chain, o.task_for(chain), target);
+        const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
+        if (count < 1) fail("count: must be at least 1");
+        IkSolver solver(chain, o);
+        const auto start = std::chrono::steady_clock::now();
+        for (long k = 0; k < count; ++k) solver.solve(t, q0.data(), static_cast<std::uint64_t>(k));
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / count;
+      },
+      py::arg("chain"), py::arg("target"), py::arg("q0"), py::arg("count"));
+  // The chain's stored IK restart configurations (cpp/src/ik_starts.hpp), (kCount, dof).
+  m.def(
+      "ik_starts",
+      [](const Chain& chain) {
+        const IkStarts& starts = chain.ik_starts();
+        py::array_t<double> out({static_cast<py::ssize_t>(IkStarts::kCount), static_cast<py::ssize_t>(chain.dof())});
+        std::copy(starts.q(0), starts.q(0) + IkStarts::kCount * chain.dof(), out.mutable_data());
+        return out;
+      },
+      py::arg("chain"));
   // Chain::fk_few (the closed forms' check: up to 8 configurations in one pass of the lane kernel,
   // its AVX2 build where the CPU has it) on the rows of Q: (k, 4, 4) frames, for the test that
   // they are fk's bits.
@@ -128,4 +156,5 @@ PYBIND11_MODULE(_testing, m) {
   pybind11::module_::import("robokin._core");  // its Chain type and exception translators
   robokin::bind::bind_hooks(m);
   robokin::bind::bind_references(m);
+  robokin::bind::bind_subproblem_hooks(m);
 }

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1061,16 +1061,84 @@ class _SphericalWrist6R:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
         ...
-class _URSolver:
+class ClosedFamilyOptions:
     """
-    The UR closed form with its chain's arm and limits read once.
+    The options of robokin.closed.family, solve and ClosedSolver (keywords).
     """
-    def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> None:
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('tol')
+    kinds: typing.ClassVar[tuple] = ('float')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError naming an option out of range.
+        """
+    @property
+    def tol(self) -> float:
+        """
+        Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
+        """
+    @tol.setter
+    def tol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ClosedSolver:
+    """
+    The closed-form inverse kinematics of one arm, read from its chain once: solve(T) costs only the
+    solve. Nothing changes during a call: one solver may be shared by every thread; it pickles
+    with its chain, limits and options.
+    """
+    def __getstate__(self) -> tuple[int, typing.Any, typing.Any, ClosedFamilyOptions]:
+        ...
+    def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', **kwargs) -> None:
+        """
+        ClosedSolver(chain, limits='default', *, tol=1e-06)
+        
+        The closed form of chain: robokin.closed.ur's for a UR table, else the subproblems' for any
+        arm robokin.closed.family recognises (ValueError saying why otherwise). limits: 'default'
+        for the chain's, None for none, or (lower, upper): for within_limits.
+        
+        Options (keyword-only, ClosedFamilyOptions):
+            tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
-        ...
+        """
+        Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.solve.
+        """
     def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
-        ...
+        """
+        solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, 6), singular (N,),
+        within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES).
+        """
+    @property
+    def chain(self) -> typing.Any:
+        """
+        The chain solved for.
+        """
+    @property
+    def family(self) -> str:
+        """
+        The decomposition solved (robokin.closed.family's name).
+        """
+    @property
+    def limits(self) -> typing.Any:
+        """
+        None or (lower, upper): the limits within_limits is measured against.
+        """
 class IKOptions:
     """
     The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.
@@ -1121,7 +1189,7 @@ class IKOptions:
     @property
     def restarts(self) -> int | None:
         """
-        Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+        Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
         """
     @restarts.setter
     def restarts(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -1272,7 +1340,7 @@ class IKSolver:
             tol_p (float, default 1e-09): Position tolerance (m).
             tol_r (float, default 1e-09): Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); unused for the other tasks.
             max_iter (int, default 100): Iterations per attempt.
-            restarts (None or int, default None): Extra attempts from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+            restarts (None or int, default None): Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
             timeout (None or float, default None): Time budget in seconds for all the attempts (checked every few iterations), counted in the solving thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable target costs the whole budget.
             damping (None or float, default None): lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse (default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.
             stall_window (int, default 6): With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
@@ -1494,11 +1562,20 @@ class ServoResult:
         """
         (K,) step times k dt.
         """
+def closed_family(chain: Chain, **kwargs) -> tuple:
+    """
+    closed_family(chain, *, tol=1e-06)
+    
+    The chain's decomposition: (name, solvable, reason, meet, parallel, tol_distance).
+    
+    Options (keyword-only, ClosedFamilyOptions):
+        tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
+    """
 def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex = 256) -> dict:
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
-def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, **kwargs) -> IKResult:
+def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, seed: int | None = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """

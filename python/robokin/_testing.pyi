@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import robokin._core
 import typing
-__all__: list[str] = ['KdlIk', 'fk_few', 'hessian_times', 'parallel_for_throwing', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
+__all__: list[str] = ['KdlIk', 'fk_few', 'hessian_times', 'ik_solve_seconds', 'ik_starts', 'parallel_for_throwing', 'subproblem1', 'subproblem2', 'subproblem3', 'subproblem4', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
 class KdlIk:
     """
     Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.
@@ -24,7 +24,19 @@ def hessian_times(chain: robokin._core.Chain, q: typing.Any, a: typing.Any) -> n
     """
     sum_j a_j dJ/dq_j (6, dof): Halley's kinematic Hessian term.
     """
+def ik_solve_seconds(chain: robokin._core.Chain, target: typing.Any, q0: typing.Any, count: typing.SupportsInt | typing.SupportsIndex) -> float:
+    ...
+def ik_starts(chain: robokin._core.Chain) -> numpy.typing.NDArray[numpy.float64]:
+    ...
 def parallel_for_throwing(count: typing.SupportsInt | typing.SupportsIndex, on_caller: bool) -> int:
+    ...
+def subproblem1(k: numpy.typing.ArrayLike, p: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike) -> tuple:
+    ...
+def subproblem2(k1: numpy.typing.ArrayLike, k2: numpy.typing.ArrayLike, p: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike) -> tuple[tuple, tuple]:
+    ...
+def subproblem3(k: numpy.typing.ArrayLike, p: numpy.typing.ArrayLike, q: numpy.typing.ArrayLike, d: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
+    ...
+def subproblem4(h: numpy.typing.ArrayLike, k: numpy.typing.ArrayLike, p: numpy.typing.ArrayLike, d: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     ...
 def throw(arg0: str) -> None:
     ...

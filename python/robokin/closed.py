@@ -22,16 +22,22 @@ from __future__ import annotations
 
 import functools
 import math
-import threading
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import _core
 from . import robots as _robots
-from ._core import UR_POSTURES, Chain, IKSolutions
+from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
+from ._options import with_options
 from ._ur_dh import ur_dh_rows
 
 __all__ = [
+    "ClosedFamilyOptions",
+    "ClosedSolver",
+    "Family",
+    "family",
+    "solve",
     "IKSolutions",
     "anthropomorphic",
     "general_3r",
@@ -208,7 +214,13 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
 
 
 _UR_KEYS = ("d1", "a2", "a3", "d4", "d5", "d6")
-_UR_CHAINS: dict = {}
+
+
+@functools.lru_cache(maxsize=64)
+def _ur_table_chain(key) -> Chain:
+    """The UR arm of a table ``(d1, a2, a3, d4, d5, d6)`` as a Chain, built once per table (looked up
+    by value: a table is a tuple of numbers, not an object whose id could be reused)."""
+    return Chain.from_dh(ur_dh_rows(*key))
 
 
 def _ur_chain(robot) -> Chain:
@@ -223,54 +235,20 @@ def _ur_chain(robot) -> Chain:
         raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
     if not all(math.isfinite(v) for v in key):
         raise ValueError("robot: the lengths must be finite")
-    with _UR_LOCK:
-        chain = _UR_CHAINS.get(key)
-        if chain is None:
-            if len(_UR_CHAINS) > 64:
-                _UR_CHAINS.clear()
-            chain = _UR_CHAINS[key] = Chain.from_dh(ur_dh_rows(*key))
-    return chain
-
-
-# The caches of the UR solvers are shared by every thread: they change only under _UR_LOCK, and the
-# last call's entry is one tuple replaced whole, so a reader that took it sees one call's robot,
-# limits and solver together, never one call's robot with another's solver.
-_UR_LOCK = threading.Lock()
-_UR_SOLVERS: dict = {}
-_ur_last = (None, None, None)  # (robot, limits, solver) of the last cached call
-
-
-def _ur_solver(robot, limits):
-    """A bound solver (the arm read off the chain once) for the chains and "default" / None limits
-    used last; a chain is held by its entry, so its id cannot be reused while cached. The same
-    Chain with the same "default" / None limits as the call before is answered first."""
-    global _ur_last
-    last = _ur_last
-    if robot is last[0] and limits is last[1]:
-        return last[2]
-    chain = _ur_chain(robot)
-    if not (limits is None or (isinstance(limits, str) and limits == "default")):
-        return _core._URSolver(chain, limits)
-    key = (id(chain), limits)
-    with _UR_LOCK:
-        hit = _UR_SOLVERS.get(key)
-        if hit is None or hit[0] is not chain:
-            if len(_UR_SOLVERS) >= 16:
-                _UR_SOLVERS.pop(next(iter(_UR_SOLVERS)))
-            hit = _UR_SOLVERS[key] = (chain, _core._URSolver(chain, limits))
-        if robot is chain:  # a Chain (a dict's chain is looked up by value each time)
-            _ur_last = (chain, limits, hit[1])
-    return hit[1]
+    return _ur_table_chain(key)
 
 
 def ur(target, robot, limits="default") -> IKSolutions:
     """All (up to 8) solutions of a Universal Robots arm (UR3/5/10/16 and the e-series: three
     parallel axes 2, 3, 4) for the tool frame ``target``, in closed form.
 
-    The arm is read off ``robot``: standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``,
+    The arm is read off ``robot``: a UR URDF chain (``Chain.from_urdf(path, "base", "tool0")``,
+    solved as :func:`solve` does, the same labels), or standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``,
     ``(0, pi/2, d4)``, ``(0, -pi/2, d5)``, ``(0, 0, d6)`` (theta offsets, a fixed base before joint 1,
     offsets along the parallel axes, joints turning about -z and any tool after joint 6 allowed);
-    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``.
+    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``. Each call reads
+    the arm off the chain again: a loop over many poses of one arm holds a :class:`ClosedSolver`
+    (``ClosedSolver(chain, limits).solve(T)``, the same answers), which reads it once.
 
     Args:
         target: Tool frame (4, 4).
@@ -293,10 +271,13 @@ def ur(target, robot, limits="default") -> IKSolutions:
         1e-3 of the wrist's singularity, where q2 + q3 + q4 is known only to ~1e-16 / |sin q5|, an
         elbow within that rounding of straight or folded is returned straight or folded.
     """
-    last = _ur_last  # _ur_solver's first test, inline: the same Chain and limits as the call before
-    if robot is last[0] and limits is last[1]:
-        return last[2].solve(target)
-    return _ur_solver(robot, limits).solve(target)
+    chain = _ur_chain(robot)
+    try:
+        return _core.ik_ur(target, chain, limits)
+    except ValueError:
+        if robot is not chain or family(chain).name != "three parallel axes 2, 3, 4":
+            raise
+    return ClosedSolver(chain, limits).solve(target)  # a UR arm from a URDF: the same family and labels
 
 
 def ur_batch(targets, robot, limits="default"):
@@ -314,7 +295,11 @@ def ur_batch(targets, robot, limits="default"):
         out of reach, or, at a singularity, its posture coincides with another (the one solution
         is kept in the first slot of the postures that coincide). No row is NaN for its limits.
     """
-    return _ur_solver(robot, limits).solve_batch(targets)
+    chain = _ur_chain(robot)
+    solver = ClosedSolver(chain, limits) if family(chain).solvable else None
+    if solver is None or solver.family != "three parallel axes 2, 3, 4":
+        _core.ik_ur(np.eye(4), chain, limits)  # raises the UR table's ValueError, naming what differs
+    return solver.solve_batch(targets)
 
 
 def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
@@ -339,3 +324,75 @@ def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
         ``singular`` is set when a solution is singular or a joint is free (one representative).
     """
     return _core.ik_3r(target, chain, limits)
+
+
+@dataclass(frozen=True)
+class Family:
+    """The closed-form family of an arm's geometry (:func:`family`).
+
+    Attributes:
+        name: ``"spherical wrist, axes 2, 3 parallel"`` (axes 4, 5, 6 meet in a point: the PUMA,
+            KUKA KR, ABB IRB, Fanuc and Staubli arms), ``"three parallel axes 2, 3, 4"`` (axes 5
+            and 6 meeting: the UR family), or ``"none"``.
+        solvable: :func:`solve` has a closed form for it.
+        reason: Why there is none (``"axes 4, 5, 6 do not meet: 3.2 mm apart; ..."``), else ``""``.
+        meet: Consecutive axes (1-based pairs) whose lines meet.
+        parallel: Consecutive axes that are parallel.
+        tol_distance: The distance (m) within which two lines were taken to meet: ``tol`` times
+            the arm's size (the sum of the chain's fixed translations at the zero configuration).
+    """
+
+    name: str
+    solvable: bool
+    reason: str
+    meet: tuple
+    parallel: tuple
+    tol_distance: float
+
+
+@with_options(ClosedFamilyOptions)
+def family(chain: Chain, **options) -> Family:
+    """The decomposition of ``chain``'s geometry, read from its joint axes at the zero configuration
+    (whatever the chain was built from: DH, modified DH, URDF, joints and frames): which
+    consecutive axes meet or are parallel, within a tolerance relative to the arm's size, and
+    which closed form :func:`solve` applies, or why none does.
+
+    Args:
+        chain: A Chain.
+
+    Returns:
+        A :class:`Family`.
+    """
+    if not isinstance(chain, Chain):
+        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, **options)
+    return Family(name, solvable, reason, tuple(map(tuple, meet)), tuple(map(tuple, parallel)), tol_distance)
+
+
+@with_options(ClosedFamilyOptions)
+def solve(target, chain: Chain, limits="default", **options) -> IKSolutions:
+    """Every solution (up to 8) of a 6R arm whose geometry has a closed form (:func:`family`), for
+    the tool frame ``target``: from the Paden-Kahan subproblems on the chain's joint axes (a UR
+    table's own closed form, :func:`ur`, for a UR DH chain). URDF chains are read as they are.
+
+    Each solution is checked by ``chain.fk`` (tool within 1e-9 x the arm's size, rotation entries
+    within 1e-8). Labels as :func:`puma560` and :func:`ur`: ``"shoulder left|right"`` (the wrist
+    point on the -/+ side of x1 = axis 1 x axis 2 from axis 1; the wrist point is where the
+    wrist's axes meet), ``"elbow up|down"`` (the elbow, axis 3, on axis 1's side of the line from
+    the shoulder, axis 2, to the wrist: the wrist centre, or axis 4 for the three parallel axes,
+    in the plane normal to axis 2), ``"wrist no flip|flip"`` (the axes a4, a5, a6 at the solution
+    with (a4 x a6) . a5 >= 0, or < 0); ``"shoulder singular"``, ``"elbow straight|folded"`` and
+    ``"wrist singular"`` (a continuum, one representative) at singularities, ``singular`` set.
+    A loop over many poses holds a :class:`ClosedSolver` (the arm read once).
+
+    Args:
+        target: Tool frame (4, 4).
+        chain: A 6R Chain with a decomposition; ValueError naming the reason otherwise.
+        limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``, for ``within_limits``.
+
+    Returns:
+        IKSolutions (every solution, ``within_limits`` marking those within the limits).
+    """
+    if not isinstance(chain, Chain):
+        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    return ClosedSolver(chain, limits, **options).solve(target)

@@ -28,9 +28,10 @@ options once; ``solver.solve(target, q0)`` then costs only the solve.
 
 Defaults (``IK_DEFAULTS``, read from the C++ core's ``IkOptions``, the one place they are written):
 ``lm``, the chain's natural task (``task`` None: ``chain.natural_task``), tolerances 1e-9 m and
-1e-9 rad, 100 iterations per attempt, and, with neither ``restarts``
-nor ``timeout`` given, restarts from random configurations within the limits until a solution is
-found or the time budget of ``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
+1e-9 rad, 100 iterations per attempt, and, with neither ``restarts`` nor ``timeout`` given,
+restarts until a solution is found (first from the chain's stored configurations whose tools are
+nearest the target, then from random configurations within the limits) or the time budget of
+``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
 that a busy machine does not cut the search short) runs out. A reachable target is then
 solved (>= 99.9 % of random reachable targets of every catalogue arm in
 ``benchmarks/bench_ik_defaults.py``, most within tens of microseconds); an unreachable target costs
@@ -76,7 +77,7 @@ def ik(chain: _core.Chain, target, q0, *, seed: Optional[int] = None, **options)
         TypeError: For a chain that is not a robokin.Chain, an unknown option or one of the wrong
             kind (the message names it).
     """
-    return _core.ik(_checks.chain(chain), target, q0, seed=seed, **options)
+    return _core.ik(_checks.chain(chain), target, q0, seed, **options)
 
 
 @with_options(IKOptions)

@@ -1,6 +1,6 @@
 """Matplotlib figures of the 3-RRR: the robot at a pose, a workspace map with its singular cells in
 red, the design-study curves. Everything drawn comes from the core (RRR3.points, RRR3.workspace,
-robokin.rrr3_design)."""
+robokin.rrr3_design). Figures are returned, made outside pyplot, not shown."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _core, rrr3_design
 from ._checks import planar_points
+from ._figures import new_figure
 from ._options import with_options
 
 __all__ = ["CELL_COLOURS", "plot_robot", "plot_workspace", "plot_design"]
@@ -17,12 +18,12 @@ CELL_COLOURS = np.array([[1.0, 1.0, 1.0], [0.68, 0.82, 0.93], [0.85, 0.1, 0.1], 
 
 
 def _axes(ax):
+    """The Figure and Axes to draw on: ``ax``'s, or a new Figure's outside pyplot (its global state
+    is not safe to share between threads; save the figure with fig.savefig)."""
     if ax is not None:
         return ax.figure, ax
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 6))
-    return fig, ax
+    fig = new_figure(figsize=(6, 6))
+    return fig, fig.add_subplot()
 
 
 def _path(path):
@@ -112,8 +113,6 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     Returns:
         (figure, (axes_area, axes_l2)).
     """
-    import matplotlib.pyplot as plt
-
     if curve is not None and not isinstance(curve, rrr3_design.AreaCurve):
         raise TypeError(f"curve: expected an rrr3_design.AreaCurve or None, got {type(curve).__name__}")
     if best is not None and not isinstance(best, rrr3_design.BestL2):
@@ -121,7 +120,8 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     curve = curve or rrr3_design.area_vs_platform_radius()
     # 627 robots: a coarser grid than one map's keeps the figure quick.
     best = best or rrr3_design.best_l2(np.linspace(0.05, 0.15, 11), np.linspace(0.02, 0.30, 57), n=100)
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    fig = new_figure(figsize=(11, 4.5))
+    ax1, ax2 = fig.subplots(1, 2)
     ax1.plot(curve.values * 100, curve.area * 1e4, "o-", ms=3)
     k = int(np.argmax(curve.area))
     ax1.axvline(curve.values[k] * 100, color="0.5", ls=":", label=f"largest: R_e = {curve.values[k] * 100:.1f} cm")

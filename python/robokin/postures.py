@@ -131,19 +131,6 @@ def _is_puma560(chain: Chain) -> bool:
 
 def _closed_sets(chain: Chain, poses):
     """Solutions and labels per pose from a closed form; None when the chain has none."""
-    try:
-        _core.ur_geometry(chain)
-        is_ur = True
-    except ValueError:
-        is_ur = False
-    if is_ur:
-        q, _, within = closed.ur_batch(poses, chain)  # within: a solution, within the limits
-        names = list(closed.UR_POSTURES)
-        sets, labels = [], []
-        for row, keep in zip(q, within):
-            sets.append(row[keep])
-            labels.append([names[k] for k in np.nonzero(keep)[0]])
-        return sets, labels
     if _is_puma560(chain):
         sets, labels = [], []
         g = closed.PUMA560
@@ -153,7 +140,16 @@ def _closed_sets(chain: Chain, poses):
             sets.append(s.q)
             labels.append(list(s.postures))
         return sets, labels
-    return None
+    if not closed.family(chain).solvable:
+        return None
+    # A UR table (closed.ur's form) or any arm closed.family recognises (closed.solve's), by slot.
+    q, _, within = closed.ClosedSolver(chain).solve_batch(poses)  # within: a solution, within the limits
+    names = list(closed.UR_POSTURES)
+    sets, labels = [], []
+    for row, keep in zip(q, within):
+        sets.append(row[keep])
+        labels.append([names[k] for k in np.nonzero(keep)[0]])
+    return sets, labels
 
 
 def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont, ik_options: dict):
@@ -206,8 +202,9 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     """Follows the tool frames ``poses`` with the fewest reconfigurations, then the least joint motion.
 
     Args:
-        chain: The arm. ``method="closed"`` needs a closed form: a UR-layout arm
-            (:func:`robokin.closed.ur`) or the PUMA 560 (:func:`robokin.robots.puma560`, any limits).
+        chain: The arm. ``method="closed"`` needs a closed form: the PUMA 560
+            (:func:`robokin.robots.puma560`, any limits) or any arm :func:`robokin.closed.family`
+            recognises (a UR arm from its DH table or URDF, a spherical wrist: :func:`robokin.closed.solve`).
         poses: (K, 4, 4) tool frames, one per waypoint.
         dt: Time between waypoints (s).
         qdot_max: Joint speed limit (rad/s, m/s), a scalar or (n,): a step moving some joint more
@@ -234,7 +231,8 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     if method == "closed":
         got = _closed_sets(chain, P)
         if got is None:
-            raise ValueError("method: 'closed' needs a UR-layout arm or the PUMA 560; use method='numerical'")
+            raise ValueError("method: 'closed' needs an arm with a closed form (robokin.closed.family); "
+                             "use method='numerical'")
         sets, labels = got
     else:
         sets = _numerical_sets(chain, P, int(starts), int(seed), cont, options)

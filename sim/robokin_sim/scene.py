@@ -7,7 +7,11 @@ and never prints. The kinematics it needs are calls into robokin's core.
 from __future__ import annotations
 
 import math
+import threading
+import warnings
 from typing import FrozenSet, Sequence, Tuple
+
+import robokin as rk
 
 #: Seconds of simulated time per step: the seed program ran at 60 frames per second, one step each.
 DT = 1.0 / 60.0
@@ -65,3 +69,17 @@ def finite(*values: float) -> bool:
 def arrows(held: FrozenSet[str]) -> Tuple[int, int]:
     """The direction (dx, dy) in whole steps the arrow keys ask for (opposite keys cancel)."""
     return (("right" in held) - ("left" in held), ("up" in held) - ("down" in held))
+
+
+# Warning filters are process-wide and catch_warnings saves them on entry and puts them back whole
+# on exit: two threads' blocks interleaving would put back each other's filters (leaving "ignore"
+# behind for the whole process). The scenes' blocks take this lock, so that they nest.
+_QUIET = threading.Lock()
+
+
+def reach_quietly(*args, **kwargs):
+    """``rk.reach`` without its PrecisionWarning: the scenes report a missed tolerance themselves
+    (on the panel and in the log)."""
+    with _QUIET, warnings.catch_warnings():
+        warnings.simplefilter("ignore", rk.PrecisionWarning)
+        return rk.reach(*args, **kwargs)

@@ -9,14 +9,13 @@ keeps the joints away from their limits. Free mode moves the tip 1 cm per step w
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from collections import deque
 from typing import FrozenSet, Optional, Tuple
 
 import numpy as np
 import robokin as rk
 
-from .scene import Scene, arrows
+from .scene import Scene, arrows, reach_quietly
 
 #: Seed 000's Figure 2 line: joints at point 1 (t1 at its upper limit, the workspace boundary), point 2.
 Q1, P2 = rk.robots.RPR_LINE_Q1, rk.robots.RPR_LINE_P2
@@ -117,10 +116,8 @@ class RprScene(Scene):
 
     # --- one step -----------------------------------------------------------------------------
     def _reach(self, target) -> Tuple[np.ndarray, float, bool]:
-        with warnings.catch_warnings():
-            # "Precision not reached" is reported on the panel and in the log's error column.
-            warnings.simplefilter("ignore", rk.PrecisionWarning)
-            res = rk.reach(self.chain, target, self.q, nullspace="joint_limits" if self.avoid else None)
+        # "Precision not reached" is reported on the panel and in the log's error column.
+        res = reach_quietly(self.chain, target, self.q, nullspace="joint_limits" if self.avoid else None)
         return np.asarray(res.q), float(res.error), bool(res.converged)
 
     def _move(self, target, reached=None) -> bool:

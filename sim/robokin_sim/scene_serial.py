@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 from collections import deque
 from typing import FrozenSet, Optional, Tuple
 
@@ -41,7 +40,7 @@ from robokin.plots import joint_axes
 
 from . import serial_model as model
 from .camera import VIEW_ORDER, Camera
-from .scene import DT, Scene
+from .scene import DT, Scene, reach_quietly
 
 #: Joint jog per step: rad for revolute joints, m for prismatic ones.
 JOINT_STEP = {"R": 0.01, "P": 0.002}
@@ -447,10 +446,8 @@ class SerialScene(Scene):
         qd = rk.resolved_rate(self.chain, self.q, delta[rows] / DT, damping=damping, nullspace=nullspace,
                               task=self.task)
         guess = np.clip(self.q + DT * np.asarray(qd), self.lower, self.upper)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", rk.PrecisionWarning)
-            res = rk.reach(self.chain, target, guess, task=self.task, max_iter=REACH_ITER, tol=REACH_TOL, gain=1.0,
-                           dt=DT)
+        res = reach_quietly(self.chain, target, guess, task=self.task, max_iter=REACH_ITER, tol=REACH_TOL, gain=1.0,
+                            dt=DT)
         q = np.asarray(res.q, dtype=float)
         jump = float(np.max(np.abs(q - self.q))) if np.all(np.isfinite(q)) else math.inf
         self.mode = "cartesian"

@@ -73,6 +73,8 @@ struct DHTable {
 // What a batch FK writes per configuration: the tool frame (4 x 4, row-major) or its point (x, y, z).
 enum class FkOutput { Frame, Position };
 
+class IkStarts;  // IK's restart configurations (cpp/src/ik_starts.hpp)
+
 namespace kernel {
 struct FkPath;  // the evaluation path (cpp/src/kernel/fk_path.hpp)
 }  // namespace kernel
@@ -140,6 +142,10 @@ class Chain {
   bool fk_batch(const double* q, long count, double* out, FkOutput what = FkOutput::Frame,
                 Progress* progress = nullptr) const;
 
+  // IK's restart configurations (cpp/src/ik_starts.hpp): built at the first call (thread-safe), then
+  // shared by the chain's copies; a chain unpickled builds the same again.
+  const IkStarts& ik_starts() const;
+
   // KDL's recursive solvers: the reference, and the frames of every joint segment.
   Matrix4 fk_kdl(const Vector& q) const;
   Matrix6X jacobian_kdl(const Vector& q) const;
@@ -159,6 +165,8 @@ class Chain {
   // Built once by the constructor, never changed: copies share it, const calls only read it.
   std::shared_ptr<const kernel::FkPath> path_;
   bool planar_ = false;
+  struct Lazy;  // derived data built at first use (ik_starts.hpp)
+  std::shared_ptr<Lazy> lazy_;
 };
 
 }  // namespace robokin

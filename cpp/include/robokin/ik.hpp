@@ -44,8 +44,9 @@ struct IkOptions {
   double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
   double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
   int max_iter = 100;      // iterations per attempt
-  // Extra attempts from random configurations within the limits, in [0, kMaxRestarts]. Unset: as
-  // many as the time budget allows.
+  // Extra attempts, in [0, kMaxRestarts]: first from the chain's stored configurations nearest the
+  // target (ik_starts.hpp), then random ones within the limits. Unset: as many as the time budget
+  // allows.
   std::optional<int> restarts;
   // Seconds of the solving thread's CPU time for the whole solve (every attempt), so that a busy
   // machine does not cut a search short (the wall time may then be longer). Unset:
@@ -72,8 +73,10 @@ struct IkOptions {
           "unused for the other tasks.");
     field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
     field("restarts", &IkOptions::restarts,
-          "Extra attempts from random configurations drawn uniformly within the limits (revolute joints without "
-          "limits: [-pi, pi]) when an attempt fails, at most 1,000,000; they stop at the first success. None: as "
+          "Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from "
+          "the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the "
+          "rest from random configurations drawn uniformly within the limits (revolute joints without limits: "
+          "[-pi, pi]). None: as "
           "many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
           "(on an unreachable target they all run).");
     field("timeout", &IkOptions::timeout,
@@ -152,7 +155,6 @@ class IkSolver {
   void damped_pinv(const Eigen::MatrixXd& J, const Vector& r, Vector& dq);
   bool fit(int i, double& v) const;  // wraps a joint value by 2 pi into its limits; false if outside
   double clamp(int i, double v) const;  // the finite point of joint i's limits nearest to v
-  void random_q(std::mt19937_64& rng, Vector& q) const;
   void finalise(const Target& target, IkResult& r) const;
 
   const Chain* chain_ = nullptr;

@@ -1,0 +1,110 @@
+"""Benchmarks of the closed forms held and built per call, and against EAIK (the same process,
+interleaved).
+
+- ``rk.closed.ur(T, chain)`` (the arm read off the chain at each call) against a held
+  ``rk.closed.ClosedSolver(chain).solve(T)`` on the same UR5 poses: the price of not holding a solver.
+- ``rk.closed.ur(T, table)`` with a dict table (its chain looked up by value) against the same.
+Run with an older robokin (before ClosedSolver) it times its private ``_URSolver`` as the held one,
+for the before / after figures of benchmarks/README.md.
+- ``ClosedSolver.solve(T)`` (the subproblems' closed form, all solutions) against EAIK's
+  ``IK(T)`` (pip's ``eaik``, the ``bench`` extra; not needed otherwise) on the UR5 (robokin reading
+  ur_description's URDF, EAIK the DH table: the same kinematics), the ABB IRB 120 and the PUMA 560
+  (their DH tables without theta offsets, as EAIK's DhRobot takes them), after checking that both
+  return the same solutions on every pose; goal <= 0.5 x EAIK per call. The batch of 1e6 poses on
+  every core (``solve_batch``) against EAIK's ``IK_batched`` with as many threads.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+import sys
+
+import numpy as np
+
+import robokin as rk
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _timing import fmt, goal, once_interleaved, per_call_interleaved  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+from ur_urdf import UR5_URDF  # noqa: E402
+
+P = np.pi
+# (a, alpha, d) of the DH tables EAIK is given (robokin.robots' tables without their theta offsets).
+IRB120 = ((0.0, 0.27, 0.07, 0.0, 0.0, 0.0), (-P / 2, 0.0, -P / 2, P / 2, -P / 2, 0.0), (0.29, 0.0, 0.0, 0.302, 0.0, 0.072))
+PUMA560 = (rk.robots.PUMA560_A, rk.robots.PUMA560_ALPHA, rk.robots.PUMA560_D)
+UR5 = ((0.0, -0.425, -0.39225, 0.0, 0.0, 0.0), (P / 2, 0.0, 0.0, P / 2, -P / 2, 0.0),
+       (0.089159, 0.0, 0.0, 0.10915, 0.09465, 0.0823))
+
+UR5_TABLE = {"d1": 0.089159, "a2": -0.425, "a3": -0.39225, "d4": 0.10915, "d5": 0.09465, "d6": 0.0823}
+
+
+def held_solver(chain):
+    """The held solver of this robokin: ClosedSolver, or the private _URSolver before it."""
+    if hasattr(rk.closed, "ClosedSolver"):
+        return rk.closed.ClosedSolver(chain)
+    return rk._core._URSolver(chain)
+
+
+def per_call_figures(goals):
+    ur5 = rk.robots.ur5()
+    poses = list(ur5.fk(np.random.default_rng(0).uniform(-np.pi, np.pi, (200, 6))))
+    solver = held_solver(ur5)
+    ns = {"rk": rk, "ur5": ur5, "table": UR5_TABLE, "solver": solver, "frames": itertools.cycle(poses),
+          "nxt": next}
+    (held, _), (chain, _), (table, _) = per_call_interleaved(
+        ["solver.solve(nxt(frames))", "rk.closed.ur(nxt(frames), ur5)", "rk.closed.ur(nxt(frames), table)"], ns)
+    print(f"UR5, all solutions per call: held solver {fmt(held)}, closed.ur(T, chain) {fmt(chain)} "
+          f"({chain / held:.2f} x), closed.ur(T, table) {fmt(table)} ({table / held:.2f} x)")
+    goal(goals, "closed.ur(T, chain) per call / held ClosedSolver.solve", chain / held, "x", 1.5, "held solver")
+    return goals
+
+
+def same_solutions(ours, theirs):
+    """Every exact EAIK solution is one of robokin's and the other way round (angles to 1e-6)."""
+    q = np.asarray(theirs.Q)[~np.asarray(theirs.is_LS, bool)] if theirs.num_solutions() else np.zeros((0, 6))
+    gap = lambda a, b: np.abs(np.remainder(a[:, None, :] - b[None, :, :] + P, 2 * P) - P).max(axis=2)  # noqa: E731
+    if len(q) != len(ours) or (len(q) and (gap(q, ours.q).min(axis=1).max() > 1e-6)):
+        raise AssertionError(f"EAIK and robokin disagree: {len(q)} against {len(ours)} solutions")
+
+
+def eaik_figures(goals):
+    try:
+        from eaik.IK_DH import DhRobot
+    except ImportError:
+        print("EAIK not installed (pip install eaik, or the bench extra): not measured")
+        goal(goals, "closed.ClosedSolver.solve per call vs EAIK", math.nan, "x", 0.5, "EAIK: not installed")
+        return goals
+    arms = {"UR5 (URDF)": (rk.Chain.from_urdf(UR5_URDF, "base", "tool0"), UR5),
+            "IRB 120": (None, IRB120), "PUMA 560": (None, PUMA560)}
+    rng = np.random.default_rng(1)
+    for name, (chain, (a, alpha, d)) in arms.items():
+        chain = chain or rk.Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)])
+        bot = DhRobot(np.array(alpha, float), np.array(a, float), np.array(d, float))
+        solver = rk.closed.ClosedSolver(chain, None)
+        poses = list(chain.fk(rng.uniform(-P, P, (200, 6))))
+        for T in poses:
+            same_solutions(solver.solve(T), bot.IK(T))
+        ns = {"solver": solver, "bot": bot, "frames": itertools.cycle(poses), "nxt": next}
+        ours, theirs = per_call_interleaved(["solver.solve(nxt(frames))", "bot.IK(nxt(frames))"], ns)
+        print(f"{name} ({bot.getKinematicFamily()}, {solver.family}): robokin {fmt(ours[0])}, EAIK "
+              f"{fmt(theirs[0])}: {ours[0] / theirs[0]:.3f} x (the same solutions on 200 poses)")
+        goal(goals, f"closed.ClosedSolver.solve per call vs EAIK, {name}", ours[0] / theirs[0], "x", 0.5, "EAIK, same run")
+    batch = chain.fk(rng.uniform(-P, P, (1_000_000, 6)))
+    threads = os.cpu_count() or 1
+    (ours, _), (theirs, _) = once_interleaved([lambda: solver.solve_batch(batch),
+                                               lambda: bot.IK_batched(batch, num_worker_threads=threads)], repeat=3)
+    print(f"1e6 poses ({name}), {threads} threads: robokin {ours:.2f} s, EAIK {theirs:.2f} s: {ours / theirs:.3f} x")
+    goal(goals, "closed.ClosedSolver.solve_batch of 1e6 poses vs EAIK IK_batched", ours / theirs, "x", 1.0, "EAIK, same run")
+    return goals
+
+
+def main():
+    goals = per_call_figures([])
+    return eaik_figures(goals)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,48 @@
+// Closed-form inverse kinematics of any 6R arm whose geometry closed_family recognises, from the
+// Paden-Kahan subproblems (subproblems.hpp) on the joint axes read at the zero configuration:
+//   spherical wrist, axes 2, 3 parallel: q1 (subproblem 4: the wrist centre's height along axis 2),
+//     q3 (3: its distance from axis 2), q2 (1), then the wrist (2: q4, q5; 1: q6);
+//   three parallel axes 2, 3, 4 (axes 5, 6 meeting): q1 (4), q5 (4: axis 6's tilt from axis 2),
+//     q6 (1), q2 + q3 + q4 (1), q3 (3), q2 (1).
+// Up to 8 solutions, each checked by the chain's forward model and marked within the limits or
+// not, labelled geometrically with the labels of the PUMA and UR closed forms:
+//   "shoulder left|right": the wrist point on the -/+ side of x1 = axis 1 x axis 2 (at the
+//     solution) from axis 1; the wrist point is where the wrist's axes meet (axes 5, 6 for the
+//     three-parallel family);
+//   "elbow up|down": the elbow (axis 3) on the side of the line from the shoulder (axis 2) to the
+//     wrist (the wrist centre; axis 4 for the three-parallel family) towards axis 1's direction or
+//     away from it, in the plane normal to axis 2;
+//   "wrist no flip|flip": (a4 x a6) . a5 >= 0 or < 0 for the axes a4, a5, a6 at the solution (the
+//     sine of the DH angle of joint 5 of the UR and PUMA tables).
+// Singular cases are flagged: "shoulder singular" (the two q1 coincide), "elbow straight|folded",
+// "wrist singular" (axes 4 and 6, or 2 and 6, aligned: a continuum of which q4 = 0, or q6 = 0, is
+// returned).
+#pragma once
+
+#include "robokin/closed_family.hpp"
+#include "robokin/ik_closed.hpp"
+
+namespace robokin {
+
+// An arm's geometry as the closed form reads it, once.
+struct ClosedArm {
+  JointAxes axes;
+  ClosedFamily family;
+};
+
+// Throws std::invalid_argument("chain: no closed form for this arm (<reason>)") when closed_family
+// finds none.
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {});
+
+// Every solution of the tool frame T; slot[k] (when given, size 8) is row k's slot as in
+// kURPostures (shoulder left 0 / right 1, elbow up 0 / down 1, wrist no flip 0 / flip 1; a singular
+// one's 0).
+ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
+                                 int* slot = nullptr);
+
+// A batch, as ik_ur_batch (ik_closed.hpp): q_out (count, 8, 6), NaN rows where a slot has none.
+void closed_solve_batch(const ClosedArm& arm, const Chain& chain, const Rigid* targets, long count,
+                        const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
+                        Progress* progress = nullptr);
+
+}  // namespace robokin

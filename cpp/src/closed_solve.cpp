@@ -1,0 +1,294 @@
+// The closed form of the arms closed_family recognises, from the Paden-Kahan subproblems.
+#include "robokin/closed_solve.hpp"
+#include "robokin/angles.hpp"
+#include "robokin/parallel.hpp"
+#include "robokin/subproblems.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace robokin {
+namespace {
+
+using V3 = Eigen::Vector3d;
+using M3 = Eigen::Matrix3d;
+
+// The labels, built once: shoulder (left, right, singular) x elbow (up, down, straight, folded) x
+// wrist (no flip, flip, singular).
+const char* label(int shoulder, int elbow, int wrist) {
+  static const std::vector<std::string> labels = [] {
+    const char* s[] = {"shoulder left", "shoulder right", "shoulder singular"};
+    const char* e[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
+    const char* w[] = {"wrist no flip", "wrist flip", "wrist singular"};
+    std::vector<std::string> all;
+    for (const char* a : s)
+      for (const char* b : e)
+        for (const char* c : w) all.push_back(std::string(a) + ", " + b + ", " + c);
+    return all;
+  }();
+  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
+}
+
+// The candidates of one solve, checked together at the end.
+struct Candidates {
+  double q[8][6];
+  int shoulder[8], elbow[8], wrist[8];
+  int m = 0;
+  bool singular = false;
+  void add(const double* joints, int s, int e, int w) {
+    if (m == 8) return;
+    for (int i = 0; i < 6; ++i) q[m][i] = wrap_angle(joints[i]);
+    shoulder[m] = s, elbow[m] = e, wrist[m++] = w;
+  }
+};
+
+// The elbow's label: e (on axis 3) against the line from s (axis 2) to w (the wrist), in the plane
+// normal to n (axis 2), towards `up` (axis 1) or away; straight / folded when the 2R is singular.
+int elbow_label(const V3& s, const V3& e, const V3& w, const V3& n, const V3& up, bool singular) {
+  const V3 d = (w - s) - (w - s).dot(n) * n, f = (e - s) - (e - s).dot(n) * n;
+  if (singular) return f.dot(d) > 0 && (w - s).norm() >= (e - s).norm() ? 2 : 3;
+  const double dd = d.squaredNorm();
+  const V3 perp = dd > 0 ? V3(f - (f.dot(d) / dd) * d) : f;
+  return perp.dot(up) > 0 ? 0 : 1;
+}
+
+// The wrist's label at the solution: the sign of (a4 x a6) . a5.
+int wrist_label(const V3& a4, const V3& a5, const V3& a6, bool singular) {
+  if (singular) return 2;
+  return a4.cross(a6).dot(a5) >= 0 ? 0 : 1;
+}
+
+// q1 of each shoulder (subproblem 4: the wrist point c keeps its height along axis 2 under joints
+// 2 .. 6), with its label.
+SubproblemAngles shoulders(const JointAxes& g, const V3& c, const V3& center) {
+  SubproblemAngles t = subproblem4(g.axis[1], g.axis[0], c - g.point[0], g.axis[1].dot(center - g.point[0]));
+  for (int i = 0; i < t.count; ++i) t.theta[i] = -t.theta[i];
+  return t;
+}
+
+int shoulder_label(const JointAxes& g, const M3& R1, const V3& c, bool singular) {
+  if (singular) return 2;
+  const V3 x1 = g.axis[0].cross(R1 * g.axis[1]);
+  return x1.dot(c - g.point[0]) > 0 ? 1 : 0;
+}
+
+// The spherical wrist of q1 .. q3: (q4, q5) by subproblem 2 on axis 6, q6 by subproblem 1.
+void wrist(const JointAxes& g, const M3& R03, const M3& R06, double* q, int s, int e, Candidates& out) {
+  const M3 Rw = R03.transpose() * R06;  // R4 R5 R6
+  const V3 &h4 = g.axis[3], &h5 = g.axis[4], &h6 = g.axis[5];
+  SubproblemAngles t4, t5;
+  const bool aligned = h4.cross(Rw * h6).norm() < 1e-9;  // axes 4 and 6 aligned: q4 + q6 only
+  if (aligned) {
+    t4.count = 1, t4.theta[0] = 0.0;
+    t5 = subproblem1(h5, h6, Rw * h6);
+    out.singular = true;
+  } else {
+    subproblem2(h4, h5, h6, Rw * h6, t4, t5);
+  }
+  for (int i = 0; i < t4.count; ++i) {
+    q[3] = t4.theta[i], q[4] = t5.theta[aligned ? 0 : i];
+    const M3 R4 = axis_rotation(h4, q[3]), R45 = R4 * axis_rotation(h5, q[4]);
+    const V3 x = h6.unitOrthogonal();
+    q[5] = subproblem1(h6, x, R45.transpose() * Rw * x).theta[0];
+    out.add(q, s, e, wrist_label(R03 * h4, R03 * R4 * h5, R03 * R45 * h6, aligned));
+  }
+}
+
+// Spherical wrist, axes 2, 3 parallel: the wrist centre c by q1 (4), q3 (3), q2 (1).
+void solve_spherical(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
+  const V3 c = G.R * center + G.p;
+  const V3 &p1 = g.point[0], &p2 = g.point[1], &p3 = g.point[2];
+  const SubproblemAngles t1 = shoulders(g, c, center);
+  out.singular = out.singular || t1.singular;
+  for (int i = 0; i < t1.count; ++i) {
+    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    const M3 R1 = axis_rotation(g.axis[0], q[0]);
+    const int s = shoulder_label(g, R1, c, t1.singular);
+    const V3 v = R1.transpose() * (c - p1) - (p2 - p1);
+    const SubproblemAngles t3 = subproblem3(g.axis[2], center - p3, p2 - p3, v.norm());
+    out.singular = out.singular || t3.singular;
+    for (int j = 0; j < t3.count; ++j) {
+      q[2] = t3.theta[j];
+      const M3 R3 = axis_rotation(g.axis[2], q[2]);
+      q[1] = subproblem1(g.axis[1], (p3 - p2) + R3 * (center - p3), v).theta[0];
+      const M3 R12 = R1 * axis_rotation(g.axis[1], q[1]);
+      const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2);
+      const int e = elbow_label(s2, e3, c, R1 * g.axis[1], g.axis[0], t3.singular);
+      wrist(g, R12 * R3, G.R, q, s, e, out);
+    }
+  }
+}
+
+// q6 (into q6) and q2 + q3 + q4 (returned) of the three-parallel family for q1 and q5: R16 = R1^T
+// R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
+// singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
+// representative puts the elbow at a right angle, or as near as the continuum allows.
+double parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const M3& R5, const V3& A, bool& singular,
+                      double& q6) {
+  const V3 &h2 = g.axis[1], &h6 = g.axis[5];
+  const SubproblemAngles t6 = subproblem1(h6, R5.transpose() * h2, R16.transpose() * h2);
+  if (!(singular || t6.singular)) {
+    q6 = -t6.theta[0];
+    const V3 y = h2.unitOrthogonal();
+    return subproblem1(h2, y, R16 * (R5 * axis_rotation(h6, q6)).transpose() * y).theta[0];
+  }
+  singular = true;
+  const auto flat = [&](const V3& x) { return V3(x - x.dot(h2) * h2); };
+  const V3 a = flat(A), b = flat(center - g.point[3]);
+  const double l2 = flat(g.point[2] - g.point[1]).squaredNorm(), l3 = flat(g.point[3] - g.point[2]).squaredNorm();
+  const double reach = a.norm() * b.norm() * (1.0 - 1e-12);
+  const double d = std::clamp(0.5 * (a.squaredNorm() + b.squaredNorm() - l2 - l3), -reach, reach);
+  const SubproblemAngles t = subproblem4(a, h2, b, d);
+  const double q234 = t.count ? t.theta[0] : 0.0;
+  const V3 x = h6.unitOrthogonal();
+  q6 = subproblem1(h6, x, R5.transpose() * axis_rotation(h2, -q234) * R16 * x).theta[0];
+  return q234;
+}
+
+// Three parallel axes 2, 3, 4 (axes 5, 6 meeting at c): per q1, q5 (4) and q6 (1), then q234 (1)
+// and the planar arm of joints 2, 3 (3, 1). q234 is the angle about axis 2 of joints 2, 3, 4 together.
+void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
+  const V3 c = G.R * center + G.p;
+  const V3 &h2 = g.axis[1], &h5 = g.axis[4], &h6 = g.axis[5];
+  const V3 &p1 = g.point[0], &p2 = g.point[1], &p3 = g.point[2], &p4 = g.point[3];
+  const SubproblemAngles t1 = shoulders(g, c, center);
+  out.singular = out.singular || t1.singular;
+  for (int i = 0; i < t1.count; ++i) {
+    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    const M3 R1 = axis_rotation(g.axis[0], q[0]), R16 = R1.transpose() * G.R;
+    const int s = shoulder_label(g, R1, c, t1.singular);
+    const SubproblemAngles t5 = subproblem4(h2, h5, h6, h2.dot(R16 * h6));
+    for (int k = 0; k < t5.count; ++k) {
+      q[4] = t5.theta[k];
+      const M3 R5 = axis_rotation(h5, q[4]);
+      const V3 A = R1.transpose() * (c - p1) - (p2 - p1);
+      bool wrist_singular = t5.singular && t5.count == 1;  // q5 exactly at the singularity
+      double q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
+      V3 v = A - axis_rotation(h2, q234) * (center - p4);
+      SubproblemAngles t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
+      if (t3.count == 0 && t5.singular && !wrist_singular) {
+        // Within the margin of the wrist's singularity q234 is split from q6 by rounding alone and
+        // may leave the elbow out of reach: the representative instead (polished in closed_solve).
+        wrist_singular = true;
+        q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
+        v = A - axis_rotation(h2, q234) * (center - p4);
+        t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
+      }
+      out.singular = out.singular || wrist_singular || t5.singular;
+      out.singular = out.singular || t3.singular;
+      for (int j = 0; j < t3.count; ++j) {
+        q[2] = t3.theta[j];
+        const M3 R3 = axis_rotation(g.axis[2], q[2]);
+        q[1] = subproblem1(h2, (p3 - p2) + R3 * (p4 - p3), v).theta[0];
+        // Axes 3 and 4 may point against axis 2 (parallel lines): R(h3, q3) = R(h2, s3 q3).
+        const double s3 = g.axis[2].dot(h2) > 0 ? 1.0 : -1.0, s4 = g.axis[3].dot(h2) > 0 ? 1.0 : -1.0;
+        q[3] = s4 * (q234 - q[1] - s3 * q[2]);
+        const M3 R12 = R1 * axis_rotation(h2, q[1]), R14 = R12 * R3 * axis_rotation(g.axis[3], q[3]);
+        const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2), w4 = e3 + R12 * R3 * (p4 - p3);
+        const int e = elbow_label(s2, e3, w4, R1 * h2, g.axis[0], t3.singular);
+        const M3 R15 = R14 * R5;
+        out.add(q, s, e, wrist_label(R14 * g.axis[3], R14 * h5, R15 * h6, wrist_singular));
+      }
+    }
+  }
+}
+
+// Newton steps on the chain's forward model from a candidate that misses T by rounding alone: near a
+// singularity a subproblem's two solutions are taken as one (a cosine within kSubproblemEps of 1,
+// ~1e-6 rad) and the angles that follow carry that error. The pseudo-inverse (singular values below
+// 1e-10 of the largest dropped) takes the least step. F is the candidate's frame, updated.
+void polish(const Chain& chain, const Rigid& T, double* q, Rigid& F) {
+  Eigen::Matrix<double, 6, 6> J;
+  for (int step = 0; step < 4; ++step) {
+    chain.fk_jacobian(q, F, J.data());
+    Eigen::Matrix<double, 6, 1> e;
+    e.head<3>() = T.p - F.p;
+    const Eigen::AngleAxisd turn(T.R * F.R.transpose());
+    e.tail<3>() = turn.angle() * turn.axis();
+    if (e.norm() == 0.0) return;
+    const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const auto& sv = svd.singularValues();
+    Eigen::Matrix<double, 6, 1> dq = Eigen::Matrix<double, 6, 1>::Zero(), ut = svd.matrixU().transpose() * e;
+    for (int i = 0; i < 6; ++i)
+      if (sv(i) > 1e-10 * sv(0)) dq += (ut(i) / sv(i)) * svd.matrixV().col(i);
+    for (int i = 0; i < 6; ++i) q[i] += dq(i);
+  }
+  chain.fk(q, F);
+}
+
+bool reaches(const Rigid& F, const Rigid& T, double size) {
+  return (F.p - T.p).norm() <= kClosedTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
+}
+
+}  // namespace
+
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options) {
+  ClosedArm arm{joint_axes(chain), {}};
+  arm.family = closed_family(arm.axes, options);
+  if (arm.family.kind == FamilyKind::None)
+    throw std::invalid_argument("chain: no closed form for this arm (" + arm.family.reason + ")");
+  return arm;
+}
+
+ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
+                                 int* slot) {
+  ClosedFormSolutions out;
+  out.dof = 6;
+  const Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
+  Candidates c;
+  if (arm.family.kind == FamilyKind::ThreeParallel) solve_parallel(arm.axes, arm.family.center, G, c);
+  else solve_spherical(arm.axes, arm.family.center, G, c);
+  out.singular = c.singular;
+  if (c.m == 0) return out;
+  bool fits[8];
+  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
+  Rigid F[8];
+  chain.fk_few(c.q[0], c.m, F);
+  const double size = std::max(arm.axes.size, 1e-300);
+  // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
+  // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
+  for (int k = 0; k < c.m; ++k)
+    if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
+      polish(chain, T, c.q[k], F[k]);
+      fits[k] = fit_limits(c.q[k], 6, limits);
+      chain.fk(c.q[k], F[k]);
+    }
+  for (int k = 0; k < c.m; ++k) {
+    if (!reaches(F[k], T, size)) continue;
+    if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
+    out.add(c.q[k], label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
+  }
+  return out;
+}
+
+void closed_solve_batch(const ClosedArm& arm, const Chain& chain, const Rigid* targets, long count,
+                        const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
+                        Progress* progress) {
+  parallel_for(
+      count, 256,
+      [&](long begin, long end) {
+        int slot[8];
+        for (long k = begin; k < end; ++k) {
+          double* row = q_out + 48 * k;
+          bool* within = within_limits + 8 * k;
+          std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
+          std::fill(within, within + 8, false);
+          const ClosedFormSolutions s = closed_solve(arm, chain, targets[k], limits, slot);
+          for (int i = 0; i < s.count(); ++i) {
+            std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
+            within[slot[i]] = s.within_limits[i];
+          }
+          singular[k] = s.singular;
+        }
+      },
+      progress);
+}
+
+}  // namespace robokin

@@ -1,0 +1,54 @@
+// Start configurations for the restarts of numerical IK: configurations spread over a chain's joint
+// space with their tool poses, so that a solve whose first attempt fails restarts from those whose
+// tool is nearest the target (a start near an answer converges where a random one may wander).
+// Built once per chain (Chain::ik_starts), read-only afterwards: safe to share between threads.
+#pragma once
+
+#include "robokin/chain.hpp"
+#include "robokin/task.hpp"
+
+#include <memory>
+#include <mutex>
+#include <random>
+#include <vector>
+
+namespace robokin {
+
+// A configuration drawn uniformly within the chain's limits; a joint without a finite limit on a
+// side spans 2 pi (revolute) or 2 m (prismatic) from its other limit, or is centred on 0.
+void random_configuration(const Chain& chain, std::mt19937_64& rng, double* q);
+
+class IkStarts {
+ public:
+  // How many configurations: the search over them costs a few iterations of a solve, paid only
+  // when the first attempt fails.
+  static constexpr int kCount = 1024;
+
+  // kCount configurations drawn by random_configuration from a fixed seed: the same for every
+  // chain of the same kinematics, so results do not depend on which copy of a chain solves.
+  explicit IkStarts(const Chain& chain);
+
+  // Writes the indices of the `count` (<= kCount) starts nearest the target, nearest first, in
+  // the target's task: the squared position distance (the task's rows) plus, for a pose, the
+  // squared rotation angle, and for xyphi the squared planar angle, each weighted by the square of
+  // half the farthest tool position among the starts (a turn of 2 rad counts like a move across
+  // the arm's reach).
+  void nearest(const Target& target, int count, int* out) const;
+  const double* q(int k) const { return q_.data() + static_cast<long>(k) * n_; }
+
+ private:
+  double distance(const Target& target, int k) const;
+
+  int n_;
+  std::vector<double> q_;  // kCount x n, row-major
+  std::vector<Rigid> tools_;
+  double weight_ = 1.0;
+};
+
+// The chain's lazily built derived data (Chain::ik_starts): one per chain, shared by its copies.
+struct Chain::Lazy {
+  std::once_flag once;
+  std::unique_ptr<const IkStarts> starts;
+};
+
+}  // namespace robokin

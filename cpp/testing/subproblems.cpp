@@ -1,0 +1,43 @@
+// robokin._testing's hooks of the Paden-Kahan subproblems (subproblems.hpp), for their tests: each
+// returns (angles, singular) with the angles as a list.
+#include "subproblems_hooks.hpp"
+
+#include "arrays.hpp"
+#include "robokin/subproblems.hpp"
+
+#include <pybind11/stl.h>
+
+namespace robokin::bind {
+namespace {
+
+Eigen::Vector3d v3(ArrayLike obj, const char* name) {
+  const Eigen::VectorXd v = as_vector(obj, name, 3);
+  return {v(0), v(1), v(2)};
+}
+
+py::tuple angles(const SubproblemAngles& t) {
+  py::list out;
+  for (int i = 0; i < t.count; ++i) out.append(t.theta[i]);
+  return py::make_tuple(out, t.singular);
+}
+
+}  // namespace
+
+void bind_subproblem_hooks(py::module_& m) {
+  m.def("subproblem1", [](ArrayLike k, ArrayLike p, ArrayLike q) {
+    return angles(subproblem1(v3(k, "k").normalized(), v3(p, "p"), v3(q, "q")));
+  }, py::arg("k"), py::arg("p"), py::arg("q"));
+  m.def("subproblem2", [](ArrayLike k1, ArrayLike k2, ArrayLike p, ArrayLike q) {
+    SubproblemAngles t1, t2;
+    subproblem2(v3(k1, "k1").normalized(), v3(k2, "k2").normalized(), v3(p, "p"), v3(q, "q"), t1, t2);
+    return py::make_tuple(angles(t1), angles(t2));
+  }, py::arg("k1"), py::arg("k2"), py::arg("p"), py::arg("q"));
+  m.def("subproblem3", [](ArrayLike k, ArrayLike p, ArrayLike q, double d) {
+    return angles(subproblem3(v3(k, "k").normalized(), v3(p, "p"), v3(q, "q"), d));
+  }, py::arg("k"), py::arg("p"), py::arg("q"), py::arg("d"));
+  m.def("subproblem4", [](ArrayLike h, ArrayLike k, ArrayLike p, double d) {
+    return angles(subproblem4(v3(h, "h"), v3(k, "k").normalized(), v3(p, "p"), d));
+  }, py::arg("h"), py::arg("k"), py::arg("p"), py::arg("d"));
+}
+
+}  // namespace robokin::bind

@@ -1,0 +1,94 @@
+"""rk.closed.ClosedSolver: a closed form read from its chain once and held.
+
+Truth: rk.closed.ur (the arm read at each call) on the same poses, bit for bit; the chain's own
+forward model; a pickled copy; one solver shared by eight threads against the calls made alone."""
+
+import pickle
+import threading
+
+import numpy as np
+import pytest
+
+import robokin as rk
+
+
+def _answer(s):
+    return s.q.tobytes(), tuple(s.postures), s.within_limits.tobytes(), bool(s.singular)
+
+
+@pytest.mark.parametrize("limits", ["default", None])
+def test_a_held_solver_answers_as_closed_ur(rng, limits):
+    chain = rk.robots.ur10()
+    solver = rk.closed.ClosedSolver(chain, limits)
+    poses = chain.fk(rng.uniform(-3, 3, (50, 6)))
+    for T in poses:
+        s = solver.solve(T)
+        assert len(s) >= 2 and _answer(s) == _answer(rk.closed.ur(T, chain, limits))
+        assert np.allclose(chain.fk(s.q), T, atol=1e-9)
+    q, singular, within = solver.solve_batch(poses)
+    q2, singular2, within2 = rk.closed.ur_batch(poses, chain, limits)
+    assert np.array_equal(q, q2, equal_nan=True) and np.array_equal(within, within2)
+    assert np.array_equal(singular, singular2)
+
+
+def test_limits_are_resolved_once_and_shown():
+    chain = rk.robots.ur5()
+    lower, upper = rk.robots.ur5().limits
+    assert rk.closed.ClosedSolver(chain).chain is chain
+    got = rk.closed.ClosedSolver(chain).limits
+    assert np.array_equal(got[0], lower) and np.array_equal(got[1], upper)
+    assert rk.closed.ClosedSolver(chain, None).limits is None
+    narrow = (np.full(6, -1.0), np.full(6, 1.0))
+    T = chain.fk(np.full(6, 0.5))
+    s = rk.closed.ClosedSolver(chain, narrow).solve(T)
+    assert 0 < s.within_limits.sum() < len(s)
+    assert np.all(np.abs(s.q[s.within_limits]) <= 1.0)
+
+
+def test_a_pickled_solver_gives_the_same_answers(rng):
+    chain = rk.robots.ur5e()
+    solver = rk.closed.ClosedSolver(chain, (np.full(6, -2.0), np.full(6, 2.0)))
+    copy = pickle.loads(pickle.dumps(solver))
+    assert copy.chain == chain and np.array_equal(copy.limits[0], solver.limits[0])
+    for T in chain.fk(rng.uniform(-3, 3, (20, 6))):
+        assert _answer(copy.solve(T)) == _answer(solver.solve(T))
+
+
+def test_arms_without_the_ur_layout_and_bad_arguments_are_refused():
+    with pytest.raises(ValueError, match="chain: no closed form for this arm .axes 4, 5, 6 do not meet"):
+        rk.closed.ClosedSolver(rk.Chain.from_dh(
+            [(0, 1.5708, 0.6, 0, "R"), (0.4, 0, 0, 0, "R"), (0.02, -1.5708, 0.15, 0, "R"), (0, 1.5708, 0.43, 0, "R"),
+             (0, -1.5708, 0.0032, 0, "R"), (0, 0, 0.05, 0, "R")]))
+    with pytest.raises(TypeError):
+        rk.closed.ClosedSolver("ur5")
+    with pytest.raises(ValueError, match="limits"):
+        rk.closed.ClosedSolver(rk.robots.ur5(), "nope")
+    solver = rk.closed.ClosedSolver(rk.robots.ur5())
+    with pytest.raises(ValueError, match="target"):
+        solver.solve(np.eye(3))
+    with pytest.raises(ValueError, match="targets"):
+        solver.solve_batch(np.eye(4))
+    with pytest.raises(ValueError, match="state"):
+        rk.closed.ClosedSolver.__new__(rk.closed.ClosedSolver).__setstate__((99, None, None))
+
+
+def test_one_solver_shared_by_eight_threads_answers_as_alone(rng):
+    chain = rk.robots.ur3()
+    solver = rk.closed.ClosedSolver(chain)
+    poses = [chain.fk(rng.uniform(-3, 3, (400, 6))) for _ in range(8)]
+    alone = [[_answer(solver.solve(T)) for T in p] for p in poses]
+    got, errors, start = [None] * 8, [], threading.Barrier(8)
+
+    def work(i):
+        try:
+            start.wait()
+            got[i] = [_answer(solver.solve(T)) for T in poses[i]]
+        except Exception as exc:  # noqa: BLE001 - reported below
+            errors.append(repr(exc))
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors and got == alone
