@@ -3,6 +3,7 @@
 #pragma once
 
 #include "arrays.hpp"
+#include "progress.hpp"
 
 #include "robokin/ik_closed.hpp"
 
@@ -17,7 +18,29 @@ URArm ur_arm_arg(const Chain& chain);
 // that is not a rigid transform.
 std::vector<Rigid> rigid_frames(ArrayLike targets, const char* name);
 
-// ik_ur_batch on (N, 4, 4) frames, the GIL released: (q (N, 8, 6), singular (N,), within_limits (N, 8)).
+// A 6R closed form's batch on (N, 4, 4) frames, the GIL released: (q (N, 8, 6), singular (N,),
+// within_limits (N, 8)). batch(targets, count, q, within_limits, singular, progress) runs the core's
+// batch (ik_ur_batch, closed_solve_batch) for its arm; `what` names it in progress reports.
+template <class Batch>
+pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const Batch& batch) {
+  namespace py = pybind11;
+  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
+  const long count = static_cast<long>(targets.size());
+  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
+  py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
+  py::array_t<bool> singular(static_cast<py::ssize_t>(count));
+  double* qd = q.mutable_data();
+  bool* wd = within.mutable_data();
+  bool* sd = singular.mutable_data();
+  PythonProgress progress(what);
+  {
+    py::gil_scoped_release release;
+    batch(targets.data(), count, qd, wd, sd, &progress);
+  }
+  return py::make_tuple(q, singular, within);
+}
+
+// ik_ur_batch through closed_batch_py.
 pybind11::tuple ur_batch_with(ArrayLike targets, const Chain& chain, const URArm& arm, const JointLimits& limits);
 
 }  // namespace robokin::bind

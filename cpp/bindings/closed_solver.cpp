@@ -69,20 +69,10 @@ struct ClosedSolver {
 
 py::tuple ClosedSolver::solve_batch(ArrayLike targets_obj) const {
   if (ur) return ur_batch_with(targets_obj, *chain, *ur, limits);
-  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
-  const long count = static_cast<long>(targets.size());
-  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
-  py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
-  py::array_t<bool> singular(static_cast<py::ssize_t>(count));
-  double* qd = q.mutable_data();
-  bool* wd = within.mutable_data();
-  bool* sd = singular.mutable_data();
-  PythonProgress progress("closed form");
-  {
-    py::gil_scoped_release release;
-    closed_solve_batch(arm, *chain, targets.data(), count, limits, qd, wd, sd, &progress);
-  }
-  return py::make_tuple(q, singular, within);
+  return closed_batch_py(targets_obj, "closed form", [&](const Rigid* targets, long count, double* q, bool* within,
+                                                         bool* singular, Progress* progress) {
+    closed_solve_batch(arm, *chain, targets, count, limits, q, within, singular, progress);
+  });
 }
 
 std::unique_ptr<ClosedSolver> solver_from_state(const py::tuple& t) {

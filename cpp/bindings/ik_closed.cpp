@@ -136,20 +136,10 @@ std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
 }
 
 py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
-  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
-  const long count = static_cast<long>(targets.size());
-  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
-  py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
-  py::array_t<bool> singular(static_cast<py::ssize_t>(count));
-  double* qd = q.mutable_data();
-  bool* wd = within.mutable_data();
-  bool* sd = singular.mutable_data();
-  PythonProgress progress("UR closed form");
-  {
-    py::gil_scoped_release release;
-    ik_ur_batch(arm, chain, targets.data(), count, lim, qd, wd, sd, &progress);
-  }
-  return py::make_tuple(q, singular, within);
+  return closed_batch_py(targets_obj, "UR closed form", [&](const Rigid* targets, long count, double* q, bool* within,
+                                                            bool* singular, Progress* progress) {
+    ik_ur_batch(arm, chain, targets, count, lim, q, within, singular, progress);
+  });
 }
 
 namespace {

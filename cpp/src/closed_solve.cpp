@@ -2,6 +2,8 @@
 #include "robokin/closed_solve.hpp"
 #include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
+
+#include "closed_batch.hpp"
 #include "robokin/subproblems.hpp"
 
 #include <Eigen/Geometry>
@@ -271,24 +273,9 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
 void closed_solve_batch(const ClosedArm& arm, const Chain& chain, const Rigid* targets, long count,
                         const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
                         Progress* progress) {
-  parallel_for(
-      count, 256,
-      [&](long begin, long end) {
-        int slot[8];
-        for (long k = begin; k < end; ++k) {
-          double* row = q_out + 48 * k;
-          bool* within = within_limits + 8 * k;
-          std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
-          std::fill(within, within + 8, false);
-          const ClosedFormSolutions s = closed_solve(arm, chain, targets[k], limits, slot);
-          for (int i = 0; i < s.count(); ++i) {
-            std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
-            within[slot[i]] = s.within_limits[i];
-          }
-          singular[k] = s.singular;
-        }
-      },
-      progress);
+  closed_batch(
+      count, 256, [&](long k, int* slot) { return closed_solve(arm, chain, targets[k], limits, slot); },
+      q_out, within_limits, singular, progress);
 }
 
 }  // namespace robokin

@@ -3,6 +3,8 @@
 #include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
 
+#include "closed_batch.hpp"
+
 #include "kernel/fast_math.hpp"
 
 #include <kdl/segment.hpp>
@@ -823,24 +825,9 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
 
 void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
                  double* q_out, bool* within_limits, bool* singular, Progress* progress) {
-  parallel_for(
-      count, 512,
-      [&](long begin, long end) {
-        int slot[8];
-        for (long k = begin; k < end; ++k) {
-          double* row = q_out + 48 * k;
-          bool* within = within_limits + 8 * k;
-          std::fill(row, row + 48, std::numeric_limits<double>::quiet_NaN());
-          std::fill(within, within + 8, false);
-          const ClosedFormSolutions s = ik_ur(arm, chain, targets[k], limits, slot);
-          for (int i = 0; i < s.count(); ++i) {
-            std::copy(s.row(i), s.row(i) + 6, row + 6 * slot[i]);
-            within[slot[i]] = s.within_limits[i];
-          }
-          singular[k] = s.singular;
-        }
-      },
-      progress);
+  closed_batch(
+      count, 512, [&](long k, int* slot) { return ik_ur(arm, chain, targets[k], limits, slot); },
+      q_out, within_limits, singular, progress);
 }
 
 }  // namespace robokin
