@@ -19,6 +19,7 @@ from fuzz import arrays, assert_finite, check_call, finite_arrays, wild_floats
 from fuzz_chains import dh_chains
 
 COVERS = {
+    "Chain.table",
     "Chain.from_dh",
     "Chain.from_segments",
     "Chain.from_urdf",
@@ -62,6 +63,15 @@ def is_rigid(T, tol=1e-9):
     return True
 
 
+def assert_table(chain, header_lines):
+    """chain.table() (and str) of any chain: text with the header, a row per joint by its name."""
+    text = chain.table()
+    assert isinstance(text, str) and str(chain) == text and text.isascii()
+    lines = text.splitlines()
+    rows = [line.split()[0] for line in lines[header_lines:] if line.split() and line.split()[0] in chain.joint_names]
+    assert rows == list(chain.joint_names)
+
+
 def q_shape(q):
     """The shape numpy sees in q, or None when it is no rectangular array."""
     try:
@@ -103,6 +113,7 @@ def test_from_dh_with_arbitrary_definitions(rows, modified, tool, limits):
     lo, hi = chain.limits
     assert lo.shape == hi.shape == (n,) and not np.any(np.isnan(lo)) and np.all(lo <= hi)
     assert np.all(lo < INF) and np.all(hi > -INF)
+    assert_table(chain, 3)
     q = np.clip(np.zeros(n), lo, hi)
     T = check_call(lambda: chain.fk(q), "q")
     if T is not None:
@@ -262,6 +273,7 @@ def test_from_segments_with_arbitrary_definitions(segments, tool, limits):
         return
     kinds = "".join(str(s[0]).upper() for s in segments)
     assert chain.joint_types == kinds.replace("F", "") and chain.dof == len(chain.joint_types)
+    assert_table(chain, 4)
     q = np.clip(np.zeros(chain.dof), *chain.limits)
     T = check_call(lambda: chain.fk(q), "q")
     if T is not None:

@@ -144,6 +144,7 @@ def _chain_cases():
                                        [n for n in SERIAL if M[n].natural_task == "pose"])
     c["Chain.point_in_frame"] = _each_chain(lambda ch, k: ch.point_in_frame(_q(ch, k), (0.1, 0.2, 0.3), ch.dof, k % 2))
     c["Chain.q_dict"] = _each_chain(lambda ch, k: ch.q_dict(_q(ch, k)))
+    c["Chain.table"] = _each_chain(lambda ch, k: (ch.table(), str(ch)))
     c["Chain.q_from"] = _each_chain(lambda ch, k: ch.q_from({ch.joint_names[0]: 0.1 * k}, default=0.05))
     c["joint_limit_cost"] = _each_chain(lambda ch, k: rk.joint_limit_cost(ch, _q(ch, k, 20)), ["rpr", "panda", "gen3"])
     c["urdf_tree"] = [lambda: rk.urdf_tree(SMALL_URDF), lambda: rk.urdf_tree(str(ROOT / "examples" / "arm.urdf"))]

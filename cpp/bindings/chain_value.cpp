@@ -1,5 +1,5 @@
 // Chain pickling and copies (a versioned state tuple rebuilt bit for bit), == on the kinematics,
-// hash, and repr (added to the class registered by chain.cpp).
+// hash, repr, and the table str() shows (added to the class registered by chain.cpp).
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_parts.hpp"
@@ -174,6 +174,16 @@ void def_chain_value(py::class_<Chain>& cls) {
       "Same kinematics: joint types, limits and constant frames equal bit for bit (however built).");
   cls.def("__hash__", [](const Chain& c) { return c.kinematics_hash(); });
   cls.def("__repr__", &chain_repr);
+  // Text for people is written in Python (robokin._printing), from the state above.
+  const auto table = [](py::handle self) {
+    return py::module_::import("robokin._printing").attr("table")(self).cast<std::string>();
+  };
+  cls.def("table", table,
+          "The kinematic table as text, as print(chain) shows it: a DH chain's rows (a, alpha, d, theta, joint\n"
+          "type, lower and upper limits; standard or modified said), any other chain's segments (joint name,\n"
+          "type, the frame after the joint at q = 0 as xyz and roll, pitch, yaw, the joint's axis in that\n"
+          "frame, limits: a URDF joint's <origin>, <axis> and <limit>). Metres and degrees.");
+  cls.def("__str__", table);
 }
 
 }  // namespace robokin::bind

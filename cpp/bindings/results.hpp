@@ -1,6 +1,6 @@
 // Result structs of the core, bound mechanically: each field once (a scalar, string or bound class
 // read-only, an Eigen member as a numpy array, or as Python computes it from the struct), and from that list a generic __repr__, a versioned pickle
-// (kStateVersion, field values in order) and, for a batch result, __len__.
+// (kStateVersion, field values in order), a __str__ for people and, for a batch result, __len__.
 #pragma once
 
 #include "arrays.hpp"
@@ -80,6 +80,10 @@ class ResultClass {
   void done() {
     const std::vector<std::string> names = names_;
     cls_.def("__repr__", [names](py::handle self) { return repr_fields(self, names); });
+    // print(result): a field per line, long arrays by shape and range (written in robokin._printing).
+    cls_.def("__str__", [names](py::handle self) {
+      return py::module_::import("robokin._printing").attr("summary")(self, names).cast<std::string>();
+    });
     cls_.def(py::pickle(
         [names](py::handle self) {
           py::tuple state(names.size() + 1);

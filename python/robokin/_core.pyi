@@ -58,6 +58,8 @@ class Chain:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     def _fk_kdl(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
         Reference: KDL's ChainFkSolverPos_recursive.
@@ -112,6 +114,13 @@ class Chain:
           their places; None: every joint must be given. Raises ValueError for a name the chain has
           not (listing its joints), for joints left out without a default (listing them) and for
           values that are not finite; TypeError for a mapping or value of the wrong kind.
+        """
+    def table(self) -> str:
+        """
+        The kinematic table as text, as print(chain) shows it: a DH chain's rows (a, alpha, d, theta, joint
+        type, lower and upper limits; standard or modified said), any other chain's segments (joint name,
+        type, the frame after the joint at q = 0 as xyz and roll, pitch, yaw, the joint's axis in that
+        frame, limits: a URDF joint's <origin>, <axis> and <limit>). Metres and degrees.
         """
     @property
     def dof(self) -> int:
@@ -225,6 +234,8 @@ class ReachResult:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def converged(self) -> bool:
         """
@@ -256,6 +267,8 @@ class TrackResult:
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
         ...
     @property
     def converged(self) -> numpy.ndarray:
@@ -328,6 +341,8 @@ class RRR3Newton:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def alpha(self) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -363,6 +378,8 @@ class RRR3Fk:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def converged(self) -> bool:
         """
@@ -392,6 +409,8 @@ class RRR3Singularity:
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
         ...
     @property
     def det_a(self) -> float:
@@ -601,6 +620,8 @@ class RRR3Plan:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def alpha(self) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -647,6 +668,8 @@ class RRR3Loop:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def found(self) -> bool:
         """
@@ -676,6 +699,8 @@ class RRR3Workspace:
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
         ...
     @property
     def area(self) -> float:
@@ -1246,6 +1271,8 @@ class IKResult:
         ...
     def __setstate__(self, arg0: tuple) -> None:
         ...
+    def __str__(self) -> str:
+        ...
     @property
     def attempts(self) -> int:
         """
@@ -1287,6 +1314,8 @@ class IKBatchResult:
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
         ...
     @property
     def attempts(self) -> numpy.ndarray:
@@ -1536,6 +1565,8 @@ class ServoResult:
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
         ...
     @property
     def error_p(self) -> numpy.ndarray:

@@ -15,7 +15,7 @@ is one path of that graph: the plan never has more reconfigurations.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import List, Optional
 
 import numpy as np
@@ -26,6 +26,7 @@ from ._checks import real_array, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
+from ._printing import summary
 
 __all__ = ["TrackPosturesResult", "track_postures", "count_reconfigurations"]
 
@@ -51,6 +52,9 @@ class TrackPosturesResult:
     motion: float
     solutions: List[np.ndarray]
     postures: Optional[List[Optional[str]]]
+
+    def __str__(self) -> str:
+        return summary(self, [f.name for f in fields(self)])
 
 
 def _continuous(chain: Chain) -> np.ndarray:
