@@ -23,6 +23,9 @@ CALL_ARGUMENTS = {
     "chunks": "robokin.dask: how the data is cut, not what is computed",
     "areas": "the design study: the function computing the areas (robokin.dask passes its own)",
     "ax": "a figure's axes",
+    "frames": "plots.arm: what the drawing shows (a figure's content; no computation reads it)",
+    "axes": "plots.arm: what the drawing shows (a figure's content; no computation reads it)",
+    "ellipsoid": "plots.arm: what the drawing shows (a figure's content; no computation reads it)",
     "out": "numpy's idiom: the caller's array the result is written into",
 }
 

@@ -15,10 +15,10 @@ import robokin_sim.scene
 import robokin_sim.scene_rpr
 import robokin_sim.scene_rrr3
 import robokin_sim.scene_serial
-from robokin import _core, demo, plots, plots_rrr3, rrr3_design
+from robokin import _core, demo, plots, plots_arm, plots_rrr3, rrr3_design
 
 MODULES = {"closed": rk.closed, "paths": rk.paths, "robots": rk.robots, "rrr3_design": rrr3_design,
-           "plots": plots, "plots_rrr3": plots_rrr3, "demo": demo}
+           "plots": plots, "plots_arm": plots_arm, "plots_rrr3": plots_rrr3, "demo": demo}
 MODULES.update({"traj": rk.traj, "pose": rk.pose})
 import robokin.dask  # noqa: E402  (rk.reachability is the function, the module is in sys.modules)
 import robokin.plots_reachability  # noqa: E402

@@ -13,7 +13,7 @@ import robokin as rk
 from fuzz import arrays, check_call, finite_arrays
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from robokin import plots
+from robokin import plots, plots_arm
 
 from robokin_sim.config import MODES, Config, parse_args
 from robokin_sim.keys import ALIASES, HELD_KEYS, KEYS, MAX_HOLD, KeyScript, parse_script
@@ -22,7 +22,7 @@ from robokin_sim.scenes import SCENES
 
 COVERS = {"sim.parse_args", "sim.parse_script", "sim.KeyScript.inputs", "sim.Rrr3Scene", "sim.RprScene",
           "sim.Scene.step", "sim.Scene.press", "sim.Scene.row", "sim.SerialScene", "sim.Scene.pointer",
-          "plots.joint_axes", "plots.plot_chain", "plots.animate_chain"}
+          "plots.joint_axes", "plots_arm.arm", "plots_arm.animate", "plots_arm.teach"}
 
 OPTIONS = ["--robot", "--mode", "--headless", "--demo", "--frames", "--record", "--record-every", "--record-width",
            "--log", "--screenshot", "--keys", "--no-avoid", "--size", "--fps", "-h", "--help", "--rob", "--bogus", "--"]
@@ -174,22 +174,35 @@ def test_joint_axes_any_q(q):
 
 
 @settings(max_examples=30)
-@given(q=st.one_of(arrays([(6,), (7,)]), finite_arrays((6,), -10, 10)))
-def test_plot_chain_any_q(q):
-    ax = check_call(lambda: plots.plot_chain(UR5, q), "q")
+@given(q=st.one_of(arrays([(6,), (7,)]), finite_arrays((6,), -10, 10)),
+       flags=st.tuples(*[st.one_of(st.booleans(), st.sampled_from([None, 1, "yes"]))] * 3))
+def test_arm_any_q_and_flags(q, flags):
+    frames, axes, ellipsoid = flags
+    ax = check_call(lambda: plots_arm.arm(UR5, q, frames=frames, axes=axes, ellipsoid=ellipsoid),
+                    "q", "frames", "axes", "ellipsoid")
     if ax is not None:
-        assert ax.name == "3d" and len(ax.lines) > 6
+        assert ax.name == "3d" and len([line for line in ax.lines if line.get_gid() == "tool"]) == 3
+
+
+@settings(max_examples=20)
+@given(q=st.one_of(st.none(), arrays([(6,), (7,)]), finite_arrays((6,), -10, 10)))
+def test_teach_any_start(q):
+    box = check_call(lambda: plots_arm.teach(UR5, q), "q")
+    if box is not None:
+        lo, hi = UR5.limits
+        values = np.array([s.value for s in box.children[:6]])
+        assert np.all((lo <= values) & (values <= hi))
 
 
 @settings(max_examples=30)
-@given(Q=st.one_of(arrays([(1, 6), (2, 6), (2, 5), (0, 6)]), finite_arrays((2, 6), -3, 3)),
+@given(qs=st.one_of(arrays([(1, 6), (2, 6), (2, 5), (0, 6)]), finite_arrays((2, 6), -3, 3)),
        fps=st.one_of(st.floats(-1, 200), st.sampled_from([True, "10", None, math.nan])),
        size=st.one_of(st.tuples(st.integers(0, 3000), st.integers(0, 3000)), st.sampled_from([None, "big", (1,)])),
        suffix=st.sampled_from([".gif", ".mp4", ".png", ""]))
-def test_animate_chain_any_arguments(tmp_path_factory, Q, fps, size, suffix):
+def test_animate_any_arguments(tmp_path_factory, qs, fps, size, suffix):
     directory = tmp_path_factory.mktemp("anim")
     size = size if not isinstance(size, tuple) or len(size) != 2 or max(size) < 700 else (64, 64)
-    out = check_call(lambda: plots.animate_chain(UR5, Q, directory / f"a{suffix}", fps=fps, size=size),
-                     "Q", "fps", "size", "path")
+    out = check_call(lambda: plots_arm.animate(UR5, qs, directory / f"a{suffix}", fps=fps, size=size),
+                     "qs", "fps", "size", "path")
     names = sorted(p.name for p in directory.iterdir())
     assert names == ([f"a{suffix}"] if out is not None else [])

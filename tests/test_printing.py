@@ -167,3 +167,9 @@ def test_posture_tracks_and_3rrr_plans_print_readably():
     lines = str(plan).splitlines()
     assert lines[0] == "RRR3Plan:" and len(lines) > 2
     assert all("\n" not in line for line in lines)
+
+
+def test_the_docs_page_shows_what_print_prints():
+    page = (ARM.parent.parent / "docs" / "plots.md").read_text()
+    assert f'>>> print(rk.robots.get("puma560"))\n{rk.robots.get("puma560")}\n```' in page
+    assert f'>>> print(rk.Chain.from_urdf("examples/arm.urdf"))\n{rk.Chain.from_urdf(ARM)}\n```' in page

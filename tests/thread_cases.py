@@ -19,7 +19,7 @@ import numpy as np
 import robokin as rk
 import robokin.dask
 import sim_helpers
-from robokin import demo, plots, plots_reachability, plots_rrr3, rrr3_design
+from robokin import demo, plots, plots_arm, plots_reachability, plots_rrr3, rrr3_design
 from robokin_sim.config import parse_args
 from robokin_sim.keys import parse_script
 from robokin_sim.scene_rpr import RprScene
@@ -427,12 +427,13 @@ def _plot_cases():
     robots = M["robots"]
     c["plots.draw_planar_chain"] = [lambda n=n: draw_planar(M[n]) for n in ("rpr", "planar_3r")]
     c["plots.joint_axes"] = _each_chain(lambda ch, k: plots.joint_axes(ch, _q(ch, k)))
-    c["plots.plot_chain"] = [lambda n=n, k=k: figure_data(plots.plot_chain(M[n], _q(M[n], k)).figure)
-                             for k, n in enumerate(("ur5", "panda", "arm.urdf"))]
-    c["plots.plot_chain"].append(lambda: figure_data(plots.plot_chain(M["gen3"], _q(M["gen3"], 1),
-                                                                      ax=_new_axes("3d")).figure))
-    c["plots.animate_chain"] = [lambda: _bytes_of(plots.animate_chain(M["ur5"], _q(M["ur5"], 1, 2), _file(".gif"),
-                                                                      size=(64, 64)))]
+    c["plots_arm.arm"] = [lambda n=n, k=k: figure_data(plots_arm.arm(M[n], _q(M[n], k), ellipsoid=k == 1).figure)
+                          for k, n in enumerate(("ur5", "panda", "arm.urdf"))]
+    c["plots_arm.arm"].append(lambda: figure_data(plots_arm.arm(M["gen3"], _q(M["gen3"], 1), ax=_new_axes("3d"),
+                                                                frames=False).figure))
+    c["plots_arm.animate"] = [lambda: _bytes_of(plots_arm.animate(M["ur5"], _q(M["ur5"], 1, 2), _file(".gif"),
+                                                                  size=(64, 64)))]
+    c["plots_arm.teach"] = [lambda n=n, k=k: teach_values(M[n], k) for k, n in enumerate(("ur5", "arm.urdf", "rpr"))]
     c["plots.rpr_line_figure"] = [lambda: figure_data(plots.rpr_line_figure(RPR_POINTS, RPR_TRACKS, surface_samples=4,
                                                                             snapshots=3, title="t"))]
     c["plots.trajectory_figure"] = [lambda: figure_data(plots.trajectory_figure(
@@ -449,6 +450,14 @@ def _plot_cases():
     c["plots_rrr3.plot_design"] = [lambda: figure_data(plots_rrr3.plot_design(CURVE, BEST)[0])]
     c["demo.main"] = [lambda: demo_main(0.3)]
     return c
+
+
+def teach_values(chain, k):
+    """teach's widgets after moving the first slider: the sliders' values, the picture, the pose text."""
+    box = plots_arm.teach(chain, _q(chain, k))
+    sliders = box.children[:chain.dof]
+    sliders[0].value = (sliders[0].min + sliders[0].max) / 2
+    return [s.value for s in sliders], box.children[-2].value, box.children[-1].value
 
 
 def saved_reachability(axis):

@@ -78,9 +78,10 @@ __all__ += ["ReachabilityMap", "reachability"]
 
 
 def __getattr__(name):
-    # rk.symbolic on first use: sympy (the [symbolic] extra) is imported only by who asks for it.
-    if name == "symbolic":
+    # rk.symbolic and rk.plots on first use: sympy (the [symbolic] extra) and matplotlib (the [plot]
+    # extra) are imported only by who asks for them.
+    if name in ("symbolic", "plots"):
         import importlib
 
-        return importlib.import_module(".symbolic", __name__)
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'robokin' has no attribute {name!r}")

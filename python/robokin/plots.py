@@ -1,4 +1,8 @@
-"""Figures for serial chains (matplotlib, the ``[plot]`` extra). Figures are returned, not shown."""
+"""Figures for serial chains (matplotlib, the ``[plot]`` extra). Figures are returned, not shown.
+
+The 3-D arm (``arm``, ``animate``, ``teach``) lives in :mod:`robokin.plots_arm` and is reached here
+too: ``robokin.plots.arm(chain, q)``.
+"""
 
 from __future__ import annotations
 
@@ -12,8 +16,7 @@ from ._checks import planar_points, real_array, whole
 from ._core import Chain, TrackResult, joint_limit_cost
 from ._figures import new_figure
 
-__all__ = ["ISO_VIEW", "MAX_DRAWN", "MAX_FRAMES", "animate_chain", "draw_planar_chain", "joint_axes", "plot_chain",
-           "rpr_line_figure", "trajectory_figure"]
+__all__ = ["MAX_DRAWN", "draw_planar_chain", "joint_axes", "rpr_line_figure", "trajectory_figure"]
 
 
 def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> None:
@@ -160,15 +163,6 @@ def trajectory_figure(trajectory, names=None, title: Optional[str] = None):
 
 # --- serial chains in 3-D (the simulator's drawing rules) --------------------------------------
 
-#: Colours of :func:`plot_chain` (as the simulator's serial scene): links from near to far, joints,
-#: joint axes, the tool triad's x, y, z.
-_LINK_NEAR, _LINK_FAR = "#2e62b2", "#96b0d6"
-_JOINT_EDGE, _JOINT_AXIS = "#1e1e1e", "#78788c"
-_TRIAD = ("#d23232", "#32a03c", "#3250dc")
-#: Preset view of :func:`plot_chain` (elevation, azimuth in degrees): the simulator's iso view.
-ISO_VIEW = (25.0, -50.0)
-
-
 def joint_axes(chain: Chain, q) -> np.ndarray:
     """Each joint's axis at q, for drawing: ``(dof, 2, 3)``, a point on the axis next to the joint
     and the axis's unit direction, in the base frame.
@@ -198,160 +192,11 @@ def joint_axes(chain: Chain, q) -> np.ndarray:
     return np.stack([points, direction], axis=1)
 
 
-def _chain_q(chain, q, name: str = "q") -> np.ndarray:
-    check_chain(chain)
-    a = real_array(q, name)
-    if a.shape != (chain.dof,):
-        raise ValueError(f"{name}: expected shape ({chain.dof},), got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: contains NaN or inf")
-    return a
+def __getattr__(name):
+    # The 3-D arm (robokin.plots_arm) under robokin.plots too, imported on first use (plots_arm
+    # imports joint_axes from here).
+    if name in ("arm", "animate", "teach"):
+        from . import plots_arm
 
-
-def _arm_size(frames: np.ndarray) -> float:
-    origins = frames[:, :3, 3]
-    return max(float(np.sum(np.linalg.norm(np.diff(origins, axis=0), axis=1))), 0.1)
-
-
-def _draw_chain(ax, chain: Chain, q: np.ndarray, size: float) -> None:
-    """The arm on a 3-D Axes: floor grid, links shaded by depth along the view, joints, axes, triad."""
-    from matplotlib.colors import to_rgb
-
-    frames = chain.frames(q)
-    origins = frames[:, :3, 3]
-    elev, azim = np.radians(ax.elev), np.radians(ax.azim)
-    view = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
-    near, far = np.array(to_rgb(_LINK_NEAR)), np.array(to_rgb(_LINK_FAR))
-    spacing = 10 ** np.floor(np.log10(size / 4.0))
-    k = int(np.ceil(1.25 * size / spacing))
-    for c in np.arange(-k, k + 1) * spacing:
-        ax.plot([c, c], [-k * spacing, k * spacing], [0, 0], color="0.88", lw=0.6)
-        ax.plot([-k * spacing, k * spacing], [c, c], [0, 0], color="0.88", lw=0.6)
-    for i in range(len(origins) - 1):
-        a, b = origins[i], origins[i + 1]
-        if np.linalg.norm(b - a) <= 1e-9:
-            continue
-        depth = float(np.dot(0.5 * (a + b), view))
-        t = float(np.clip(0.5 - depth / (1.6 * size), 0.0, 1.0))
-        ax.plot(*np.stack([a, b]).T, color=near + (far - near) * t, lw=7, solid_capstyle="round")
-    for point, direction in joint_axes(chain, q):
-        ends = np.stack([point - 0.07 * size * direction, point + 0.07 * size * direction])
-        ax.plot(*ends.T, color=_JOINT_AXIS, lw=2)
-    ax.scatter(*origins[:-1].T, s=40, facecolor="white", edgecolor=_JOINT_EDGE, depthshade=False)
-    tool = frames[-1]
-    for k, colour in enumerate(_TRIAD):
-        ax.plot(*np.stack([tool[:3, 3], tool[:3, 3] + 0.12 * size * tool[:3, k]]).T, color=colour, lw=2.5)
-
-
-def _frame_axes(ax, size: float) -> None:
-    half = 0.6 * size
-    ax.set_xlim(-half, half)
-    ax.set_ylim(-half, half)
-    ax.set_zlim(-0.2 * size, 1.3 * half)
-    ax.set_box_aspect((1, 1, (1.3 * half + 0.2 * size) / (2 * half)))
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
-
-
-def plot_chain(chain: Chain, q, ax=None):
-    """Draws a serial chain at q in 3-D as the simulator does: links as thick segments between the
-    origins of ``chain.frames(q)`` shaded by depth along the view (near dark, far pale), joints as
-    rings, joint axes (:func:`joint_axes`), the tool's x, y, z triad and a floor grid at z = 0.
-
-    Args:
-        chain: The arm.
-        q: Joints, shape (dof,).
-        ax: A matplotlib 3-D Axes to draw on; None makes a new Figure (no pyplot, no display) in the
-            simulator's iso view.
-
-    Returns:
-        The Axes (its ``.figure`` is the Figure to save).
-    """
-    q = _chain_q(chain, q)
-    if ax is None:
-        fig = new_figure(figsize=(6, 6), layout="constrained")
-        ax = fig.add_subplot(projection="3d")
-        ax.view_init(*ISO_VIEW)
-    elif getattr(ax, "name", "") != "3d":
-        raise TypeError("ax: expected a 3-D Axes (projection='3d')")
-    size = _arm_size(chain.frames(q))
-    _draw_chain(ax, chain, q, size)
-    _frame_axes(ax, size)
-    return ax
-
-
-#: Most frames :func:`animate_chain` writes.
-MAX_FRAMES = 10_000
-
-
-def animate_chain(chain: Chain, Q, path, fps: float = 30.0, size=(480, 480)) -> str:
-    """Writes an animation of the chain through the joint configurations ``Q`` (one frame each,
-    drawn by :func:`plot_chain` in the iso view, the axes' limits fixed over the whole motion) as a
-    GIF (Pillow) or an MP4 (imageio with imageio-ffmpeg, the ``[sim]`` extra), atomically: under a
-    temporary name renamed into place when complete (an interrupted write leaves nothing).
-
-    Args:
-        chain: The arm.
-        Q: (K, dof) configurations, 1 <= K <= 10,000.
-        path: ``.gif`` or ``.mp4`` file.
-        fps: Frames per second (0.1 to 100; a GIF keeps 10 ms ticks).
-        size: (width, height) in pixels, each 64 to 2048 (even for MP4).
-
-    Returns:
-        The path written.
-    """
-    import os
-
-    from .files import AtomicPath
-
-    check_chain(chain)
-    Q = real_array(Q, "Q")
-    if Q.ndim != 2 or Q.shape[1] != chain.dof or not 1 <= len(Q) <= MAX_FRAMES:
-        raise ValueError(f"Q: expected shape (K, {chain.dof}) with 1 <= K <= {MAX_FRAMES}, got {Q.shape}")
-    if not np.all(np.isfinite(Q)):
-        raise ValueError("Q: contains NaN or inf")
-    if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"path: expected a file name, got {type(path).__name__}")
-    kind = os.path.splitext(os.fspath(path))[1].lower()
-    if kind not in (".gif", ".mp4"):
-        raise ValueError(f"path: must end in .gif or .mp4, got {os.fspath(path)!r}")
-    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not 0.1 <= fps <= 100:
-        raise ValueError(f"fps: expected a number in [0.1, 100], got {fps!r}")
-    try:
-        width, height = (int(v) for v in size)
-    except (TypeError, ValueError):
-        raise ValueError(f"size: expected (width, height) in pixels, got {size!r}") from None
-    if not (64 <= width <= 2048 and 64 <= height <= 2048):
-        raise ValueError(f"size: each side must be 64 to 2048 pixels, got {size!r}")
-    if kind == ".mp4":
-        width, height = width - width % 2, height - height % 2
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    scale = max(_arm_size(chain.frames(q)) for q in Q[:: max(1, len(Q) // 50)])
-    fig = new_figure(figsize=(width / 100, height / 100), dpi=100)
-    canvas = FigureCanvasAgg(fig)
-    ax = fig.add_subplot(projection="3d")
-    images = []
-    for q in Q:
-        ax.cla()
-        ax.view_init(*ISO_VIEW)
-        _draw_chain(ax, chain, q, scale)
-        _frame_axes(ax, scale)
-        canvas.draw()
-        images.append(np.asarray(canvas.buffer_rgba())[..., :3].copy())
-    with AtomicPath(path) as tmp:
-        if kind == ".gif":
-            from PIL import Image
-
-            pictures = [Image.fromarray(im).quantize(colors=255, method=Image.Quantize.MEDIANCUT) for im in images]
-            pictures[0].save(tmp, format="GIF", save_all=True, append_images=pictures[1:], loop=0,
-                             duration=max(10, int(round(1000.0 / fps / 10)) * 10))
-        else:
-            import imageio.v2 as imageio
-
-            with imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps, codec="libx264", macro_block_size=1,
-                                    pixelformat="yuv420p", output_params=["-loglevel", "error"]) as writer:
-                for im in images:
-                    writer.append_data(im)
-    return os.fspath(path)
+        return getattr(plots_arm, name)
+    raise AttributeError(f"module 'robokin.plots' has no attribute {name!r}")
