@@ -284,3 +284,29 @@ def test_limits_must_admit_a_value():
     for lower, upper in (([np.inf], [np.inf]), ([-np.inf], [-np.inf])):
         with pytest.raises(ValueError, match="limits: joint 0 has no admissible value"):
             rk.Chain.from_dh([(1, 0, 0, 0, "R")], limits=(lower, upper))
+
+
+def test_what_the_docstrings_say_of_segments_frames_and_point_in_frame():
+    """from_segments: a segment's frame at q is Rot(axis, q) tip (Trans(axis * q) tip), the axis
+    through the starting frame's origin; frames[dof] is fk(q); point_in_frame numbers frames as
+    frames does."""
+    tip = np.eye(4)
+    tip[:3, 3] = (0.3, 0.1, 0.2)
+    axis = np.array([1.0, 2.0, 2.0]) / 3.0
+    chain = rk.Chain.from_segments([("R", axis, tip), ("P", (0, 0, 1), tip)], tool=trans(0, 0, 0.05))
+    q = np.array([0.7, 0.25])
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    R = np.eye(3) + math.sin(0.7) * K + (1 - math.cos(0.7)) * K @ K  # Rodrigues
+    first = np.eye(4)
+    first[:3, :3] = R
+    first = first @ tip
+    slide = np.eye(4)
+    slide[2, 3] = 0.25
+    frames = chain.frames(q)
+    np.testing.assert_allclose(frames[1], first, atol=1e-12)
+    np.testing.assert_allclose(frames[2], first @ slide @ tip @ trans(0, 0, 0.05), atol=1e-12)
+    np.testing.assert_allclose(frames[2], chain.fk(q), atol=1e-12)
+    p = np.array([0.1, -0.2, 0.3])
+    np.testing.assert_allclose(chain.point_in_frame(q, p, 2), (frames[2] @ np.r_[p, 1])[:3], atol=1e-12)
+    np.testing.assert_allclose(chain.point_in_frame(q, p, 2, 1), (np.linalg.inv(frames[1]) @ frames[2] @ np.r_[p, 1])[:3],
+                               atol=1e-12)

@@ -219,10 +219,25 @@ void def_chain_model(py::class_<Chain>& chain) {
   chain
       .def_static("from_dh", &chain_from_dh, py::arg("rows"), py::arg("modified") = false,
                   py::arg("tool") = py::none(), py::arg("limits") = py::none(),
-                  "Builds a chain from Denavit-Hartenberg rows (a, alpha, d, theta, 'R'|'P').")
+                  "Builds a chain from Denavit-Hartenberg rows.\n\n"
+                  "rows: one (a, alpha, d, theta, joint) per joint: a and d in metres, alpha and theta in radians,\n"
+                  "joint 'R' (revolute) or 'P' (prismatic). theta and d are offsets: a revolute joint turns by\n"
+                  "theta + q_i, a prismatic one slides to d + q_i (q = 0 is the table as written).\n"
+                  "modified: False for standard DH, A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); True for Craig's\n"
+                  "modified DH, A_i = Rx(alpha) Tx(a) Rz(theta) Tz(d).\n"
+                  "tool: (4, 4) frame of the tool point in the last joint's frame, applied after the last row\n"
+                  "(fk, frames and the Jacobian are at the tool); None for the identity.\n"
+                  "limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.\n"
+                  "print(chain) shows the table (Chain.table).")
       .def_static("from_segments", &chain_from_segments, py::arg("segments"), py::arg("tool") = py::none(),
                   py::arg("limits") = py::none(),
-                  "Builds a chain from KDL-style segments (joint type 'R'|'P'|'F', axis, tip frame).")
+                  "Builds a chain from KDL-style segments, as KDL::Segment(Joint(axis), tip) does.\n\n"
+                  "segments: one (joint, axis, tip) per segment: joint 'R' (revolute), 'P' (prismatic) or 'F'\n"
+                  "(fixed); axis (3,), not zero, in the segment's starting frame (the joint turns about / slides\n"
+                  "along it through that frame's origin); tip the (4, 4) frame that follows the joint. A segment's\n"
+                  "frame at q is Rot(axis, q) tip (or Trans(axis * q) tip), so fixed segments only add frames.\n"
+                  "tool: (4, 4) frame appended after the last segment; None for the identity.\n"
+                  "limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.")
       .def_property_readonly("dof", &Chain::dof, "Number of joints.")
       .def_property_readonly("joint_types", &joint_types, "One letter per joint: 'R' revolute, 'P' prismatic.")
       .def_property_readonly(
@@ -233,9 +248,15 @@ void def_chain_model(py::class_<Chain>& chain) {
       .def_property_readonly(
           "limits", [](const Chain& c) { return py::make_tuple(to_numpy(c.lower()), to_numpy(c.upper())); },
           "(lower, upper) joint limits; +-inf where a joint is unlimited.")
-      .def("frames", &frames, py::arg("q"), "Frames (dof + 1, 4, 4): base, then the frame after each joint.")
+      .def("frames", &frames, py::arg("q"),
+           "Frames (dof + 1, 4, 4) at q (dof,), in the base frame: frames[0] the base (the identity), frames[i]\n"
+           "the frame after joint i (for a DH chain A_1 ... A_i), frames[dof] the last with the tool applied (so\n"
+           "frames[dof] == fk(q)). Fixed segments between joints belong to the frame after the joint before them.")
       .def("point_in_frame", &point_in_frame, py::arg("q"), py::arg("point"), py::arg("frame"),
-           py::arg("in_frame") = 0, "Expresses a point given in frame `frame` in frame `in_frame`.")
+           py::arg("in_frame") = 0,
+           "Expresses a point given in one frame of the chain in another, at q (dof,): point (3,) in frame\n"
+           "`frame`, returned (3,) in frame `in_frame` (default 0, the base). Frames are numbered as\n"
+           "Chain.frames numbers them: 0 the base, i the frame after joint i, dof the last with the tool.")
       .def("_fk_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.fk_kdl(single_q(c, q))); },
            py::arg("q"), "Reference: KDL's ChainFkSolverPos_recursive.")
       .def("_jacobian_kdl", [](const Chain& c, ArrayLike q) { return to_numpy(c.jacobian_kdl(single_q(c, q))); },

@@ -17,12 +17,29 @@ class Chain:
     @staticmethod
     def from_dh(rows: typing.Any, modified: bool = False, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
-        Builds a chain from Denavit-Hartenberg rows (a, alpha, d, theta, 'R'|'P').
+        Builds a chain from Denavit-Hartenberg rows.
+        
+        rows: one (a, alpha, d, theta, joint) per joint: a and d in metres, alpha and theta in radians,
+        joint 'R' (revolute) or 'P' (prismatic). theta and d are offsets: a revolute joint turns by
+        theta + q_i, a prismatic one slides to d + q_i (q = 0 is the table as written).
+        modified: False for standard DH, A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); True for Craig's
+        modified DH, A_i = Rx(alpha) Tx(a) Rz(theta) Tz(d).
+        tool: (4, 4) frame of the tool point in the last joint's frame, applied after the last row
+        (fk, frames and the Jacobian are at the tool); None for the identity.
+        limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.
+        print(chain) shows the table (Chain.table).
         """
     @staticmethod
     def from_segments(segments: typing.Any, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
-        Builds a chain from KDL-style segments (joint type 'R'|'P'|'F', axis, tip frame).
+        Builds a chain from KDL-style segments, as KDL::Segment(Joint(axis), tip) does.
+        
+        segments: one (joint, axis, tip) per segment: joint 'R' (revolute), 'P' (prismatic) or 'F'
+        (fixed); axis (3,), not zero, in the segment's starting frame (the joint turns about / slides
+        along it through that frame's origin); tip the (4, 4) frame that follows the joint. A segment's
+        frame at q is Rot(axis, q) tip (or Trans(axis * q) tip), so fixed segments only add frames.
+        tool: (4, 4) frame appended after the last segment; None for the identity.
+        limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.
         """
     @staticmethod
     def from_urdf(path_or_string: str | bytes | os.PathLike, base: str | None = None, tip: str | None = None) -> Chain:
@@ -82,7 +99,9 @@ class Chain:
         """
     def frames(self, q: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Frames (dof + 1, 4, 4): base, then the frame after each joint.
+        Frames (dof + 1, 4, 4) at q (dof,), in the base frame: frames[0] the base (the identity), frames[i]
+        the frame after joint i (for a DH chain A_1 ... A_i), frames[dof] the last with the tool applied (so
+        frames[dof] == fk(q)). Fixed segments between joints belong to the frame after the joint before them.
         """
     def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose', *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
         """
@@ -100,7 +119,9 @@ class Chain:
         """
     def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Expresses a point given in frame `frame` in frame `in_frame`.
+        Expresses a point given in one frame of the chain in another, at q (dof,): point (3,) in frame
+        `frame`, returned (3,) in frame `in_frame` (default 0, the base). Frames are numbered as
+        Chain.frames numbers them: 0 the base, i the frame after joint i, dof the last with the tool.
         """
     def q_dict(self, q: numpy.typing.ArrayLike) -> dict[str, float]:
         """
