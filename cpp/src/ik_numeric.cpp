@@ -20,8 +20,10 @@ namespace {
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
 
-// The first restarts start from the chain's stored configurations whose tools are nearest the
-// target (ik_starts.hpp); the rest from random configurations.
+// The first restarts start from the closed-form solutions of a pose target within the limits
+// (when the chain's geometry has a closed form), nearest the seed first, then from the chain's
+// stored configurations whose tools are nearest the target (ik_starts.hpp); the rest from random
+// configurations.
 constexpr int kNearStarts = 8;
 
 double wall_s() {
@@ -471,13 +473,18 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   std::optional<std::mt19937_64> rng;  // seeded at the first random restart (seeding costs ~2 % of a solve)
-  int near[kNearStarts];
+  int near[kNearStarts], closed = 0;
+  double closed_q[ClosedFormSolutions::kMaxSolutions * ClosedFormSolutions::kMaxDof];
   for (int k = 0; k <= restarts_; ++k) {
     if (k > 0) {
       if (clock.spent()) break;
-      if (k == 1) chain_->ik_starts().nearest(target, kNearStarts, near);
-      if (k <= kNearStarts) {
-        q = Eigen::Map<const Vector>(chain_->ik_starts().q(near[k - 1]), n_);
+      const IkStarts& starts = chain_->ik_starts();
+      if (k == 1) closed = starts.closed(*chain_, target, q0, closed_q);
+      if (k <= closed) {
+        q = Eigen::Map<const Vector>(closed_q + (k - 1) * n_, n_);
+      } else if (k <= closed + kNearStarts) {
+        if (k == closed + 1) starts.nearest(target, kNearStarts, near);
+        q = Eigen::Map<const Vector>(starts.q(near[k - 1 - closed]), n_);
       } else {
         if (!rng) rng.emplace(seed);
         random_configuration(*chain_, *rng, q.data());

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace robokin {
 
@@ -29,6 +30,27 @@ IkStarts::IkStarts(const Chain& chain) : n_(chain.dof()), q_(static_cast<std::si
     reach = std::max(reach, tools_[k].p.norm());
   }
   if (std::isfinite(reach) && reach > 0) weight_ = 0.25 * reach * reach;
+  limits_ = JointLimits{chain.lower(), chain.upper(), {}};
+  for (int i = 0; i < n_; ++i) limits_.prismatic.push_back(chain.prismatic(i));
+  ClosedArm arm{joint_axes(chain), {}};
+  arm.family = closed_family(arm.axes);
+  if (arm.family.kind != FamilyKind::None) arm_ = std::move(arm);
+}
+
+int IkStarts::closed(const Chain& chain, const Target& target, const double* q_ref, double* out) const {
+  if (!arm_ || target.task != Task::Pose || !target.pose.p.allFinite() || !target.pose.R.allFinite()) return 0;
+  const ClosedFormSolutions s = closed_solve(*arm_, chain, target.pose, limits_);
+  double d[ClosedFormSolutions::kMaxSolutions];
+  int index[ClosedFormSolutions::kMaxSolutions], count = 0;
+  for (int k = 0; k < s.count(); ++k) {
+    if (!s.within_limits[k]) continue;
+    d[k] = 0.0;
+    for (int i = 0; i < n_; ++i) d[k] += (s.row(k)[i] - q_ref[i]) * (s.row(k)[i] - q_ref[i]);
+    index[count++] = k;
+  }
+  std::sort(index, index + count, [&](int a, int b) { return d[a] < d[b]; });
+  for (int j = 0; j < count; ++j) std::copy(s.row(index[j]), s.row(index[j]) + n_, out + j * n_);
+  return count;
 }
 
 double IkStarts::distance(const Target& target, int k) const {

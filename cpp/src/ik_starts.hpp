@@ -1,14 +1,19 @@
-// Start configurations for the restarts of numerical IK: configurations spread over a chain's joint
-// space with their tool poses, so that a solve whose first attempt fails restarts from those whose
-// tool is nearest the target (a start near an answer converges where a random one may wander).
-// Built once per chain (Chain::ik_starts), read-only afterwards: safe to share between threads.
+// Start configurations for the restarts of numerical IK: the closed-form solutions of a pose target
+// when the chain's geometry has a closed form (closed_solve.hpp), and configurations spread over a
+// chain's joint space with their tool poses, so that a solve whose first attempt fails restarts from
+// an answer, then from those whose tool is nearest the target (a start near an answer converges
+// where a random one may wander). Built once per chain (Chain::ik_starts), read-only afterwards:
+// safe to share between threads.
 #pragma once
 
 #include "robokin/chain.hpp"
+#include "robokin/closed_solve.hpp"
+#include "robokin/limits.hpp"
 #include "robokin/task.hpp"
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -36,9 +41,17 @@ class IkStarts {
   void nearest(const Target& target, int count, int* out) const;
   const double* q(int k) const { return q_.data() + static_cast<long>(k) * n_; }
 
+  // Writes to out (room for ClosedFormSolutions::kMaxSolutions rows of n) the closed-form solutions
+  // of a pose target that lie within the limits, nearest to q_ref (joint distance) first, and
+  // returns how many: none for other tasks or a chain without a closed form. `chain` has the
+  // kinematics of the chain the starts were built from.
+  int closed(const Chain& chain, const Target& target, const double* q_ref, double* out) const;
+
  private:
   double distance(const Target& target, int k) const;
 
+  std::optional<ClosedArm> arm_;  // the chain's closed form, if its geometry has one
+  JointLimits limits_;
   int n_;
   std::vector<double> q_;  // kCount x n, row-major
   std::vector<Rigid> tools_;

@@ -44,9 +44,10 @@ struct IkOptions {
   double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
   double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
   int max_iter = 100;      // iterations per attempt
-  // Extra attempts, in [0, kMaxRestarts]: first from the chain's stored configurations nearest the
-  // target (ik_starts.hpp), then random ones within the limits. Unset: as many as the time budget
-  // allows.
+  // Extra attempts, in [0, kMaxRestarts]: first from the closed-form solutions of a pose target
+  // within the limits (a 6R arm whose geometry closed_family recognises), then from the chain's
+  // stored configurations nearest the target (ik_starts.hpp), then random ones within the limits.
+  // Unset: as many as the time budget allows.
   std::optional<int> restarts;
   // Seconds of the solving thread's CPU time for the whole solve (every attempt), so that a busy
   // machine does not cut a search short (the wall time may then be longer). Unset:
@@ -73,11 +74,11 @@ struct IkOptions {
           "unused for the other tasks.");
     field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
     field("restarts", &IkOptions::restarts,
-          "Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from "
-          "the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the "
-          "rest from random configurations drawn uniformly within the limits (revolute joints without limits: "
-          "[-pi, pi]). None: as "
-          "many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
+          "Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: for a pose "
+          "target on a 6R arm with a closed form (robokin.closed.family), first from its closed-form solutions "
+          "within the limits, nearest q0 first; then 8 from the chain's stored configurations (1,024 drawn once "
+          "per chain) whose tools are nearest the target; the rest from random configurations drawn uniformly "
+          "within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
           "(on an unreachable target they all run).");
     field("timeout", &IkOptions::timeout,
           "Time budget in seconds for all the attempts (checked every few iterations), counted in the solving "
