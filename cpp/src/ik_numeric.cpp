@@ -105,7 +105,8 @@ void IkOptions::validate() const {
   if (!(tol_p > 0) || !std::isfinite(tol_p)) throw std::invalid_argument("tol_p: must be a positive number");
   if (!(tol_r > 0) || !std::isfinite(tol_r)) throw std::invalid_argument("tol_r: must be a positive number");
   if (max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
-  if (stall_window < 0) throw std::invalid_argument("stall_window: must be >= 0 (0: never drop an attempt)");
+  if (stall_window && *stall_window < 0)
+    throw std::invalid_argument("stall_window: must be None or >= 0 (0: never drop an attempt)");
   if (restarts && *restarts < 0) throw std::invalid_argument("restarts: must be >= 0");
   if (restarts && *restarts > kMaxRestarts)
     throw std::invalid_argument("restarts: must be at most " + std::to_string(kMaxRestarts) +
@@ -114,6 +115,11 @@ void IkOptions::validate() const {
     throw std::invalid_argument("timeout: must be None or a positive number of seconds");
   if (damping && !(*damping > 0 && std::isfinite(*damping)))
     throw std::invalid_argument("damping: must be None or a positive number");
+}
+
+int IkOptions::stall_window_for(const Chain& chain, Task resolved_task) const {
+  if (stall_window) return *stall_window;
+  return resolved_task == Task::Pose && chain.ik_starts().closed_form() ? kStallWindowClosed : kStallWindow;
 }
 
 IkOptions IkOptions::for_path() const {
@@ -135,6 +141,7 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   damping_ = options.damping_or_default();
   task_ = options.task_for(chain);
   tol_r_ = task_ == Task::Pose || task_ == Task::XYPhi ? options.tol_r : INFINITY;
+  stall_window_ = options.stall_window_for(chain, task_);
   const int n = chain.dof(), m = task_rows(task_);
   if (n == n_ && m == m_) return;  // the workspace fits already
   n_ = n;
@@ -447,7 +454,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   for (int it = 0; it < budget; ++it) {
     if ((it & 3) == 3 && clock.spent()) return give_up();
     if ((it & 255) == 255) report(progress, it, budget);
-    if (may_stall && opt_.stall_window > 0 && it > 0 && it % opt_.stall_window == 0) {
+    if (may_stall && stall_window_ > 0 && it > 0 && it % stall_window_ == 0) {
       if (!(a.cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
       window_cost = a.cost;
     }
@@ -483,8 +490,8 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
       if (k <= closed) {
         q = Eigen::Map<const Vector>(closed_q + (k - 1) * n_, n_);
       } else if (k <= closed + kNearStarts) {
-        if (k == closed + 1) starts.nearest(target, kNearStarts, near);
-        q = Eigen::Map<const Vector>(starts.q(near[k - 1 - closed]), n_);
+        if (k == closed + 1) starts.nearest(*chain_, target, kNearStarts, near);
+        q = Eigen::Map<const Vector>(starts.q(*chain_, near[k - 1 - closed]), n_);
       } else {
         if (!rng) rng.emplace(seed);
         random_configuration(*chain_, *rng, q.data());

@@ -33,6 +33,11 @@ constexpr int kMaxRestarts = 1000000;
 // The time budget of a solve given neither restarts nor a timeout (seconds of CPU time).
 constexpr double kDefaultIkTimeout = 5e-3;
 
+// IkOptions::stall_window when unset: the longer window spares an attempt that may still converge
+// when the restart after it is a random guess; a closed-form restart solves at once, so a crawling
+// attempt is dropped sooner (benchmarks/bench_ik_latency.py measures both).
+constexpr int kStallWindow = 6, kStallWindowClosed = 3;
+
 // The options of a solve: the one place the defaults are written (the bindings bind these fields
 // one by one and show the resolved defaults to Python as robokin.IK_DEFAULTS). By default a solve
 // restarts from random configurations within the limits until it succeeds or its time budget
@@ -58,7 +63,9 @@ struct IkOptions {
   std::optional<double> damping;
   // With restarts left, an attempt whose cost |e|^2 has not halved over this many iterations is
   // dropped for a restart (a crawling attempt costs more than a fresh start); 0: never dropped.
-  int stall_window = 6;
+  // Unset: kStallWindowClosed for a pose target on an arm with a closed form (its restart starts
+  // from an exact solution), kStallWindow otherwise.
+  std::optional<int> stall_window;
 
   // Every option, its Python keyword and its doc, in order: the bindings bind exactly these (an
   // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
@@ -90,7 +97,8 @@ struct IkOptions {
           "(default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.");
     field("stall_window", &IkOptions::stall_window,
           "With restarts left, an attempt whose squared error has not halved over this many iterations is dropped "
-          "for a restart; 0: never dropped.");
+          "for a restart; 0: never dropped. None: 3 for a pose target on an arm with a closed form (its restarts "
+          "start from the closed-form solutions, which solve at once), 6 otherwise.");
   }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
@@ -100,6 +108,7 @@ struct IkOptions {
   double budget() const { return timeout ? *timeout : (restarts ? 0.0 : kDefaultIkTimeout); }  // 0: none
   double damping_or_default() const { return damping ? *damping : default_damping(method); }
   Task task_for(const Chain& chain) const { return task ? *task : natural_task(chain); }
+  int stall_window_for(const Chain& chain, Task resolved_task) const;
   // A path warm-starts each target from the previous solution: a random restart could land on
   // another branch (a jump of the joints between neighbouring points), so unless restarts are given
   // it does not restart (and has no budget unless a timeout is given).
@@ -163,7 +172,7 @@ class IkSolver {
   // opt_ resolved: the task, restarts, time budget (0: none), damping, tol_r (inf for tasks without
   // orientation).
   Task task_ = Task::Pose;
-  int restarts_ = 0;
+  int restarts_ = 0, stall_window_ = kStallWindow;
   double timeout_ = 0.0, damping_ = 0.0, tol_r_ = 0.0;
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
