@@ -12,7 +12,8 @@ Its dependencies are the benchmarks' only (the ``bench`` extra of pyproject.toml
 **Which chains.** A URDF is read here with ``xml.etree`` (its joints' types, parents, children,
 origins and axes), independently of robokin's reader. A chain starts at a *root-ish* link: the
 URDF's root, or a link with two or more child joints (a torso where the arms part, a mobile base).
-It follows child joints down: revolute and continuous joints (a continuous joint is a revolute one
+A branching link 6 or more revolute joints from the root is a hand, not root-ish (its fingers are
+not surveyed). It follows child joints down: revolute and continuous joints (a continuous joint is a revolute one
 without limits) count, fixed joints are passed through, any other joint (prismatic, floating,
 planar) ends the descent; once past a branching link it takes no further revolute joint (a hand's
 finger is not a joint of the arm). It ends at a link reached with exactly 6 or 7 revolute joints
@@ -149,15 +150,18 @@ def tool_rank(link):
 def serial_chains(tree):
     """[(base, tip, joint names)] of the 6- and 7-revolute chains (the module docstring's rules)."""
     branching = {link for link, js in tree.children.items() if len(js) >= 2}
-    depth, order = {}, list(tree.roots)
+    depth, turns, order = {}, {}, list(tree.roots)  # links and revolute joints from the root
     for link in order:
         depth.setdefault(link, 0)
+        turns.setdefault(link, 0)
         for j in tree.children.get(link, []):
             if j.child not in depth:
                 depth[j.child] = depth[link] + 1
+                turns[j.child] = turns[link] + (j.type in MOVABLE)
                 order.append(j.child)
     chains = {}  # joint names -> (base, {tip: kind})
-    for start in sorted(set(tree.roots) | branching, key=lambda s: depth.get(s, 0)):
+    starts = set(tree.roots) | {link for link in branching if turns.get(link, 0) < 6}
+    for start in sorted(starts, key=lambda s: depth.get(s, 0)):
         stack = [(start, (), False)]
         while stack:
             link, moving, past_branch = stack.pop()
@@ -285,10 +289,6 @@ def robokin_solutions(chain, T, held=None, value=0.0, solver=None):
     return np.asarray(s.q, float).reshape(-1, chain.dof), np.asarray(s.singular, bool)
 
 
-def held_value(chain, j):
-    """0 when within joint j's limits, else the middle of its range."""
-    lo, hi = chain.limits[0][j], chain.limits[1][j]
-    return 0.0 if lo <= 0.0 <= hi else 0.5 * (lo + hi)
 
 
 # --- the comparison on random poses ---------------------------------------------------------------
@@ -312,9 +312,9 @@ class Comparison:
 
 def angle_gap(A, B):
     """(len(A), len(B)): the largest joint difference of each pair, modulo 2 pi."""
-    A, B = np.reshape(A, (len(A), -1)), np.reshape(B, (len(B), -1))
     if not len(A) or not len(B):
         return np.full((len(A), len(B)), np.inf)
+    A, B = np.reshape(A, (len(A), -1)), np.reshape(B, (len(B), -1))
     d = np.remainder(A[:, None, :] - B[None, :, :] + np.pi, 2 * np.pi) - np.pi
     return np.abs(d).max(axis=2)
 
@@ -332,10 +332,19 @@ def text(q):
     return "[" + ", ".join(f"{v:.6f}" for v in q) + "]"
 
 
-def compare_pose(c, chain, T, q, ours, singular, eaik, size):
-    """One pose's checks (the module docstring's), failures counted by kind into c."""
-    exact, ls = eaik
+def sigma_min(chain, q, held):
+    """The smallest singular value of the Jacobian of the joints not held, at q (how near q is to
+    a singularity: solutions there are ill-conditioned, and two solvers may differ by more than 1e-6)."""
+    J = np.delete(chain.jacobian(q, task="pose"), [] if held is None else [held], axis=1)
+    return np.linalg.svd(J, compute_uv=False).min()
+
+
+def compare_pose(c, chain, T, q, ours, singular, eaik, size, held=None):
+    """One pose's checks (the module docstring's), failures counted by kind into c; ``eaik`` None:
+    robokin's alone (reach and q)."""
     at = " (singular pose)" if singular.any() else ""
+    failed = sum(c.failures.values())
+    exact, ls = eaik if eaik is not None else (np.zeros((0, 0)), np.zeros((0, 0)))
     c.poses, c.solutions, c.eaik_exact = c.poses + 1, c.solutions + len(ours), c.eaik_exact + len(exact)
     c.singular += bool(at)
     reach = reach_error(chain, ours, T, size)
@@ -344,6 +353,14 @@ def compare_pose(c, chain, T, q, ours, singular, eaik, size):
         c.fail("a robokin solution off the pose" + at, f"{reach.max():.1e} for q = {text(q)}")
     if not angle_gap(ours, [q]).min(initial=np.inf) <= SAME_TOL:
         c.fail("q not among robokin's" + at, f"q = {text(q)}, {len(ours)} solutions")
+    if eaik is not None:
+        compare_sets(c, chain, T, q, ours, exact, ls, size, at)
+    if sum(c.failures.values()) > failed and len(c.examples) < 4:
+        c.examples.append(f"   (at that q the Jacobian's smallest singular value is {sigma_min(chain, q, held):.1e})")
+
+
+def compare_sets(c, chain, T, q, ours, exact, ls, size, at):
+    """Every exact EAIK solution among robokin's and every robokin solution among EAIK's."""
     for e in exact[angle_gap(exact, ours).min(axis=1, initial=np.inf) > SAME_TOL]:
         if reach_error(chain, [e], T, size)[0] > 1e-6:
             c.fail("an EAIK 'exact' solution off the pose" + at, f"{text(e)} for q = {text(q)}")
@@ -367,21 +384,43 @@ def arm_size(geometry):
     return float(np.linalg.norm(np.diff(np.vstack([np.zeros(3), points, tip[:3, 3]]), axis=0), axis=1).sum()) or 1.0
 
 
-def compare(chain, geometry, held, poses, rng):
-    """robokin's and EAIK's solutions on random poses of the chain (joint ``held`` held at q's value)."""
+def compare(chain, geometry, held, poses, rng, against_eaik=True):
+    """robokin's and EAIK's solutions on random poses of the chain (joint ``held`` held at q's
+    value); robokin's alone (reach and q) when not ``against_eaik``."""
     lo, hi = sample_bounds(chain)
     size = arm_size(geometry)
     solver = rk.closed.ClosedSolver(chain, None) if held is None else None
-    robot = eaik_robot(geometry)[0] if held is None else None
+    robot = eaik_robot(geometry)[0] if held is None and against_eaik else None
     c = Comparison()
     for _ in range(poses):
         q = rng.uniform(lo, hi)
         value = float(q[held]) if held is not None else 0.0
         T = chain.fk(q)
-        ours, singular = robokin_solutions(chain, T, held, value, solver)
-        theirs = eaik_solutions(robot if held is None else eaik_robot(geometry, held, value)[0], T)
-        compare_pose(c, chain, T, q, ours, singular, theirs, size)
+        try:
+            ours, singular = robokin_solutions(chain, T, held, value, solver)
+        except ValueError as e:  # a held value where the decomposition does not hold
+            c.fail("robokin refuses the held value", f"{cut(str(e), 120)} at q = {text(q)}")
+            continue
+        theirs = None
+        if against_eaik:
+            theirs = eaik_solutions(robot if held is None else eaik_robot(geometry, held, value)[0], T)
+        compare_pose(c, chain, T, q, ours, singular, theirs, size, held)
     return c
+
+
+def eaik_alone(chain, geometry, held, poses, rng):
+    """Where robokin has no closed form: whether EAIK's exact solutions reach the pose and hold q
+    (is its decomposition a closed form for this chain?): (poses, poses with q, worst reach)."""
+    lo, hi = sample_bounds(chain)
+    size, found, worst = arm_size(geometry), 0, 0.0
+    robot = eaik_robot(geometry)[0] if held is None else None
+    for _ in range(poses):
+        q = rng.uniform(lo, hi)
+        T = chain.fk(q)
+        exact, _ = eaik_solutions(robot if held is None else eaik_robot(geometry, held, float(q[held]))[0], T)
+        found += bool(angle_gap(exact, [q]).min(initial=np.inf) <= SAME_TOL)
+        worst = max(worst, reach_error(chain, exact, T, size).max(initial=0.0))
+    return poses, found, worst
 
 
 # --- the survey -----------------------------------------------------------------------------------
@@ -397,6 +436,7 @@ class Row:
     robokin: tuple  # (has a closed form, family or reason)
     eaik: tuple
     comparison: Comparison = None
+    eaik_alone: tuple = None  # (poses, poses where EAIK's solutions hold q, worst reach) where robokin has none
     note: str = ""
 
     @property
@@ -422,14 +462,23 @@ def reading_gap(chain, geometry, rng):
     return max(np.abs(chain.fk(q) - poe_fk(geometry, q)).max() for q in rng.uniform(lo, hi, (5, chain.dof)))
 
 
+def check(row, chain, geometry, held, same, args, rng):
+    """The random-pose checks the row's verdicts call for (none when the two readings differ)."""
+    if same and row.agreement in ("both", "robokin only"):
+        row.comparison = compare(chain, geometry, held, args.poses, rng, row.agreement == "both")
+    elif same and row.agreement == "EAIK only":
+        row.eaik_alone = eaik_alone(chain, geometry, held, args.poses, rng)
+
+
 def survey_chain(name, tree, base, tip, names, path, args, rng):
     """The rows of one chain: the chain itself, and for a 7-joint chain each held joint where
     robokin or EAIK finds a decomposition."""
     chain, note = load_chain(path, base, tip)
     dof = len(names)
-    if chain is None:
-        return [Row(name, base, tip, dof, "-", (False, note), (False, "-"), note=note)]
     geometry = zero_geometry(tree, base, tip)
+    if chain is None:
+        theirs = eaik_family(geometry) if dof == 6 else (False, "-")
+        return [Row(name, base, tip, dof, "-", (False, note), theirs, note=note)]
     if tuple(chain.joint_names) != tuple(names):
         note = f"robokin reads the joints {chain.joint_names}; " + note
     gap = reading_gap(chain, geometry, rng)
@@ -438,19 +487,35 @@ def survey_chain(name, tree, base, tip, names, path, args, rng):
         note = f"robokin's FK and this reading differ by {gap:.1e}; " + note
     if dof == 6:
         row = Row(name, base, tip, dof, "-", robokin_family(chain), eaik_family(geometry), note=note)
-        if row.agreement == "both" and same:
-            row.comparison = compare(chain, geometry, None, args.poses, rng)
+        check(row, chain, geometry, None, same, args, rng)
         return [row]
     rows = [Row(name, base, tip, dof, "-", robokin_family(chain), (False, "7 joints: one held, below"), note=note)]
     for j in range(7):
-        value = held_value(chain, j)
-        ours = robokin_family(chain, j, value) if args.locked else (False, "n/a: no closed.family(locked=)")
-        row = Row(name, base, tip, dof, f"j{j + 1}", ours, eaik_family(geometry, j, value))
-        if row.agreement == "both" and same:
-            row.comparison = compare(chain, geometry, j, args.poses, rng)
+        values = held_values(chain, j)
+        ours = at_values(lambda v: robokin_family(chain, j, v), values) if args.locked else (
+            False, "n/a: no closed.family(locked=)")
+        row = Row(name, base, tip, dof, f"j{j + 1}", ours, at_values(lambda v: eaik_family(geometry, j, v), values))
+        check(row, chain, geometry, j, same, args, rng)
         if ours[0] or row.eaik[0]:
             rows.append(row)
     return rows
+
+
+def held_values(chain, j):
+    """A value of no special geometry for joint j (38 % into its range: the verdict), and 0 (the
+    middle of the range when 0 is outside it)."""
+    lo, hi = sample_bounds(chain)
+    zero = 0.0 if lo[j] <= 0.0 <= hi[j] else 0.5 * (lo[j] + hi[j])
+    return lo[j] + 0.382 * (hi[j] - lo[j]), zero
+
+
+def at_values(verdict, values):
+    """The verdict at the first value, and the one at the second beside it when they differ (a
+    decomposition that exists only at one value of the held joint, such as two axes lining up)."""
+    generic, special = verdict(values[0]), verdict(values[1])
+    if special == generic:
+        return generic
+    return generic[0], f"{generic[1]} (at {values[1]:.3g}: {special[1]})"
 
 
 def survey(args):
@@ -481,7 +546,8 @@ def mismatches(row):
     if row.comparison is None:
         return "-" if row.agreement != "both" else "not compared"
     c = row.comparison
-    return f"{sum(c.failures.values())} in {c.poses} poses"
+    alone = "" if row.agreement == "both" else " (robokin alone)"
+    return f"{sum(c.failures.values())} in {c.poses} poses{alone}"
 
 
 def print_table(rows):
@@ -504,6 +570,13 @@ def print_details(rows):
             print(f"    {n} poses: {kind}")
         for e in c.examples:
             print(f"      e.g. {e}")
+    alone = [r for r in rows if r.eaik_alone is not None]
+    if alone:
+        print("\nEAIK alone, where robokin has no closed form (its exact solutions on random poses):")
+    for r in alone:
+        poses, found, worst = r.eaik_alone
+        print(f"  {r.urdf} {r.base} -> {r.tip} {r.held}: {r.eaik[1]}: q among them on {found} of {poses} poses, "
+              f"worst reach {worst:.1e}")
     notes = [r for r in rows if r.note]
     if notes:
         print("\nNotes on reading:")
@@ -530,7 +603,8 @@ def print_summary(rows, unread, args):
     gaps = [r for r in rows if r.agreement == "EAIK only" and (r.dof == 6 or args.locked)]
     print(f"EAIK finds a decomposition and robokin does not: {len(gaps)}")
     for r in gaps:
-        print(f"  {r.urdf} {r.base} -> {r.tip} {r.held}: EAIK {r.eaik[1]}; robokin: {r.robokin[1]}")
+        solved = "" if r.eaik_alone is None else f" (EAIK's solutions hold q on {r.eaik_alone[1]} of {r.eaik_alone[0]} poses)"
+        print(f"  {r.urdf} {r.base} -> {r.tip} {r.held}: EAIK {r.eaik[1]}{solved}; robokin: {r.robokin[1]}")
     return len(gaps) + bad
 
 
