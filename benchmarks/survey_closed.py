@@ -11,32 +11,40 @@ Its dependencies are the benchmarks' only (the ``bench`` extra of pyproject.toml
 
 **Which chains.** A URDF is read here with ``xml.etree`` (its joints' types, parents, children,
 origins and axes), independently of robokin's reader. A chain starts at a *root-ish* link: the
-URDF's root, or a link with two or more child joints (a torso where the arms part, a mobile base).
-A branching link 6 or more revolute joints from the root is a hand, not root-ish (its fingers are
-not surveyed). It follows child joints down: revolute and continuous joints (a continuous joint is a revolute one
-without limits) count, fixed joints are passed through, any other joint (prismatic, floating,
-planar) ends the descent; once past a branching link it takes no further revolute joint (a hand's
-finger is not a joint of the arm). It ends at a link reached with exactly 6 or 7 revolute joints
-that is a leaf, a branching link, or named like a tool (``tool0``, ``flange``, ``tcp``, ``ee``,
-``end_effector``, ``tool``); the 6-joint start of a 7-joint arm is therefore not a chain of its
-own. One chain per sequence of joints: its base is the deepest root-ish link it starts from, its
-tip the first tool-named link (in the order above), else a leaf, else the branching link.
+URDF's root, or a link with two or more child joints (a torso where the arms part, a mobile base);
+a branching link 6 or more revolute joints from the root is a hand, not root-ish (its fingers are
+not surveyed). It follows child joints down: revolute and continuous joints (a continuous joint is
+a revolute one without limits) count, fixed joints are passed through, any other joint
+(prismatic, floating, planar) ends the descent; once past a branching link it takes no further
+revolute joint (a hand's finger is not a joint of the arm). It ends at a link reached with exactly
+6 or 7 revolute joints that is a leaf, a branching link, or named like a tool (``tool0``,
+``flange``, ``tcp``, ``ee``, ``end_effector``, ``tool``); the 6-joint start of a 7-joint arm is
+therefore not a chain of its own (a gripper's revolute joint after a 6-joint arm makes it a
+7-joint chain: hold that joint). One chain per sequence of joints: its base is the deepest
+root-ish link it starts from, its tip the first tool-named link (in the order above), else a leaf,
+else the branching link.
 
 **EAIK's verdict.** EAIK is given the same chain as the joint axes and points at the zero
 configuration (its H / P description, with the tip's orientation), computed here from the URDF's
-origins, not from robokin's chain; ``forward kinematics`` of both are compared on random
-configurations first (a difference means the two readings of the URDF differ, and is reported).
-A 7-joint chain goes to EAIK with one joint held (``fixed_axes``), each joint in turn, at 0. On
-robokin's side ``rk.closed.family(chain, locked={j: 0.0})`` is asked when ``family`` takes
-``locked``; otherwise that column says so and only the unheld 7-joint family is shown.
+origins, not from robokin's chain; the FK of this reading and robokin's are compared on random
+configurations first (a difference means the two readings of the URDF differ: reported, and the
+chain is not compared). A 7-joint chain goes to EAIK with one joint held (``fixed_axes``), each
+joint in turn; robokin is asked ``rk.closed.family(chain, locked={j: value})`` when ``family``
+takes ``locked`` (otherwise that column says so). The held value is one of no special geometry,
+38 % into the joint's range; the verdict at 0 (the middle of the range when 0 is outside it) is
+shown beside it when it differs (a decomposition that exists only where two axes line up).
 
 **The comparison**, where both find a decomposition (a 6-joint chain, or a 7-joint one with the
 same joint held): ``--poses`` random configurations q within the joint limits (``[-pi, pi]``
 where there are none; a held joint at q's value), their poses T by the chain's FK, and for each:
 every robokin solution reaches T (position within 1e-9 x the arm's size, rotation entries within
 1e-9), q is among them (1e-6, modulo 2 pi), and every exact EAIK solution (not its least-squares
-ones) is one of robokin's and every robokin solution one of EAIK's (1e-6, modulo 2 pi). A pose
-where robokin flags ``singular`` is counted apart (a continuum there has one representative).
+ones) is one of robokin's and every robokin solution one of EAIK's (1e-6, modulo 2 pi); each
+failed check is printed with the Jacobian's smallest singular value at q (how near a singularity
+it is). A pose where robokin flags ``singular`` is counted apart (a continuum there has one
+representative). Where only robokin finds one, its own checks run (reach, q among them); where
+only EAIK does, its solutions are checked the same way, to tell a closed form from a verdict its
+solver does not bear out.
 """
 
 from __future__ import annotations
@@ -45,8 +53,8 @@ import argparse
 import importlib.metadata
 import inspect
 import math
-import re
 import pathlib
+import re
 import sys
 import time
 import warnings
