@@ -218,7 +218,7 @@ def test_non_contiguous_and_read_only_arrays(q):
     start = np.zeros((3, 6))[:, ::2][0]  # non-contiguous, within the limits
     start.setflags(write=False)
     r = rk.reach(chain, chain.fk(np.array([0.1, 0.1, 0.1]))[:2, 3], start)
-    assert r.converged and r.q.flags.writeable and not start.any()
+    assert r.converged and not r.q.flags.writeable and r.q is r.q and not start.any()  # made once, read-only
 
 
 # --- regressions ------------------------------------------------------------------------------

@@ -259,3 +259,19 @@ def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
         with pytest.raises(ValueError, match=r"IKSolutions state: q must have one row of dof \(1 to 6\) values "
                                              r"per posture and per within_limits flag, at most 8 rows"):
             type(good).__new__(type(good)).__setstate__(state)
+
+
+CORE_RESULTS = ["IKResult", "IKBatchResult", "ReachResult", "TrackResult", "RRR3Newton", "RRR3Fk",
+                "RRR3Plan", "RRR3Workspace", "ServoResult"]
+
+
+@pytest.mark.parametrize("name", CORE_RESULTS)
+def test_a_core_results_arrays_are_read_only_and_made_once(name):
+    result = RESULTS[name]()
+    arrays = {f: getattr(result, f) for f in dir(result) if isinstance(getattr(result, f, None), np.ndarray)}
+    assert arrays, name
+    for field, a in arrays.items():
+        assert not a.flags.writeable, (name, field)
+        assert getattr(result, field) is getattr(result, field) or a.base is not None, (name, field)
+        with pytest.raises(ValueError, match="read-only"):
+            a[...] = 0

@@ -128,6 +128,21 @@ def test_mimic_joint_in_the_chain_is_refused_elsewhere_ignored(quiet):
     assert load(xml).dof == 2
 
 
+def test_mimic_tag_on_a_fixed_joint_in_the_chain_changes_nothing(quiet):
+    """A fixed joint does not move, so a mimic tag on it (Talos' gripper in example-robot-data has
+    some) is no reason to refuse the chain: it reads as the same chain without the tag."""
+    mimic = '<mimic joint="j1" multiplier="1" offset="0"/>'
+    fixed = joint("f", "b", "c", kind="fixed", origin='xyz="0.1 0.2 0.3" rpy="0.4 0 0"', extra="")
+    tagged = joint("f", "b", "c", kind="fixed", origin='xyz="0.1 0.2 0.3" rpy="0.4 0 0"', extra=mimic)
+    plain, chain = load(robot(joint("j1", "a", "b"), fixed)), load(robot(joint("j1", "a", "b"), tagged))
+    assert chain.dof == 1 and chain.joint_names == ("j1",)
+    for q in ([0.0], [0.7], [-1.0]):
+        assert np.array_equal(chain.fk(q), plain.fk(q))
+    # the tip 0.1 above the joint (j1's origin), then (0.1, 0.2, 0.3) turned by q about z
+    c, s = math.cos(0.7), math.sin(0.7)
+    assert np.allclose(chain.fk([0.7])[:3, 3], [0.1 * c - 0.2 * s, 0.1 * s + 0.2 * c, 0.4], atol=1e-15)
+
+
 @pytest.mark.parametrize("kind", ["floating", "planar"])
 def test_floating_and_planar_joints(kind, quiet):
     xml = robot(joint("j1", "a", "b"), joint("free", "b", "c", kind=kind, extra=""))

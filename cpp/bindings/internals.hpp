@@ -76,6 +76,9 @@ inline bool has_flags(const py::array& a, int flags) {
   return (py::detail::array_proxy(a.ptr())->flags & flags) == flags;
 }
 
+// Makes a (its data) read-only, as numpy's setflags(write=False) without a Python call.
+inline void set_read_only(const py::array& a) { py::detail::array_proxy(a.ptr())->flags &= ~kWriteable; }
+
 // The fast path: obj is exactly a numpy.ndarray of native-order float64, C-contiguous and aligned,
 // so its buffer is used as it is (no conversion object, no dtype object, no reference counting).
 // Anything else (lists, other dtypes, strided views, subclasses) goes through as_array.

@@ -150,7 +150,7 @@ inline std::string repr_fields(py::handle obj, const std::vector<std::string>& n
 template <class V>
 py::array result_view(py::handle owner, const V* data, std::vector<py::ssize_t> shape) {
   py::array a = py::array_t<V>(shape, data, owner);
-  a.attr("setflags")(py::arg("write") = false);
+  set_read_only(a);
   return a;
 }
 

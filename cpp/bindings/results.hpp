@@ -1,6 +1,7 @@
 // Result structs of the core, bound mechanically: each field once (a scalar, string or bound class
-// read-only, an Eigen member as a numpy array, or as Python computes it from the struct), and from that list a generic __repr__, a versioned pickle
-// (kStateVersion, field values in order), a __str__ for people and, for a batch result, __len__.
+// read-only, an Eigen member as a read-only numpy array, or as Python computes it from the struct),
+// and from that list a generic __repr__, a versioned pickle (kStateVersion, field values in order),
+// a __str__ for people and, for a batch result, __len__.
 #pragma once
 
 #include "arrays.hpp"
@@ -8,6 +9,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <type_traits>
@@ -17,12 +19,27 @@ namespace robokin::bind {
 
 namespace py = pybind11;
 
+// A result's attribute made at its first read and kept in the instance's __dict__ (the class is bound
+// with py::dynamic_attr): make() -> a pybind11 object type R; an array is made read-only, so that the
+// kept value cannot be changed behind the result. Results never change, so the kept value stays true.
+template <class Make>
+auto kept_attribute(py::handle self, const char* name, Make make) -> decltype(make()) {
+  using R = decltype(make());
+  const auto dict = py::reinterpret_steal<py::object>(PyObject_GenericGetDict(self.ptr(), nullptr));
+  if (!dict) throw py::error_already_set();
+  if (PyObject* kept = PyDict_GetItemString(dict.ptr(), name)) return py::reinterpret_borrow<R>(kept);
+  R value = make();
+  if (py::isinstance<py::array>(value)) set_read_only(py::reinterpret_borrow<py::array>(value));
+  if (PyDict_SetItemString(dict.ptr(), name, value.ptr()) != 0) throw py::error_already_set();
+  return value;
+}
+
 template <class T>
 class ResultClass {
  public:
   // batch: every array field has one row per item (checked on unpickling; __len__ is the rows).
   ResultClass(py::module_& m, const char* name, const char* doc, bool batch)
-      : cls_(m, name, doc), name_(name), batch_(batch) {}
+      : cls_(m, name, doc, py::dynamic_attr()), name_(name), batch_(batch) {}
 
   // A field bound as it is, read-only: a scalar, a string, or a class bound before (a result inside
   // a result).
@@ -34,19 +51,28 @@ class ResultClass {
     return *this;
   }
 
-  // A field shown as Python computes it from the struct: get(const T&) -> Python value, and its
-  // inverse for unpickling, set(T&, py::handle) (which checks what it reads; the fields before it
+  // A field shown as Python computes it from the struct: get(const T&) -> Python value (kept by
+  // kept_attribute when it is a Python object), and its inverse for unpickling, set(T&, py::handle) (which checks what it reads; the fields before it
   // are already restored).
   template <class Get, class Set>
   ResultClass& value_as(const char* name, Get get, Set set, const char* doc) {
-    cls_.def_property_readonly(name, get, doc);
+    using R = decltype(get(std::declval<const T&>()));
+    if constexpr (std::is_base_of_v<py::object, R>) {  // a Python object (an array): made once, kept
+      cls_.def_property_readonly(name, [get, key = std::string(name)](py::handle self) {
+        return kept_attribute(self, key.c_str(), [&] { return get(self.cast<const T&>()); });
+      }, doc);
+    } else {
+      cls_.def_property_readonly(name, get, doc);
+    }
     names_.push_back(name);
     restore_.push_back([set](T& r, py::handle v, const char*, long) { set(r, v); });
     return *this;
   }
 
-  // An Eigen member (vector or array: (rows,), row-major matrix: (rows, cols)): in a batch result a
-  // read-only view of the result's buffer (def_array); otherwise a fresh array (the caller's to keep).
+  // An Eigen member (vector or array: (rows,), row-major matrix: (rows, cols)), read-only: in a batch
+  // result a view of the result's buffer (def_array); otherwise a copy kept by kept_attribute (a
+  // copy, not a view: a view kept by its own base would be a reference cycle, holding a large
+  // result until the garbage collector runs).
   template <class M>
   ResultClass& array(const char* name, M T::*member, const char* doc) {
     using Scalar = typename M::Scalar;
@@ -54,11 +80,19 @@ class ResultClass {
     if (batch_) {
       def_array(cls_, name, member, doc);
     } else {
-      cls_.def_property_readonly(name, [member](const T& r) {
-        const M& a = r.*member;
-        std::vector<py::ssize_t> shape{a.rows()};
-        if constexpr (M::ColsAtCompileTime != 1) shape.push_back(a.cols());
-        return py::array_t<Scalar>(shape, a.data());
+      cls_.def_property_readonly(name, [member, key = std::string(name)](py::handle self) {
+        return kept_attribute(self, key.c_str(), [&]() -> py::array_t<Scalar> {
+          const M& a = self.cast<const T&>().*member;
+          const py::ssize_t shape[2] = {a.rows(), a.cols()};
+          constexpr int ndim = M::ColsAtCompileTime == 1 ? 1 : 2;
+          if constexpr (std::is_same_v<Scalar, double>) {
+            py::array_t<double> copy = new_array(ndim, shape);
+            std::copy(a.data(), a.data() + a.size(), float64_data(copy));
+            return copy;
+          } else {
+            return py::array_t<Scalar>(std::vector<py::ssize_t>(shape, shape + ndim), a.data());
+          }
+        });
       }, doc);
     }
     names_.push_back(name);

@@ -386,7 +386,8 @@ Chain chain_from_urdf(const std::string& xml, const std::optional<std::string>& 
       if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR)
         bad("path_or_string: " + joint_label(*joint) + " is " + type_name(joint->type) +
             ": a serial chain has revolute, continuous, prismatic and fixed joints only");
-      if (joint->mimic)
+      // A fixed joint does not move, so a mimic tag on it (some files carry one) changes nothing.
+      if (joint->mimic && joint->type != urdf::Joint::FIXED)
         bad("path_or_string: " + joint_label(*joint) + " mimics joint '" + joint->mimic->joint_name +
             "': mimic joints are not supported in a chain (it would move independently)");
     }

@@ -22,7 +22,7 @@ constexpr int kMaxXmlDepth = 1000;
 // says how it is chosen; a tie between branches is an error naming their ends). Throws
 // std::invalid_argument naming what is wrong and why: the reason urdfdom gives for a document it
 // rejects (its console output is captured, never printed), a link with two parents, limits with
-// lower > upper, a mimic, floating or planar joint between base and tip, a non-finite or huge
+// lower > upper, a mimic (not fixed), floating or planar joint between base and tip, a non-finite or huge
 // origin, a zero axis, unknown links, no joint between the links. Chains of any length load (the
 // tree is built without recursion). Messages about what was accepted but changed (a joint whose
 // lower and upper limits are equal, taken as unlimited as the URDF default lower = upper = 0 means;
