@@ -351,26 +351,35 @@ class Family:
 
 
 @with_options(ClosedFamilyOptions)
-def family(chain: Chain, **options) -> Family:
+def family(chain: Chain, locked=None, **options) -> Family:
     """The decomposition of ``chain``'s geometry, read from its joint axes at the zero configuration
     (whatever the chain was built from: DH, modified DH, URDF, joints and frames): which
     consecutive axes meet or are parallel, within a tolerance relative to the arm's size, and
     which closed form :func:`solve` applies, or why none does.
 
+    A 7-joint chain has none by itself (a continuum of solutions); with one joint held,
+    ``locked={index: value}``, the family is that of the 6 others, whose axes the held joint
+    moves (so the value may matter: the iiwa with ``q[2] = 0`` has its axes 2 and 4 parallel).
+    Axes are named by their joint numbers in the chain (1-based; the held one skipped); a family
+    found from the tool to the base is a ``"spherical shoulder"``. See :func:`solve` for the
+    catalogue's 7-joint arms.
+
     Args:
         chain: A Chain.
+        locked: None, or ``{index: value}``: joint ``index`` (0-based, as in ``q``) of a 7-joint
+            chain held at ``value``.
 
     Returns:
         A :class:`Family`.
     """
     if not isinstance(chain, Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-    name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, **options)
+    name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, locked, **options)
     return Family(name, solvable, reason, tuple(map(tuple, meet)), tuple(map(tuple, parallel)), tol_distance)
 
 
 @with_options(ClosedFamilyOptions)
-def solve(target, chain: Chain, limits="default", **options) -> IKSolutions:
+def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKSolutions:
     """Every solution (up to 8) of a 6R arm whose geometry has a closed form (:func:`family`), for
     the tool frame ``target``: from the Paden-Kahan subproblems on the chain's joint axes (a UR
     table's own closed form, :func:`ur`, for a UR DH chain). URDF chains are read as they are.
@@ -395,4 +404,4 @@ def solve(target, chain: Chain, limits="default", **options) -> IKSolutions:
     """
     if not isinstance(chain, Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-    return ClosedSolver(chain, limits, **options).solve(target)
+    return ClosedSolver(chain, limits, locked, **options).solve(target)
