@@ -225,3 +225,12 @@ def test_random_arms_of_the_new_families(shape):
             s = rk.closed.solve(T, chain, limits=None)
             assert np.abs(chain.fk(s.q) - T).max() <= 1e-9
             assert angle_distance(s.q, q).min() < 1e-6 and len(set(s.postures)) == len(s)
+
+
+def test_the_held_value_stays_as_given():
+    # Beyond pi (the Panda's joint 6 turns to 3.75 rad) and without limits: not wrapped.
+    panda = ARMS["panda"]
+    q = np.array([0.3, -0.4, 0.2, -2.0, 0.5, 3.5, 0.7])
+    for limits in ("default", None):
+        s = rk.closed.solve(panda.fk(q), panda, limits=limits, locked={5: 3.5})
+        assert len(s) and np.all(s.q[:, 5] == 3.5) and angle_distance(s.q, q).min() < 1e-6

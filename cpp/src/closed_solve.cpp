@@ -304,6 +304,12 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   if (c.m == 0) return out;
   bool fits[8];
   fit_limits_rows(q, c.m, n, limits, fits);
+  // The held joint keeps its value as given (within the limits, checked by the caller; without
+  // limits fit_limits would wrap it).
+  const auto keep_held = [&](double* row) {
+    if (arm.held >= 0) row[arm.held] = arm.held_value;
+  };
+  for (int k = 0; k < c.m; ++k) keep_held(q + k * n);
   Rigid F[8];
   chain.fk_few(q, c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
@@ -313,6 +319,7 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
     if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
       polish(chain, T, arm.held, q + k * n, F[k]);
       fits[k] = fit_limits(q + k * n, n, limits);
+      keep_held(q + k * n);
       chain.fk(q + k * n, F[k]);
     }
   for (int k = 0; k < c.m; ++k) {
