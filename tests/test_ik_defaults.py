@@ -41,7 +41,7 @@ def reachable(chain, count, seed):
 def test_the_defaults_are_the_cores_and_written_once():
     d = rk.IK_DEFAULTS
     assert dict(d) == {"method": "lm", "task": None, "tol_p": 1e-9, "tol_r": 1e-9, "max_iter": 100,
-                       "restarts": 1_000_000, "timeout": 0.005, "stall_window": 6}
+                       "restarts": 1_000_000, "timeout": 0.005, "stall_window": None}
     with pytest.raises(TypeError):
         d["timeout"] = 1.0  # read-only
     o = rk.IKOptions()  # the core's IkOptions{}; restarts and timeout None resolve to IK_DEFAULTS'
@@ -53,7 +53,7 @@ def test_the_defaults_are_the_cores_and_written_once():
         assert params["restarts"].default is None and params["timeout"].default is None
         assert o.restarts is None and o.timeout is None and o.damping is None
     assert repr(rk.IKSolver(rk.robots.ur5())) == ("IKSolver(method='lm', task='pose', tol_p=1e-09, tol_r=1e-09, "
-                                                  "max_iter=100, restarts=None, timeout=None, damping=None, stall_window=6)")
+                                                  "max_iter=100, restarts=None, timeout=None, damping=None, stall_window=None)")
     # A solver holds its task resolved: task None is the chain's natural task.
     assert rk.IKSolver(rk.robots.ur5(), restarts=3).options == rk.IKOptions(restarts=3, task="pose")
     assert rk.IKSolver(rk.robots.rpr()).options.task == "xy" == rk.IKSolver(rk.robots.rpr()).task

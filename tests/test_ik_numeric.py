@@ -470,9 +470,30 @@ def test_stall_window_drops_crawling_attempts_only_while_restarts_are_left():
     assert iterations(0) == 4 * 50  # never dropped
     assert iterations(50) == 4 * 50  # the window is never complete within max_iter
     assert iterations(1) == 3 * 1 + 50  # no attempt halves its cost in one step beyond reach
-    assert 3 * 6 + 50 <= iterations(6) < 4 * 50  # the default: dropped at a multiple of 6
-    assert rk.IKOptions().stall_window == rk.IK_DEFAULTS["stall_window"] == 6
-    with pytest.raises(ValueError, match=r"stall_window: must be >= 0 \(0: never drop an attempt\)"):
+    assert 3 * 6 + 50 <= iterations(6) < 4 * 50
+    assert iterations(None) == iterations(6)  # the default without a closed form
+    assert rk.IKOptions().stall_window is rk.IK_DEFAULTS["stall_window"] is None
+    with pytest.raises(ValueError, match=r"stall_window: must be None or >= 0 \(0: never drop an attempt\)"):
         rk.ik(chain, [1.0, 0.5], np.zeros(2), task="xy", stall_window=-1)
-    with pytest.raises(TypeError, match="stall_window: expected int, got float"):
+    with pytest.raises(TypeError, match="stall_window: expected None or int, got float"):
         rk.IKOptions(stall_window=2.5)
+
+
+def test_the_default_stall_window_is_shorter_before_a_closed_form_restart():
+    # A pose 1 m beyond the UR5's reach: no closed-form solution, so every attempt runs until the
+    # stall rule drops it; the default window is 3 for a pose target on an arm with a closed form,
+    # 6 for a position target (no closed-form restart).
+    chain = rk.robots.ur5()
+    T = chain.fk(np.zeros(6))
+    T[:3, 3] += [0.0, 0.0, 1.0]
+
+    def iterations(window, task):
+        target = T if task == "pose" else T[:3, 3]
+        r = rk.ik(chain, target, np.full(6, 0.3), task=task, method="nr", restarts=4, max_iter=60, seed=2,
+                  stall_window=window)
+        assert not r.success and r.attempts == 5
+        return r.iterations
+
+    for task, window in (("pose", 3), ("position", 6)):
+        assert iterations(3, task) != iterations(6, task)
+        assert iterations(None, task) == iterations(window, task)

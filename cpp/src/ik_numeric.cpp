@@ -20,8 +20,10 @@ namespace {
 // LM: the most the damping shrinks after a good step (Nielsen uses 1/3; faster end-game here).
 constexpr double kMuShrink = 0.1;
 
-// The first restarts start from the chain's stored configurations whose tools are nearest the
-// target (ik_starts.hpp); the rest from random configurations.
+// The first restarts start from the closed-form solutions of a pose target within the limits
+// (when the chain's geometry has a closed form), nearest the seed first, then from the chain's
+// stored configurations whose tools are nearest the target (ik_starts.hpp); the rest from random
+// configurations.
 constexpr int kNearStarts = 8;
 
 double wall_s() {
@@ -103,7 +105,8 @@ void IkOptions::validate() const {
   if (!(tol_p > 0) || !std::isfinite(tol_p)) throw std::invalid_argument("tol_p: must be a positive number");
   if (!(tol_r > 0) || !std::isfinite(tol_r)) throw std::invalid_argument("tol_r: must be a positive number");
   if (max_iter < 1) throw std::invalid_argument("max_iter: must be at least 1");
-  if (stall_window < 0) throw std::invalid_argument("stall_window: must be >= 0 (0: never drop an attempt)");
+  if (stall_window && *stall_window < 0)
+    throw std::invalid_argument("stall_window: must be None or >= 0 (0: never drop an attempt)");
   if (restarts && *restarts < 0) throw std::invalid_argument("restarts: must be >= 0");
   if (restarts && *restarts > kMaxRestarts)
     throw std::invalid_argument("restarts: must be at most " + std::to_string(kMaxRestarts) +
@@ -112,6 +115,11 @@ void IkOptions::validate() const {
     throw std::invalid_argument("timeout: must be None or a positive number of seconds");
   if (damping && !(*damping > 0 && std::isfinite(*damping)))
     throw std::invalid_argument("damping: must be None or a positive number");
+}
+
+int IkOptions::stall_window_for(const Chain& chain, Task resolved_task) const {
+  if (stall_window) return *stall_window;
+  return resolved_task == Task::Pose && chain.ik_starts().closed_form() ? kStallWindowClosed : kStallWindow;
 }
 
 IkOptions IkOptions::for_path() const {
@@ -133,6 +141,7 @@ void IkSolver::reset(const Chain& chain, const IkOptions& options) {
   damping_ = options.damping_or_default();
   task_ = options.task_for(chain);
   tol_r_ = task_ == Task::Pose || task_ == Task::XYPhi ? options.tol_r : INFINITY;
+  stall_window_ = options.stall_window_for(chain, task_);
   const int n = chain.dof(), m = task_rows(task_);
   if (n == n_ && m == m_) return;  // the workspace fits already
   n_ = n;
@@ -445,7 +454,7 @@ bool IkSolver::attempt(const Target& target, Vector& q, int& iterations, int bud
   for (int it = 0; it < budget; ++it) {
     if ((it & 3) == 3 && clock.spent()) return give_up();
     if ((it & 255) == 255) report(progress, it, budget);
-    if (may_stall && opt_.stall_window > 0 && it > 0 && it % opt_.stall_window == 0) {
+    if (may_stall && stall_window_ > 0 && it > 0 && it % stall_window_ == 0) {
       if (!(a.cost <= 0.5 * window_cost)) return give_up();  // crawling: a restart does better
       window_cost = a.cost;
     }
@@ -471,13 +480,18 @@ IkResult IkSolver::solve(const Target& target, const double* q0, std::uint64_t s
   Vector best = q;
   double best_cost = std::numeric_limits<double>::infinity();
   std::optional<std::mt19937_64> rng;  // seeded at the first random restart (seeding costs ~2 % of a solve)
-  int near[kNearStarts];
+  int near[kNearStarts], closed = 0;
+  double closed_q[ClosedFormSolutions::kMaxSolutions * ClosedFormSolutions::kMaxDof];
   for (int k = 0; k <= restarts_; ++k) {
     if (k > 0) {
       if (clock.spent()) break;
-      if (k == 1) chain_->ik_starts().nearest(target, kNearStarts, near);
-      if (k <= kNearStarts) {
-        q = Eigen::Map<const Vector>(chain_->ik_starts().q(near[k - 1]), n_);
+      const IkStarts& starts = chain_->ik_starts();
+      if (k == 1) closed = starts.closed(*chain_, target, q0, closed_q);
+      if (k <= closed) {
+        q = Eigen::Map<const Vector>(closed_q + (k - 1) * n_, n_);
+      } else if (k <= closed + kNearStarts) {
+        if (k == closed + 1) starts.nearest(*chain_, target, kNearStarts, near);
+        q = Eigen::Map<const Vector>(starts.q(*chain_, near[k - 1 - closed]), n_);
       } else {
         if (!rng) rng.emplace(seed);
         random_configuration(*chain_, *rng, q.data());

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace robokin {
 
@@ -19,40 +20,88 @@ void random_configuration(const Chain& chain, std::mt19937_64& rng, double* q) {
   }
 }
 
-IkStarts::IkStarts(const Chain& chain) : n_(chain.dof()), q_(static_cast<std::size_t>(kCount) * n_), tools_(kCount) {
+struct IkStarts::Stored {
+  explicit Stored(const Chain& chain);
+  double distance(const Target& target, int k) const;
+
+  int n;
+  std::vector<double> q;  // kCount x n, row-major
+  std::vector<Rigid> tools;
+  double weight = 1.0;
+};
+
+IkStarts::Stored::Stored(const Chain& chain)
+    : n(chain.dof()), q(static_cast<std::size_t>(kCount) * n), tools(kCount) {
   std::mt19937_64 rng(0x5eed);
   double reach = 0.0;
   for (int k = 0; k < kCount; ++k) {
-    double* qk = q_.data() + static_cast<long>(k) * n_;
+    double* qk = q.data() + static_cast<long>(k) * n;
     random_configuration(chain, rng, qk);
-    chain.fk(qk, tools_[k]);
-    reach = std::max(reach, tools_[k].p.norm());
+    chain.fk(qk, tools[k]);
+    reach = std::max(reach, tools[k].p.norm());
   }
-  if (std::isfinite(reach) && reach > 0) weight_ = 0.25 * reach * reach;
+  if (std::isfinite(reach) && reach > 0) weight = 0.25 * reach * reach;
 }
 
-double IkStarts::distance(const Target& target, int k) const {
-  const Rigid& T = tools_[k];
+double IkStarts::Stored::distance(const Target& target, int k) const {
+  const Rigid& T = tools[k];
   switch (target.task) {
     case Task::Pose: {
       // 2 (1 - cos angle): angle^2 near 0, increasing with the angle on [0, pi].
       const double c = 0.5 * ((target.pose.R.transpose() * T.R).trace() - 1.0);
-      return (T.p - target.pose.p).squaredNorm() + weight_ * 2.0 * (1.0 - c);
+      return (T.p - target.pose.p).squaredNorm() + weight * 2.0 * (1.0 - c);
     }
     case Task::Position: return (T.p - target.value).squaredNorm();
     case Task::XY: return (T.p.head<2>() - target.value.head<2>()).squaredNorm();
     case Task::XYPhi: {
       const double a = std::remainder(planar_angle(T) - target.value(2), 2 * M_PI);
-      return (T.p.head<2>() - target.value.head<2>()).squaredNorm() + weight_ * a * a;
+      return (T.p.head<2>() - target.value.head<2>()).squaredNorm() + weight * a * a;
     }
   }
   return 0.0;
 }
 
-void IkStarts::nearest(const Target& target, int count, int* out) const {
+IkStarts::IkStarts(const Chain& chain) : n_(chain.dof()) {
+  limits_ = JointLimits{chain.lower(), chain.upper(), {}};
+  for (int i = 0; i < n_; ++i) limits_.prismatic.push_back(chain.prismatic(i));
+  ClosedArm arm{joint_axes(chain), {}};
+  arm.family = closed_family(arm.axes);
+  if (arm.family.kind != FamilyKind::None) arm_ = std::move(arm);
+}
+
+IkStarts::~IkStarts() = default;
+
+const IkStarts::Stored& IkStarts::stored(const Chain& chain) const {
+  std::call_once(stored_once_, [&] { stored_ = std::make_unique<const Stored>(chain); });
+  return *stored_;
+}
+
+const double* IkStarts::q(const Chain& chain, int k) const {
+  return stored(chain).q.data() + static_cast<long>(k) * n_;
+}
+
+int IkStarts::closed(const Chain& chain, const Target& target, const double* q_ref, double* out) const {
+  if (!arm_ || target.task != Task::Pose || !target.pose.p.allFinite() || !target.pose.R.allFinite()) return 0;
+  const ClosedFormSolutions s = closed_solve(*arm_, chain, target.pose, limits_);
+  double d[ClosedFormSolutions::kMaxSolutions];
+  int index[ClosedFormSolutions::kMaxSolutions], count = 0;
+  for (int k = 0; k < s.count(); ++k) {
+    if (!s.within_limits[k]) continue;
+    d[k] = 0.0;
+    for (int i = 0; i < n_; ++i) d[k] += (s.row(k)[i] - q_ref[i]) * (s.row(k)[i] - q_ref[i]);
+    int j = count++;  // insertion into index, nearest first (at most 8 rows)
+    for (; j > 0 && d[index[j - 1]] > d[k]; --j) index[j] = index[j - 1];
+    index[j] = k;
+  }
+  for (int j = 0; j < count; ++j) std::copy(s.row(index[j]), s.row(index[j]) + n_, out + j * n_);
+  return count;
+}
+
+void IkStarts::nearest(const Chain& chain, const Target& target, int count, int* out) const {
+  const Stored& s = stored(chain);
   double d[kCount];
   int index[kCount];
-  for (int k = 0; k < kCount; ++k) d[k] = distance(target, k), index[k] = k;
+  for (int k = 0; k < kCount; ++k) d[k] = s.distance(target, k), index[k] = k;
   count = std::min(count, kCount);
   // NaN distances (a start whose tool is not finite) sort last.
   const auto closer = [&](int a, int b) { return d[a] < d[b] || (std::isnan(d[b]) && !std::isnan(d[a])); };

@@ -106,7 +106,7 @@ void bind_references(py::module_& m) {
       [](const Chain& chain) {
         const IkStarts& starts = chain.ik_starts();
         py::array_t<double> out({static_cast<py::ssize_t>(IkStarts::kCount), static_cast<py::ssize_t>(chain.dof())});
-        std::copy(starts.q(0), starts.q(0) + IkStarts::kCount * chain.dof(), out.mutable_data());
+        std::copy(starts.q(chain, 0), starts.q(chain, 0) + IkStarts::kCount * chain.dof(), out.mutable_data());
         return out;
       },
       py::arg("chain"));

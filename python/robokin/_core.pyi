@@ -1154,7 +1154,7 @@ class IKOptions:
     """
     __hash__: typing.ClassVar[None] = None
     fields: typing.ClassVar[tuple] = ('method', 'task', 'tol_p', 'tol_r', 'max_iter', 'restarts', 'timeout', 'damping', 'stall_window')
-    kinds: typing.ClassVar[tuple] = ('str', 'None or str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'int')
+    kinds: typing.ClassVar[tuple] = ('str', 'None or str', 'float', 'float', 'int', 'None or int', 'None or float', 'None or float', 'None or int')
     def __eq__(self, arg0: typing.Any) -> bool:
         ...
     def __getstate__(self) -> dict:
@@ -1198,18 +1198,18 @@ class IKOptions:
     @property
     def restarts(self) -> int | None:
         """
-        Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+        Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: for a pose target on a 6R arm with a closed form (robokin.closed.family), first from its closed-form solutions within the limits, nearest q0 first; then 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target; the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
         """
     @restarts.setter
     def restarts(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
         ...
     @property
-    def stall_window(self) -> int:
+    def stall_window(self) -> int | None:
         """
-        With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
+        With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped. None: 3 for a pose target on an arm with a closed form (its restarts start from the closed-form solutions, which solve at once), 6 otherwise.
         """
     @stall_window.setter
-    def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def stall_window(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
         ...
     @property
     def task(self) -> str | None:
@@ -1339,7 +1339,7 @@ class IKSolver:
         ...
     def __init__(self, chain: Chain, *, seed: int | None = None, **kwargs) -> None:
         """
-        IKSolver(chain, *, seed=None, method='lm', task=None, tol_p=1e-09, tol_r=1e-09, max_iter=100, restarts=None, timeout=None, damping=None, stall_window=6)
+        IKSolver(chain, *, seed=None, method='lm', task=None, tol_p=1e-09, tol_r=1e-09, max_iter=100, restarts=None, timeout=None, damping=None, stall_window=None)
         
         The solver of chain with these options.
         
@@ -1349,10 +1349,10 @@ class IKSolver:
             tol_p (float, default 1e-09): Position tolerance (m).
             tol_r (float, default 1e-09): Orientation tolerance (rad): the rotation angle between the frames (pose), the planar angle (xyphi); unused for the other tasks.
             max_iter (int, default 100): Iterations per attempt.
-            restarts (None or int, default None): Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
+            restarts (None or int, default None): Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: for a pose target on a 6R arm with a closed form (robokin.closed.family), first from its closed-form solutions within the limits, nearest q0 first; then 8 from the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target; the rest from random configurations drawn uniformly within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given (on an unreachable target they all run).
             timeout (None or float, default None): Time budget in seconds for all the attempts (checked every few iterations), counted in the solving thread's CPU time: a busy machine does not cut a search short (the wall time is then longer). None: IK_DEFAULTS['timeout'] (5 ms) when restarts is None, no budget when restarts is an int. An unreachable target costs the whole budget.
             damping (None or float, default None): lm: initial damping relative to max diag(J^T J) (default 1e-1); nr: lambda of the damped pseudoinverse (default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.
-            stall_window (int, default 6): With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped.
+            stall_window (None or int, default None): With restarts left, an attempt whose squared error has not halved over this many iterations is dropped for a restart; 0: never dropped. None: 3 for a pose target on an arm with a closed form (its restarts start from the closed-form solutions, which solve at once), 6 otherwise.
         """
     def __repr__(self) -> str:
         ...

@@ -29,8 +29,10 @@ options once; ``solver.solve(target, q0)`` then costs only the solve.
 Defaults (``IK_DEFAULTS``, read from the C++ core's ``IkOptions``, the one place they are written):
 ``lm``, the chain's natural task (``task`` None: ``chain.natural_task``), tolerances 1e-9 m and
 1e-9 rad, 100 iterations per attempt, and, with neither ``restarts`` nor ``timeout`` given,
-restarts until a solution is found (first from the chain's stored configurations whose tools are
-nearest the target, then from random configurations within the limits) or the time budget of
+restarts until a solution is found (for a pose target on a 6R arm with a closed form, first from
+its closed-form solutions within the limits, nearest ``q0`` first; then from the chain's stored
+configurations whose tools are nearest the target; then from random configurations within the
+limits) or the time budget of
 ``IK_DEFAULTS["timeout"]`` = 5 ms (of the solving thread's CPU time, so
 that a busy machine does not cut the search short) runs out. A reachable target is then
 solved (>= 99.9 % of random reachable targets of every catalogue arm in

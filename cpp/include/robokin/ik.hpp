@@ -33,6 +33,11 @@ constexpr int kMaxRestarts = 1000000;
 // The time budget of a solve given neither restarts nor a timeout (seconds of CPU time).
 constexpr double kDefaultIkTimeout = 5e-3;
 
+// IkOptions::stall_window when unset: the longer window spares an attempt that may still converge
+// when the restart after it is a random guess; a closed-form restart solves at once, so a crawling
+// attempt is dropped sooner (benchmarks/bench_ik_latency.py measures both).
+constexpr int kStallWindow = 6, kStallWindowClosed = 3;
+
 // The options of a solve: the one place the defaults are written (the bindings bind these fields
 // one by one and show the resolved defaults to Python as robokin.IK_DEFAULTS). By default a solve
 // restarts from random configurations within the limits until it succeeds or its time budget
@@ -44,9 +49,10 @@ struct IkOptions {
   double tol_p = 1e-9;     // position error (m): norm of the task's translational rows
   double tol_r = 1e-9;     // orientation error (rad): rotation angle (pose) or |phi error| (xyphi)
   int max_iter = 100;      // iterations per attempt
-  // Extra attempts, in [0, kMaxRestarts]: first from the chain's stored configurations nearest the
-  // target (ik_starts.hpp), then random ones within the limits. Unset: as many as the time budget
-  // allows.
+  // Extra attempts, in [0, kMaxRestarts]: first from the closed-form solutions of a pose target
+  // within the limits (a 6R arm whose geometry closed_family recognises), then from the chain's
+  // stored configurations nearest the target (ik_starts.hpp), then random ones within the limits.
+  // Unset: as many as the time budget allows.
   std::optional<int> restarts;
   // Seconds of the solving thread's CPU time for the whole solve (every attempt), so that a busy
   // machine does not cut a search short (the wall time may then be longer). Unset:
@@ -57,7 +63,9 @@ struct IkOptions {
   std::optional<double> damping;
   // With restarts left, an attempt whose cost |e|^2 has not halved over this many iterations is
   // dropped for a restart (a crawling attempt costs more than a fresh start); 0: never dropped.
-  int stall_window = 6;
+  // Unset: kStallWindowClosed for a pose target on an arm with a closed form (its restart starts
+  // from an exact solution), kStallWindow otherwise.
+  std::optional<int> stall_window;
 
   // Every option, its Python keyword and its doc, in order: the bindings bind exactly these (an
   // option added above and listed here reaches robokin.ik, ik_batch, IKSolver and IKOptions).
@@ -73,11 +81,11 @@ struct IkOptions {
           "unused for the other tasks.");
     field("max_iter", &IkOptions::max_iter, "Iterations per attempt.");
     field("restarts", &IkOptions::restarts,
-          "Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: the first 8 from "
-          "the chain's stored configurations (1,024 drawn once per chain) whose tools are nearest the target, the "
-          "rest from random configurations drawn uniformly within the limits (revolute joints without limits: "
-          "[-pi, pi]). None: as "
-          "many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
+          "Extra attempts when an attempt fails, at most 1,000,000, stopping at the first success: for a pose "
+          "target on a 6R arm with a closed form (robokin.closed.family), first from its closed-form solutions "
+          "within the limits, nearest q0 first; then 8 from the chain's stored configurations (1,024 drawn once "
+          "per chain) whose tools are nearest the target; the rest from random configurations drawn uniformly "
+          "within the limits (revolute joints without limits: [-pi, pi]). None: as many as the time budget allows. An int: at most that many, and no time budget unless timeout is given "
           "(on an unreachable target they all run).");
     field("timeout", &IkOptions::timeout,
           "Time budget in seconds for all the attempts (checked every few iterations), counted in the solving "
@@ -89,7 +97,8 @@ struct IkOptions {
           "(default 1e-6); halley: the same lambda (default 1e-9); unused by gn. None: the method's default.");
     field("stall_window", &IkOptions::stall_window,
           "With restarts left, an attempt whose squared error has not halved over this many iterations is dropped "
-          "for a restart; 0: never dropped.");
+          "for a restart; 0: never dropped. None: 3 for a pose target on an arm with a closed form (its restarts "
+          "start from the closed-form solutions, which solve at once), 6 otherwise.");
   }
 
   // Throws std::invalid_argument("name: ...") for an option out of range.
@@ -99,6 +108,7 @@ struct IkOptions {
   double budget() const { return timeout ? *timeout : (restarts ? 0.0 : kDefaultIkTimeout); }  // 0: none
   double damping_or_default() const { return damping ? *damping : default_damping(method); }
   Task task_for(const Chain& chain) const { return task ? *task : natural_task(chain); }
+  int stall_window_for(const Chain& chain, Task resolved_task) const;
   // A path warm-starts each target from the previous solution: a random restart could land on
   // another branch (a jump of the joints between neighbouring points), so unless restarts are given
   // it does not restart (and has no budget unless a timeout is given).
@@ -162,7 +172,7 @@ class IkSolver {
   // opt_ resolved: the task, restarts, time budget (0: none), damping, tol_r (inf for tasks without
   // orientation).
   Task task_ = Task::Pose;
-  int restarts_ = 0;
+  int restarts_ = 0, stall_window_ = kStallWindow;
   double timeout_ = 0.0, damping_ = 0.0, tol_r_ = 0.0;
   int n_ = -1, m_ = -1;
   // workspace: sized once, no allocation per iteration
