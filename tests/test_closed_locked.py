@@ -234,3 +234,21 @@ def test_the_held_value_stays_as_given():
     for limits in ("default", None):
         s = rk.closed.solve(panda.fk(q), panda, limits=limits, locked={5: 3.5})
         assert len(s) and np.all(s.q[:, 5] == 3.5) and angle_distance(s.q, q).min() < 1e-6
+
+
+def test_a_family_read_from_the_tool_serves_the_ik_restarts():
+    # The Panda's first six joints (its flange joint's frame as the tool): a spherical shoulder,
+    # axes 5, 6 meeting. rk.ik's restarts start from its closed-form solutions (reversed axes).
+    rows = [(0.0, 0.0, 0.333, 0.0, "R"), (0.0, -P / 2, 0.0, 0.0, "R"), (0.0, P / 2, 0.316, 0.0, "R"),
+            (0.0825, P / 2, 0.0, 0.0, "R"), (-0.0825, -P / 2, 0.384, 0.0, "R"), (0.0, P / 2, 0.0, 0.0, "R")]
+    tool = np.eye(4)
+    tool[0, 3] = 0.088
+    chain = rk.Chain.from_dh(rows, modified=True, tool=tool)
+    assert rk.closed.family(chain).name == "spherical shoulder, axes 5, 6 meet"
+    rng = np.random.default_rng(9)
+    for q in rng.uniform(-2.5, 2.5, (20, 6)):
+        T = chain.fk(q)
+        r = rk.ik(chain, T, np.zeros(6), seed=1)
+        assert r.success and np.abs(chain.fk(r.q) - T).max() < 1e-8
+        s = rk.closed.solve(T, chain, limits=None)
+        assert angle_distance(s.q, q).min() < 1e-6 and angle_distance(s.q, r.q).min() < 1e-5

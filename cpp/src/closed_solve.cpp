@@ -270,7 +270,7 @@ ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int
     throw std::invalid_argument(std::string(held >= 0 ? "locked" : "chain") + ": no closed form for this arm" +
                                 (held >= 0 ? " with q[" + std::to_string(held) + "] held" : "") + " (" +
                                 arm.family.reason + ")");
-  arm.solved = arm.family.reversed ? reversed_axes(arm.axes) : arm.axes;
+  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);
   return arm;
 }
 
@@ -282,9 +282,13 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
   if (arm.family.reversed) G = G.inverse();
   const FamilyKind kind = arm.family.kind;
-  if (kind == FamilyKind::ThreeParallel) solve_parallel(arm.solved, arm.family.center, G, c);
-  else if (kind == FamilyKind::WristMeet) solve_meet(arm.solved, arm.family.center, arm.family.shoulder, G, c);
-  else solve_spherical(arm.solved, arm.family.center, G, c);
+  // An arm assembled by hand (axes and family, not closed_arm) has no reversed axes yet: read here.
+  JointAxes local;
+  if (arm.family.reversed && arm.solved.axis.size() != 6) local = reversed_axes(arm.axes);
+  const JointAxes& g = !arm.family.reversed ? arm.axes : arm.solved.axis.size() == 6 ? arm.solved : local;
+  if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
+  else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
+  else solve_spherical(g, arm.family.center, G, c);
   const int n = 6 + (arm.held >= 0);
   for (int k = 0; k < c.m; ++k)
     for (int i = 0, j = 0; i < n; ++i)

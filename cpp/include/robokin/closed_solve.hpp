@@ -31,12 +31,13 @@
 namespace robokin {
 
 // An arm's geometry as the closed form reads it, once: the axes of the 6R solved (a 7-joint chain's
-// with one joint held: locked_axes), its family, and the axes the family's solver reads (reversed:
-// the family holds from the tool to the base).
+// with one joint held: locked_axes), its family, and, when the family holds from the tool to the
+// base (family.reversed), the reversed axes its solver reads (closed_arm fills them; an arm made
+// from axes and family alone has them read at each solve).
 struct ClosedArm {
   JointAxes axes;
   ClosedFamily family;
-  JointAxes solved;
+  JointAxes solved;  // reversed_axes(axes) when family.reversed, else empty
   int held = -1;  // the held joint (0-based), or -1
   double held_value = 0;
 };
