@@ -12,6 +12,9 @@ for the before / after figures of benchmarks/README.md.
   (their DH tables without theta offsets, as EAIK's DhRobot takes them), after checking that both
   return the same solutions on every pose; goal <= 0.5 x EAIK per call. The batch of 1e6 poses on
   every core (``solve_batch``) against EAIK's ``IK_batched`` with as many threads.
+- The KUKA iiwa 14 with one joint held (``ClosedSolver(chain, locked={j: v})``, 7-vectors) against
+  EAIK's ``DhRobot(..., fixed_axes=[(j, v)])``: for each joint, whether each finds a decomposition,
+  and for those both solve, the same solutions on 200 poses and the time per call.
 """
 
 from __future__ import annotations
@@ -64,7 +67,7 @@ def per_call_figures(goals):
 
 def same_solutions(ours, theirs):
     """Every exact EAIK solution is one of robokin's and the other way round (angles to 1e-6)."""
-    q = np.asarray(theirs.Q)[~np.asarray(theirs.is_LS, bool)] if theirs.num_solutions() else np.zeros((0, 6))
+    q = np.asarray(theirs.Q)[~np.asarray(theirs.is_LS, bool)] if theirs.num_solutions() else np.zeros((0, ours.dof))
     gap = lambda a, b: np.abs(np.remainder(a[:, None, :] - b[None, :, :] + P, 2 * P) - P).max(axis=2)  # noqa: E731
     if len(q) != len(ours) or (len(q) and (gap(q, ours.q).min(axis=1).max() > 1e-6)):
         raise AssertionError(f"EAIK and robokin disagree: {len(q)} against {len(ours)} solutions")
@@ -101,9 +104,46 @@ def eaik_figures(goals):
     return goals
 
 
+# The iiwa 14's standard DH table (robokin.robots.iiwa14: a = 0, no theta offsets).
+IIWA14 = ((0.0,) * 7, (-P / 2, P / 2, P / 2, -P / 2, -P / 2, P / 2, 0.0), (0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126))
+
+
+def held_figures(goals):
+    """The iiwa 14 with each joint held: robokin's family against EAIK's, then the time per call."""
+    try:
+        from eaik.IK_DH import DhRobot
+    except ImportError:
+        print("EAIK not installed: the held-joint comparison not measured")
+        return goals
+    a, alpha, d = (np.array(v, float) for v in IIWA14)
+    iiwa = rk.robots.iiwa14()
+    rng = np.random.default_rng(2)
+    for j in range(7):
+        Q = rng.uniform(-2.0, 2.0, (200, 7))
+        Q[:, j] = 0.3
+        bot = DhRobot(alpha, a, d, fixed_axes=[(j, 0.3)])
+        fam = rk.closed.family(iiwa, locked={j: 0.3})
+        line = f"iiwa 14, q[{j}] held at 0.3: robokin {fam.name!r}, EAIK {bot.getKinematicFamily()!r}"
+        if not (fam.solvable and bot.hasKnownDecomposition()):
+            print(line)
+            continue
+        solver = rk.closed.ClosedSolver(iiwa, None, locked={j: 0.3})
+        poses = list(iiwa.fk(Q))
+        for T in poses:
+            same_solutions(solver.solve(T), bot.IK(T))
+        ns = {"solver": solver, "bot": bot, "frames": itertools.cycle(poses), "nxt": next}
+        ours, theirs = per_call_interleaved(["solver.solve(nxt(frames))", "bot.IK(nxt(frames))"], ns)
+        print(f"{line}: robokin {fmt(ours[0])}, EAIK {fmt(theirs[0])}: {ours[0] / theirs[0]:.3f} x "
+              f"(the same solutions on 200 poses)")
+        goal(goals, f"ClosedSolver(locked=).solve per call vs EAIK fixed_axes, iiwa 14 q[{j}]", ours[0] / theirs[0],
+             "x", 0.5, "EAIK, same run")
+    return goals
+
+
 def main():
     goals = per_call_figures([])
-    return eaik_figures(goals)
+    goals = eaik_figures(goals)
+    return held_figures(goals)
 
 
 if __name__ == "__main__":

@@ -61,7 +61,8 @@ def test_an_offset_wrist_says_how_far_its_axes_miss():
 
 
 def test_chains_without_six_revolute_joints():
-    assert rk.closed.family(rk.robots.iiwa14()).reason == "6 revolute joints needed: the chain has 7 joints"
+    assert rk.closed.family(rk.robots.iiwa14()).reason == (
+        "6 revolute joints needed: the chain has 7 joints; hold one (locked={index: value}) to solve the 6 others")
     assert "some prismatic" in rk.closed.family(rk.robots.rpr()).reason
 
 

@@ -5,14 +5,14 @@ off singularities, the joints a pose was made from are among them."""
 import math
 
 import numpy as np
-from fuzz import arrays, assert_finite, check_call, finite_arrays, wild_floats
+from fuzz import arrays, assert_finite, check_call, finite_arrays, small_ints, wild_floats
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import robokin as rk
 
 COVERS = {"ClosedSolver.__init__", "ClosedSolver.solve", "ClosedSolver.solve_batch", "ClosedSolver.chain",
-          "ClosedSolver.limits", "ClosedSolver.family", "closed.family", "closed.solve"}
+          "ClosedSolver.limits", "ClosedSolver.family", "ClosedSolver.locked", "closed.family", "closed.solve"}
 
 P = math.pi
 UR5 = rk.robots.ur5()
@@ -76,3 +76,41 @@ def test_family_and_solve_any_chain(rows, tol, q):
             size = sum(abs(r[0]) + abs(r[2]) for r in rows)
             assert np.all(np.abs(chain.fk(s.q)[:, :3, 3] - T[:3, 3]) <= 1e-9 * size + 1e-12)
         assert rk.closed.ClosedSolver(chain, None, tol=tol).family == f.name
+
+
+dh7_rows = st.lists(st.tuples(st.sampled_from([0.0, 0.0, 0.3, -0.1]), st.sampled_from([0.0, P / 2, -P / 2, 0.7]),
+                              st.sampled_from([0.0, 0.0, 0.4, 0.2]), st.floats(-P, P), st.just("R")),
+                    min_size=7, max_size=7)
+locks = st.one_of(st.none(), st.dictionaries(st.one_of(small_ints, st.floats(0, 6), st.booleans(), st.text(max_size=2)),
+                                             st.one_of(wild_floats, st.text(max_size=2), st.none()), max_size=2),
+                  st.lists(small_ints, max_size=2), wild_floats)
+
+
+@settings(max_examples=150)
+@given(dh7_rows, locks, finite_arrays((7,), -2 * P, 2 * P))
+def test_locked_any_chain_any_lock(rows, locked, q):
+    """Any lock on 7-joint chains (offsets and twists drawn to meet the families): a family, a
+    result or an error naming locked; every solution keeps the held value and reaches the pose."""
+    chain = rk.Chain.from_dh(rows)
+    f = check_call(lambda: rk.closed.family(chain, locked=locked), "locked")
+    if f is None:
+        return
+    assert f.solvable == (f.reason == "")
+    if locked:
+        (j, v), = locked.items()
+        q = q.copy()
+        q[j] = v
+    T = chain.fk(q)
+    solver = check_call(lambda: rk.closed.ClosedSolver(chain, None, locked), "locked")
+    if solver is None:
+        assert not f.solvable
+        return
+    assert solver.family == f.name and solver.locked == (locked and {j: float(v)})
+    s = solver.solve(T)
+    assert_finite(s.q)
+    if len(s):
+        assert s.q.shape[1] == 7 and np.all(s.q[:, j] == v)
+        size = sum(abs(r[0]) + abs(r[2]) for r in rows)
+        assert np.all(np.abs(chain.fk(s.q)[:, :3, 3] - T[:3, 3]) <= 1e-9 * size + 1e-12)
+    q8 = solver.solve_batch(T[None])[0]
+    assert q8.shape == (1, 8, 7) and int(np.sum(~np.isnan(q8[0, :, 0]))) == len(s)

@@ -243,8 +243,9 @@ def test_every_result_type_pickles_and_copies(name):
 
 
 def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
-    """An IKSolutions holds at most 8 solutions of at most 6 joints (inline, no allocation): a
-    state asking for more is refused with ValueError, not written past the end."""
+    """An IKSolutions holds at most 8 solutions of at most 7 joints (inline, no allocation; 7: a
+    7-joint arm with one joint held): a state asking for more is refused with ValueError, not
+    written past the end."""
     good = rk.closed.ur(rk.robots.ur5().fk(np.full(6, 0.4)), rk.robots.ur5())
     version, dof, q, postures, singular, within = good.__getstate__()
     copied = type(good).__new__(type(good))
@@ -252,11 +253,11 @@ def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
     assert np.array_equal(copied.q, good.q) and copied.postures == good.postures
     assert np.array_equal(copied.within_limits, good.within_limits)
     nine = (version, 6, np.zeros((9, 6)), ("a",) * 9, False, (True,) * 9)
-    seven_joints = (version, 7, np.zeros((1, 7)), ("a",), False, (True,))
+    eight_joints = (version, 8, np.zeros((1, 8)), ("a",), False, (True,))
     ragged = (version, 6, np.zeros((2, 5)), ("a", "b"), False, (True, True))
     unflagged = (version, 6, np.zeros((2, 6)), ("a", "b"), False, (True,))
-    for state in (nine, seven_joints, ragged, unflagged):
-        with pytest.raises(ValueError, match=r"IKSolutions state: q must have one row of dof \(1 to 6\) values "
+    for state in (nine, eight_joints, ragged, unflagged):
+        with pytest.raises(ValueError, match=r"IKSolutions state: q must have one row of dof \(1 to 7\) values "
                                              r"per posture and per within_limits flag, at most 8 rows"):
             type(good).__new__(type(good)).__setstate__(state)
 
@@ -275,3 +276,10 @@ def test_a_core_results_arrays_are_read_only_and_made_once(name):
         assert getattr(result, field) is getattr(result, field) or a.base is not None, (name, field)
         with pytest.raises(ValueError, match="read-only"):
             a[...] = 0
+
+
+def test_ik_solutions_of_a_held_joint_round_trip():
+    iiwa = rk.robots.iiwa14()
+    s = rk.closed.solve(iiwa.fk(np.full(7, 0.3)), iiwa, locked={2: 0.3})
+    back = pickle.loads(pickle.dumps(s))
+    assert back.q.shape == (8, 7) and np.array_equal(back.q, s.q) and back.postures == s.postures

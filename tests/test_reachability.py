@@ -170,3 +170,24 @@ def test_figure_slices_and_projection(tmp_path, planar_map):
         plot_reachability(planar_map, axis="x")
     with pytest.raises(ValueError, match="slices"):
         plot_reachability(m3, slices=[np.nan])
+
+
+def test_an_arm_with_a_closed_form_is_mapped_by_it():
+    # The UR5's map is made with its closed form: every target the numerical batch IK solves (a
+    # solution checked by FK) the closed form solves too, with a manipulability at least as good (to
+    # the IK's 1e-6 tolerance), and at most a few more (the restarts' misses).
+    import dataclasses
+
+    chain = rk.robots.ur5()
+    p = R.plan(chain, ((-0.9, 0.9), (-0.9, 0.9), (0.0, 0.6)), 0.3, orientations=12, seed=5)
+    assert p.closed is not None and p.closed.family == "three parallel axes 2, 3, 4"
+    closed = rk.reachability(chain, ((-0.9, 0.9), (-0.9, 0.9), (0.0, 0.6)), 0.3, orientations=12, seed=5)
+    numeric = dataclasses.replace(p, closed=None)
+    ik = numeric.result(*numeric.block(0, numeric.voxels))
+    assert np.all(ik.index <= closed.index) and np.abs(ik.index - closed.index).mean() < 0.02
+    both = (ik.index > 0) & (closed.index > 0)
+    assert both.sum() > 10 and np.all(ik.manipulability[both] <= closed.manipulability[both] + 1e-5)
+    assert np.all((closed.manipulability > 0) == (closed.index > 0))
+    # Arms without one, and the other tasks, keep the IK.
+    assert R.plan(rk.robots.panda(), ((0, 0.2),) * 3, 0.1).closed is None
+    assert R.plan(chain, ((0, 0.2),) * 3, 0.1, task="position").closed is None

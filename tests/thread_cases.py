@@ -269,6 +269,18 @@ def _closed_cases():
 
 FAMILY_ARMS = ["ur5", "puma560", "irb120", "ur3.urdf", "ur10e"]
 CLOSED_SOLVERS = [rk.closed.ClosedSolver(M[n], limits=(None, "default")[k % 2]) for k, n in enumerate(FAMILY_ARMS)]
+# 7-joint arms with one joint held (the families of the joints left, read from the base or the tool).
+HELD = [("iiwa14", {2: 0.4}), ("panda", {6: 0.3}), ("gen3", {0: -0.5}), ("iiwa14", {5: -0.7})]
+CLOSED_SOLVERS += [rk.closed.ClosedSolver(M[n], limits=(None, "default")[k % 2], locked=lock)
+                   for k, (n, lock) in enumerate(HELD)]
+
+
+def _held_q(name, lock, k):
+    """Joints within limits with the held joint at its value."""
+    q = _q(M[name], k)
+    (j, v), = lock.items()
+    q[j] = v
+    return q
 
 
 def _family_cases():
@@ -277,13 +289,19 @@ def _family_cases():
     c["closed.family"].append(lambda: rk.closed.family(M["puma560"], tol=1e-3))
     c["closed.solve"] = [lambda n=n, k=k: rk.closed.solve(M[n].fk(_q(M[n], k + 30)), M[n], limits=(None, "default")[k % 2])
                          for k, n in enumerate(FAMILY_ARMS)]
+    c["closed.family"] += [lambda n=n, lock=lock: rk.closed.family(M[n], locked=lock) for n, lock in HELD]
+    c["closed.family"].append(lambda: rk.closed.family(M["iiwa14"], locked={3: 0.2}))  # none: why
+    c["closed.solve"] += [lambda n=n, lock=lock, k=k: rk.closed.solve(M[n].fk(_held_q(n, lock, k + 35)), M[n],
+                                                                      locked=lock) for k, (n, lock) in enumerate(HELD)]
     c["ClosedSolver.__init__"] = [lambda n=n, k=k: rk.closed.ClosedSolver(M[n]).solve(M[n].fk(_q(M[n], k + 40)))
                                   for k, n in enumerate(FAMILY_ARMS)]
+    c["ClosedSolver.__init__"] += [lambda n=n, lock=lock, k=k: rk.closed.ClosedSolver(M[n], locked=lock).solve(
+        M[n].fk(_held_q(n, lock, k + 45))) for k, (n, lock) in enumerate(HELD)]
     c["ClosedSolver.solve"] = [lambda s=s, k=k: s.solve(s.chain.fk(_q(s.chain, k + 50)))
                                for k, s in enumerate(CLOSED_SOLVERS)]
     c["ClosedSolver.solve_batch"] = [lambda s=s, k=k: s.solve_batch(s.chain.fk(_q(s.chain, k + 60, 4)))
                                      for k, s in enumerate(CLOSED_SOLVERS)]
-    for attr in ("chain", "family", "limits"):
+    for attr in ("chain", "family", "limits", "locked"):
         c[f"ClosedSolver.{attr}"] = [lambda s=s, a=attr: getattr(s, a) for s in CLOSED_SOLVERS]
     return c
 

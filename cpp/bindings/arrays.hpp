@@ -49,6 +49,9 @@ struct MeasureTag {
 struct NullspaceTag {
   static constexpr char text[] = "typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None";
 };
+struct LockedTag {  // a closed form's held joint: {index: value}
+  static constexpr char text[] = "dict[int, float] | None";
+};
 struct OptionalArrayTag {
   static constexpr char text[] = "numpy.typing.ArrayLike | None";
 };
@@ -62,6 +65,7 @@ using OutArray = Typed<OutTag>;
 using MeasureName = Typed<MeasureTag>;
 using NullspaceLike = Typed<NullspaceTag>;
 using OptionalArrayLike = Typed<OptionalArrayTag>;
+using LockedLike = Typed<LockedTag>;
 
 }  // namespace robokin::bind
 

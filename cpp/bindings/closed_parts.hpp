@@ -18,15 +18,16 @@ URArm ur_arm_arg(const Chain& chain);
 // that is not a rigid transform.
 std::vector<Rigid> rigid_frames(ArrayLike targets, const char* name);
 
-// A 6R closed form's batch on (N, 4, 4) frames, the GIL released: (q (N, 8, 6), singular (N,),
-// within_limits (N, 8)). batch(targets, count, q, within_limits, singular, progress) runs the core's
-// batch (ik_ur_batch, closed_solve_batch) for its arm; `what` names it in progress reports.
+// A 6R closed form's batch on (N, 4, 4) frames, the GIL released: (q (N, 8, dof), singular (N,),
+// within_limits (N, 8)); dof is 7 when a seventh joint is held. batch(targets, count, q,
+// within_limits, singular, progress) runs the core's batch (ik_ur_batch, closed_solve_batch) for
+// its arm; `what` names it in progress reports.
 template <class Batch>
-pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const Batch& batch) {
+pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const Batch& batch, int dof = 6) {
   namespace py = pybind11;
   const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
   const long count = static_cast<long>(targets.size());
-  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, 6});
+  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, static_cast<py::ssize_t>(dof)});
   py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
   py::array_t<bool> singular(static_cast<py::ssize_t>(count));
   double* qd = q.mutable_data();

@@ -206,7 +206,7 @@ ClosedFormSolutions solutions_from_state(const py::tuple& t) {
   if (s.dof < 1 || s.dof > ClosedFormSolutions::kMaxDof ||
       postures.size() > static_cast<size_t>(ClosedFormSolutions::kMaxSolutions) ||
       q.size() != static_cast<py::ssize_t>(postures.size()) * s.dof || within.size() != postures.size())
-    fail("IKSolutions state: q must have one row of dof (1 to 6) values per posture and per within_limits "
+    fail("IKSolutions state: q must have one row of dof (1 to 7) values per posture and per within_limits "
          "flag, at most 8 rows");
   std::lock_guard<std::mutex> lock(labels_mutex);
   for (size_t k = 0; k < postures.size(); ++k)

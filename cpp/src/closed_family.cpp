@@ -36,9 +36,13 @@ double line_distance(const JointAxes& g, int i, int j, Eigen::Vector3d* nearest 
   return std::abs(w.dot(n)) / s;
 }
 
-std::string axes_text(std::initializer_list<int> axes) {  // 0-based in, "axes 2, 3, 4" out
+// "axes 2, 3, 4": the joint numbers of g's axes at the 0-based indices, in increasing order.
+std::string axes_text(const JointAxes& g, std::initializer_list<int> axes) {
+  std::vector<int> numbers;
+  for (int i : axes) numbers.push_back(g.number[i]);
+  std::sort(numbers.begin(), numbers.end());
   std::string s = "axes ";
-  for (int i : axes) s += (s.size() > 5 ? ", " : "") + std::to_string(i + 1);
+  for (int n : numbers) s += (s.size() > 5 ? ", " : "") + std::to_string(n);
   return s;
 }
 
@@ -70,6 +74,79 @@ double parallel_gap(const JointAxes& g, int first, int last) {
   return gap;
 }
 
+// Distance of point x from the line of axis i.
+double point_line_distance(const JointAxes& g, int i, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d w = x - g.point[i];
+  return (w - w.dot(g.axis[i]) * g.axis[i]).norm();
+}
+
+// The family of a 6R's axes, read in g's order (the kinds of FamilyKind), its wrist centre and the
+// point where axes 1, 2 meet; `why` says why none holds, in g's joint numbers.
+struct Reading {
+  FamilyKind kind = FamilyKind::None;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(), shoulder = Eigen::Vector3d::Zero();
+  std::string why;
+};
+
+// Axes 1, 2 meet (not parallel) at `shoulder` and axis 3 passes through neither that point nor the
+// wrist centre c (else |c - shoulder| is the same for every q3: no posture or a continuum); `why`
+// says what fails otherwise.
+bool meets_first_two(const JointAxes& g, double tol, double tol_d, const Eigen::Vector3d& c,
+                     Eigen::Vector3d& shoulder, std::string& why) {
+  if (line_angle(g.axis[0], g.axis[1]) <= tol) return why = axes_text(g, {0, 1}) + " are parallel", false;
+  const double d12 = line_distance(g, 0, 1, &shoulder);
+  if (d12 > tol_d) return why = axes_text(g, {0, 1}) + " do not meet: " + mm(d12), false;
+  if (point_line_distance(g, 2, shoulder) <= tol_d)
+    return why = axes_text(g, {0, 1, 2}) + " meet in a point, as " + axes_text(g, {3, 4, 5}) +
+                 " do: the distance between the two points is the same for every posture (a continuum "
+                 "of solutions or none)", false;
+  if (point_line_distance(g, 2, c) <= tol_d)
+    return why = "axis " + std::to_string(g.number[2]) + " passes through the wrist centre", false;
+  return true;
+}
+
+Reading read_family(const JointAxes& g, double tol, double tol_d) {
+  Reading r;
+  const bool first_two = line_angle(g.axis[0], g.axis[1]) > tol;  // axis 1 not parallel to axis 2
+  // The UR family: axes 2, 3, 4 parallel, axes 5 and 6 meet (axis 5 not parallel to them).
+  const double par234 = parallel_gap(g, 1, 3);
+  Eigen::Vector3d c56;
+  const bool meet56 = line_angle(g.axis[4], g.axis[5]) > tol && line_distance(g, 4, 5, &c56) <= tol_d;
+  if (par234 <= tol && meet56 && first_two && line_angle(g.axis[1], g.axis[4]) > tol) {
+    r.kind = FamilyKind::ThreeParallel, r.center = c56;
+    return r;
+  }
+  const double wrist = wrist_gap(g, 3, r.center);
+  const double par23 = parallel_gap(g, 1, 2);
+  if (wrist <= tol_d && par23 <= tol && first_two) {
+    r.kind = FamilyKind::SphericalWrist;
+    return r;
+  }
+  std::string meet_why;
+  if (wrist <= tol_d && meets_first_two(g, tol, tol_d, r.center, r.shoulder, meet_why)) {
+    r.kind = FamilyKind::WristMeet;
+    return r;
+  }
+  std::string& why = r.why;
+  if (wrist <= tol_d) why = "spherical wrist, but " + axes_text(g, {1, 2}) + " are not parallel: " + degrees(par23) + " and " + meet_why;
+  else why = axes_text(g, {3, 4, 5}) + " do not meet: " + (std::isinf(wrist) ? axes_text(g, {3, 4}) + " parallel" : mm(wrist));
+  if (par234 <= tol) why += "; " + axes_text(g, {1, 2, 3}) + " are parallel, but " + axes_text(g, {4, 5}) + " do not meet";
+  else why += "; " + axes_text(g, {1, 2, 3}) + " are not parallel: " + degrees(par234);
+  if (!first_two) why += "; " + axes_text(g, {0, 1}) + " are parallel";
+  return r;
+}
+
+// The family's name in the chain's joint numbers: a reversed family's wrist is a shoulder.
+std::string family_name(FamilyKind kind, bool reversed, const JointAxes& g) {
+  const std::string end = reversed ? "spherical shoulder, " : "spherical wrist, ";
+  switch (kind) {
+    case FamilyKind::ThreeParallel: return "three parallel " + axes_text(g, {1, 2, 3});
+    case FamilyKind::SphericalWrist: return end + axes_text(g, {1, 2}) + " parallel";
+    case FamilyKind::WristMeet: return end + axes_text(g, {0, 1}) + " meet";
+    default: return "none";
+  }
+}
+
 }  // namespace
 
 void ClosedFamilyOptions::validate() const {
@@ -86,6 +163,7 @@ JointAxes joint_axes(const Chain& chain) {
       g.point.push_back(vec(F * joint.JointOrigin()));
       g.prismatic.push_back(joint.getType() == KDL::Joint::TransAxis || joint.getType() == KDL::Joint::TransX ||
                             joint.getType() == KDL::Joint::TransY || joint.getType() == KDL::Joint::TransZ);
+      g.number.push_back(static_cast<int>(g.number.size()) + 1);
     }
     const KDL::Frame tip = seg.pose(0.0);
     g.size += vec(tip.p).norm();
@@ -95,6 +173,52 @@ JointAxes joint_axes(const Chain& chain) {
   chain.fk(zero.data(), g.tool);
   g.size += (g.tool.p - vec(F.p)).norm();  // a tool the chain applies after its segments
   return g;
+}
+
+JointAxes locked_axes(const JointAxes& g, int joint, double value) {
+  const int n = static_cast<int>(g.axis.size());
+  if (g.held) throw std::invalid_argument("locked: a joint is already held");
+  if (joint < 0 || joint >= n)
+    throw std::invalid_argument("locked: joint index " + std::to_string(joint) + " out of range for a chain of " +
+                                std::to_string(n) + " joints (indices 0 to " + std::to_string(n - 1) + ")");
+  if (!std::isfinite(value)) throw std::invalid_argument("locked: the held value must be finite");
+  Rigid E;  // the held joint's motion, in the base frame
+  if (g.prismatic[joint]) {
+    E.p = value * g.axis[joint];
+  } else {
+    E.R = Eigen::AngleAxisd(value, g.axis[joint]).toRotationMatrix();
+    E.p = g.point[joint] - E.R * g.point[joint];
+  }
+  JointAxes out;
+  out.size = g.size, out.held = joint + 1, out.tool = E * g.tool;
+  for (int i = 0; i < n; ++i) {
+    if (i == joint) continue;
+    out.axis.push_back(i < joint ? g.axis[i] : Eigen::Vector3d(E.R * g.axis[i]));
+    out.point.push_back(i < joint ? g.point[i] : Eigen::Vector3d(E.R * g.point[i] + E.p));
+    out.prismatic.push_back(g.prismatic[i]);
+    out.number.push_back(g.number[i]);
+  }
+  return out;
+}
+
+JointAxes joint_axes(const Chain& chain, int held, double value) {
+  if (held < 0) return joint_axes(chain);
+  if (chain.dof() != 7)
+    throw std::invalid_argument("locked: holding a joint needs a chain of 7 joints (the 6 others are solved); "
+                                "this one has " + std::to_string(chain.dof()));
+  return locked_axes(joint_axes(chain), held, value);
+}
+
+JointAxes reversed_axes(const JointAxes& g) {
+  JointAxes r;
+  r.size = g.size, r.held = g.held;
+  for (int i = static_cast<int>(g.axis.size()) - 1; i >= 0; --i) {
+    r.axis.push_back(-g.axis[i]);
+    r.point.push_back(g.point[i]);
+    r.prismatic.push_back(g.prismatic[i]);
+    r.number.push_back(g.number[i]);
+  }
+  return r;  // identity tool: the reversed problem is solved for G^-1
 }
 
 ClosedFamily closed_family(const Chain& chain, const ClosedFamilyOptions& options) {
@@ -108,38 +232,27 @@ ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& option
   const int n = static_cast<int>(g.axis.size());
   f.tol_distance = options.tol * std::max(g.size, 1e-300);
   for (int i = 0; i + 1 < n; ++i) {
-    if (line_angle(g.axis[i], g.axis[i + 1]) <= options.tol) f.parallel.emplace_back(i + 1, i + 2);
-    else if (line_distance(g, i, i + 1) <= f.tol_distance) f.meet.emplace_back(i + 1, i + 2);
+    const std::pair<int, int> pair(g.number[i], g.number[i + 1]);
+    if (line_angle(g.axis[i], g.axis[i + 1]) <= options.tol) f.parallel.push_back(pair);
+    else if (line_distance(g, i, i + 1) <= f.tol_distance) f.meet.push_back(pair);
   }
   if (n != 6 || std::any_of(g.prismatic.begin(), g.prismatic.end(), [](bool p) { return p; })) {
     f.reason = "6 revolute joints needed: the chain has " + std::to_string(n) + " joints" +
-               (std::count(g.prismatic.begin(), g.prismatic.end(), true) ? ", some prismatic" : "");
+               (std::count(g.prismatic.begin(), g.prismatic.end(), true) ? ", some prismatic" : "") +
+               (n == 7 && !g.held ? "; hold one (locked={index: value}) to solve the 6 others" : "");
     return f;
   }
-  const bool first_two = line_angle(g.axis[0], g.axis[1]) > options.tol;  // axis 1 not parallel to axis 2
-  // The UR family: axes 2, 3, 4 parallel, axes 5 and 6 meet (axis 5 not parallel to them).
-  const double par234 = parallel_gap(g, 1, 3);
-  Eigen::Vector3d c56;
-  const bool meet56 = line_angle(g.axis[4], g.axis[5]) > options.tol &&
-                      line_distance(g, 4, 5, &c56) <= f.tol_distance;
-  if (par234 <= options.tol && meet56 && first_two && line_angle(g.axis[1], g.axis[4]) > options.tol) {
-    f.kind = FamilyKind::ThreeParallel, f.name = "three parallel axes 2, 3, 4", f.center = c56;
-    return f;
+  Reading r = read_family(g, options.tol, f.tol_distance);
+  if (r.kind == FamilyKind::None) {
+    const Reading back = read_family(reversed_axes(g), options.tol, f.tol_distance);
+    if (back.kind == FamilyKind::None) {
+      f.reason = r.why + "; from the tool: " + back.why.substr(0, back.why.find(';'));
+      return f;
+    }
+    r = back, f.reversed = true;
   }
-  Eigen::Vector3d c456;
-  const double wrist = wrist_gap(g, 3, c456);
-  const double par23 = parallel_gap(g, 1, 2);
-  if (wrist <= f.tol_distance && par23 <= options.tol && first_two) {
-    f.kind = FamilyKind::SphericalWrist, f.name = "spherical wrist, axes 2, 3 parallel", f.center = c456;
-    return f;
-  }
-  std::string why;
-  if (wrist <= f.tol_distance) why = "spherical wrist, but " + axes_text({1, 2}) + " are not parallel: " + degrees(par23);
-  else why = axes_text({3, 4, 5}) + " do not meet: " + (std::isinf(wrist) ? "axes 4, 5 parallel" : mm(wrist));
-  if (par234 <= options.tol) why += "; " + axes_text({1, 2, 3}) + " are parallel, but axes 5, 6 do not meet";
-  else why += "; " + axes_text({1, 2, 3}) + " are not parallel: " + degrees(par234);
-  if (!first_two) why += "; axes 1, 2 are parallel";
-  f.reason = why;
+  f.kind = r.kind, f.center = r.center, f.shoulder = r.shoulder;
+  f.name = family_name(r.kind, f.reversed, f.reversed ? reversed_axes(g) : g);
   return f;
 }
 

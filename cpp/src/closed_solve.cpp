@@ -128,6 +128,30 @@ void solve_spherical(const JointAxes& g, const V3& center, const Rigid& G, Candi
   }
 }
 
+// Spherical wrist, axes 1, 2 meeting at s: q3 (3) keeps the wrist centre |c - s| from s, then q1,
+// q2 (2) turn it onto c. The elbow's label: the turn about axis 3 from s to c.
+void solve_meet(const JointAxes& g, const V3& center, const V3& s, const Rigid& G, Candidates& out) {
+  const V3 c = G.R * center + G.p;
+  const V3 &h3 = g.axis[2], &p3 = g.point[2];
+  const SubproblemAngles t3 = subproblem3(h3, center - p3, s - p3, (c - s).norm());
+  out.singular = out.singular || t3.singular;
+  for (int j = 0; j < t3.count; ++j) {
+    double q[6] = {0, 0, t3.theta[j], 0, 0, 0};
+    const M3 R3 = axis_rotation(h3, q[2]);
+    SubproblemAngles t1, t2;
+    subproblem2(g.axis[0], g.axis[1], (p3 - s) + R3 * (center - p3), c - s, t1, t2);
+    out.singular = out.singular || t1.singular || t2.singular;
+    for (int i = 0; i < t1.count; ++i) {
+      q[0] = t1.theta[i], q[1] = t2.theta[i];
+      const M3 R1 = axis_rotation(g.axis[0], q[0]), R12 = R1 * axis_rotation(g.axis[1], q[1]);
+      const V3 a3 = R12 * h3, p3w = s + R12 * (p3 - s);
+      const V3 e = p3w + (s - p3w).dot(a3) * a3;
+      const int elbow = t3.singular ? ((e - s).dot(c - e) >= 0 ? 2 : 3) : (a3.dot((s - e).cross(c - e)) > 0 ? 0 : 1);
+      wrist(g, R12 * R3, G.R, q, shoulder_label(g, R1, c, t1.singular), elbow, out);
+    }
+  }
+}
+
 // q6 (into q6) and q2 + q3 + q4 (returned) of the three-parallel family for q1 and q5: R16 = R1^T
 // R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
 // singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
@@ -205,11 +229,16 @@ void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candid
 // Newton steps on the chain's forward model from a candidate that misses T by rounding alone: near a
 // singularity a subproblem's two solutions are taken as one (a cosine within kSubproblemEps of 1,
 // ~1e-6 rad) and the angles that follow carry that error. The pseudo-inverse (singular values below
-// 1e-10 of the largest dropped) takes the least step. F is the candidate's frame, updated.
-void polish(const Chain& chain, const Rigid& T, double* q, Rigid& F) {
+// 1e-10 of the largest dropped) takes the least step, moving every joint but the held one. F is the
+// candidate's frame, updated.
+void polish(const Chain& chain, const Rigid& T, int held, double* q, Rigid& F) {
+  const int n = chain.dof();
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, ClosedFormSolutions::kMaxDof> Jfull(6, n);
   Eigen::Matrix<double, 6, 6> J;
   for (int step = 0; step < 4; ++step) {
-    chain.fk_jacobian(q, F, J.data());
+    chain.fk_jacobian(q, F, Jfull.data());
+    for (int i = 0, k = 0; i < n; ++i)
+      if (i != held) J.col(k++) = Jfull.col(i);
     Eigen::Matrix<double, 6, 1> e;
     e.head<3>() = T.p - F.p;
     const Eigen::AngleAxisd turn(T.R * F.R.transpose());
@@ -220,7 +249,8 @@ void polish(const Chain& chain, const Rigid& T, double* q, Rigid& F) {
     Eigen::Matrix<double, 6, 1> dq = Eigen::Matrix<double, 6, 1>::Zero(), ut = svd.matrixU().transpose() * e;
     for (int i = 0; i < 6; ++i)
       if (sv(i) > 1e-10 * sv(0)) dq += (ut(i) / sv(i)) * svd.matrixV().col(i);
-    for (int i = 0; i < 6; ++i) q[i] += dq(i);
+    for (int i = 0, k = 0; i < n; ++i)
+      if (i != held) q[i] += dq(k++);
   }
   chain.fk(q, F);
 }
@@ -231,41 +261,75 @@ bool reaches(const Rigid& F, const Rigid& T, double size) {
 
 }  // namespace
 
-ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options) {
-  ClosedArm arm{joint_axes(chain), {}};
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
+  ClosedArm arm;
+  arm.axes = joint_axes(chain, held, held_value);
+  if (held >= 0) arm.held = held, arm.held_value = held_value;
   arm.family = closed_family(arm.axes, options);
   if (arm.family.kind == FamilyKind::None)
-    throw std::invalid_argument("chain: no closed form for this arm (" + arm.family.reason + ")");
+    throw std::invalid_argument(std::string(held >= 0 ? "locked" : "chain") + ": no closed form for this arm" +
+                                (held >= 0 ? " with q[" + std::to_string(held) + "] held" : "") + " (" +
+                                arm.family.reason + ")");
+  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);
   return arm;
 }
+
+namespace {
+
+// The candidates of the arm's family for T as the chain's joint vectors, packed (rows of n =
+// chain.dof() values into q): read back from the reversed axes, the held joint's value in its place.
+int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
+  Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
+  if (arm.family.reversed) G = G.inverse();
+  const FamilyKind kind = arm.family.kind;
+  // An arm assembled by hand (axes and family, not closed_arm) has no reversed axes yet: read here.
+  JointAxes local;
+  if (arm.family.reversed && arm.solved.axis.size() != 6) local = reversed_axes(arm.axes);
+  const JointAxes& g = !arm.family.reversed ? arm.axes : arm.solved.axis.size() == 6 ? arm.solved : local;
+  if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
+  else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
+  else solve_spherical(g, arm.family.center, G, c);
+  const int n = 6 + (arm.held >= 0);
+  for (int k = 0; k < c.m; ++k)
+    for (int i = 0, j = 0; i < n; ++i)
+      q[k * n + i] = i == arm.held ? arm.held_value : c.q[k][arm.family.reversed ? 5 - j++ : j++];
+  return n;
+}
+
+}  // namespace
 
 ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
                                  int* slot) {
   ClosedFormSolutions out;
-  out.dof = 6;
-  const Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
   Candidates c;
-  if (arm.family.kind == FamilyKind::ThreeParallel) solve_parallel(arm.axes, arm.family.center, G, c);
-  else solve_spherical(arm.axes, arm.family.center, G, c);
+  double q[8 * ClosedFormSolutions::kMaxDof];
+  const int n = out.dof = candidates(arm, T, c, q);
   out.singular = c.singular;
   if (c.m == 0) return out;
   bool fits[8];
-  fit_limits_rows(c.q[0], c.m, 6, limits, fits);
+  fit_limits_rows(q, c.m, n, limits, fits);
+  // The held joint keeps its value as given (within the limits, checked by the caller; without
+  // limits fit_limits would wrap it).
+  const auto keep_held = [&](double* row) {
+    if (arm.held >= 0) row[arm.held] = arm.held_value;
+  };
+  for (int k = 0; k < c.m; ++k) keep_held(q + k * n);
   Rigid F[8];
-  chain.fk_few(c.q[0], c.m, F);
+  chain.fk_few(q, c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
   // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
   for (int k = 0; k < c.m; ++k)
     if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
-      polish(chain, T, c.q[k], F[k]);
-      fits[k] = fit_limits(c.q[k], 6, limits);
-      chain.fk(c.q[k], F[k]);
+      polish(chain, T, arm.held, q + k * n, F[k]);
+      fits[k] = fit_limits(q + k * n, n, limits);
+      keep_held(q + k * n);
+      chain.fk(q + k * n, F[k]);
     }
   for (int k = 0; k < c.m; ++k) {
     if (!reaches(F[k], T, size)) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
-    out.add(c.q[k], label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
+    out.add(q + k * n, label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }
   return out;
 }
@@ -274,7 +338,7 @@ void closed_solve_batch(const ClosedArm& arm, const Chain& chain, const Rigid* t
                         const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
                         Progress* progress) {
   closed_batch(
-      count, 256, [&](long k, int* slot) { return closed_solve(arm, chain, targets[k], limits, slot); },
+      count, 256, chain.dof(), [&](long k, int* slot) { return closed_solve(arm, chain, targets[k], limits, slot); },
       q_out, within_limits, singular, progress);
 }
 

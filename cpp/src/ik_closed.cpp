@@ -826,7 +826,7 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
 void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, long count, const JointLimits& limits,
                  double* q_out, bool* within_limits, bool* singular, Progress* progress) {
   closed_batch(
-      count, 512, [&](long k, int* slot) { return ik_ur(arm, chain, targets[k], limits, slot); },
+      count, 512, 6, [&](long k, int* slot) { return ik_ur(arm, chain, targets[k], limits, slot); },
       q_out, within_limits, singular, progress);
 }
 

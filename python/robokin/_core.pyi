@@ -1144,15 +1144,18 @@ class ClosedSolver:
     solve. Nothing changes during a call: one solver may be shared by every thread; it pickles
     with its chain, limits and options.
     """
-    def __getstate__(self) -> tuple[int, typing.Any, typing.Any, ClosedFamilyOptions]:
+    def __getstate__(self) -> tuple[int, typing.Any, typing.Any, ClosedFamilyOptions, typing.Any]:
         ...
-    def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', **kwargs) -> None:
+    def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', locked: dict[int, float] | None = None, **kwargs) -> None:
         """
-        ClosedSolver(chain, limits='default', *, tol=1e-06)
+        ClosedSolver(chain, limits='default', locked=None, *, tol=1e-06)
         
         The closed form of chain: robokin.closed.ur's for a UR table, else the subproblems' for any
         arm robokin.closed.family recognises (ValueError saying why otherwise). limits: 'default'
-        for the chain's, None for none, or (lower, upper): for within_limits.
+        for the chain's, None for none, or (lower, upper): for within_limits. locked: None, or
+        {index: value} for a 7-joint chain, the joint (0-based, as in q) held at that value (within
+        limits) and the 6 others solved, as robokin.closed.solve: the value decides the family, so
+        a solver holds one value (a sweep makes one per value, or calls robokin.closed.solve).
         
         Options (keyword-only, ClosedFamilyOptions):
             tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
@@ -1167,8 +1170,9 @@ class ClosedSolver:
         """
     def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
         """
-        solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, 6), singular (N,),
-        within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES).
+        solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, dof), singular (N,),
+        within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES); dof is 7 with a
+        held joint (its value in its place), else 6.
         """
     @property
     def chain(self) -> typing.Any:
@@ -1184,6 +1188,11 @@ class ClosedSolver:
     def limits(self) -> typing.Any:
         """
         None or (lower, upper): the limits within_limits is measured against.
+        """
+    @property
+    def locked(self) -> typing.Any:
+        """
+        None, or {index: value}: the joint held.
         """
 class IKOptions:
     """
@@ -1614,11 +1623,12 @@ class ServoResult:
         """
         (K,) step times k dt.
         """
-def closed_family(chain: Chain, **kwargs) -> tuple:
+def closed_family(chain: Chain, locked: dict[int, float] | None = None, **kwargs) -> tuple:
     """
-    closed_family(chain, *, tol=1e-06)
+    closed_family(chain, locked=None, *, tol=1e-06)
     
-    The chain's decomposition: (name, solvable, reason, meet, parallel, tol_distance).
+    The chain's decomposition (with a joint held: locked={index: value}): (name, solvable, reason,
+    meet, parallel, tol_distance).
     
     Options (keyword-only, ClosedFamilyOptions):
         tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].

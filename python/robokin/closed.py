@@ -333,7 +333,10 @@ class Family:
     Attributes:
         name: ``"spherical wrist, axes 2, 3 parallel"`` (axes 4, 5, 6 meet in a point: the PUMA,
             KUKA KR, ABB IRB, Fanuc and Staubli arms), ``"three parallel axes 2, 3, 4"`` (axes 5
-            and 6 meeting: the UR family), or ``"none"``.
+            and 6 meeting: the UR family), ``"spherical wrist, axes 1, 2 meet"`` (the iiwa with
+            ``q[2]`` held), the same read from the tool (``"spherical shoulder, axes 5, 6 meet"``:
+            the Panda with ``q[6]`` held; ``"spherical shoulder, axes 4, 5 parallel"``, ``"three
+            parallel axes 3, 4, 5"``), or ``"none"``. Axes are named by their joint numbers.
         solvable: :func:`solve` has a closed form for it.
         reason: Why there is none (``"axes 4, 5, 6 do not meet: 3.2 mm apart; ..."``), else ``""``.
         meet: Consecutive axes (1-based pairs) whose lines meet.
@@ -351,26 +354,35 @@ class Family:
 
 
 @with_options(ClosedFamilyOptions)
-def family(chain: Chain, **options) -> Family:
+def family(chain: Chain, locked=None, **options) -> Family:
     """The decomposition of ``chain``'s geometry, read from its joint axes at the zero configuration
     (whatever the chain was built from: DH, modified DH, URDF, joints and frames): which
     consecutive axes meet or are parallel, within a tolerance relative to the arm's size, and
     which closed form :func:`solve` applies, or why none does.
 
+    A 7-joint chain has none by itself (a continuum of solutions); with one joint held,
+    ``locked={index: value}``, the family is that of the 6 others, whose axes the held joint
+    moves (so the value may matter: the iiwa with ``q[2] = 0`` has its axes 2 and 4 parallel).
+    Axes are named by their joint numbers in the chain (1-based; the held one skipped); a family
+    found from the tool to the base is a ``"spherical shoulder"``. See :func:`solve` for the
+    catalogue's 7-joint arms.
+
     Args:
         chain: A Chain.
+        locked: None, or ``{index: value}``: joint ``index`` (0-based, as in ``q``) of a 7-joint
+            chain held at ``value``.
 
     Returns:
         A :class:`Family`.
     """
     if not isinstance(chain, Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-    name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, **options)
+    name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, locked, **options)
     return Family(name, solvable, reason, tuple(map(tuple, meet)), tuple(map(tuple, parallel)), tol_distance)
 
 
 @with_options(ClosedFamilyOptions)
-def solve(target, chain: Chain, limits="default", **options) -> IKSolutions:
+def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKSolutions:
     """Every solution (up to 8) of a 6R arm whose geometry has a closed form (:func:`family`), for
     the tool frame ``target``: from the Paden-Kahan subproblems on the chain's joint axes (a UR
     table's own closed form, :func:`ur`, for a UR DH chain). URDF chains are read as they are.
@@ -383,16 +395,48 @@ def solve(target, chain: Chain, limits="default", **options) -> IKSolutions:
     in the plane normal to axis 2), ``"wrist no flip|flip"`` (the axes a4, a5, a6 at the solution
     with (a4 x a6) . a5 >= 0, or < 0); ``"shoulder singular"``, ``"elbow straight|folded"`` and
     ``"wrist singular"`` (a continuum, one representative) at singularities, ``singular`` set.
+    For a spherical wrist with axes 1, 2 meeting at s, ``"elbow up"`` means that the arm turns
+    positively about axis 3 (a3, at the solution) from the shoulder to the wrist centre c:
+    a3 . ((s - e) x (c - e)) > 0, e the point of axis 3 nearest s. A family read from the tool (a
+    ``"spherical shoulder"``) is solved for the inverse pose, and its labels are those of the arm
+    read from the tool: its "shoulder" is at the chain's tool end.
     A loop over many poses holds a :class:`ClosedSolver` (the arm read once).
+
+    **A 7-joint arm with one joint held**, ``locked={index: value}``: the 6 other joints are
+    solved, with the held joint's motion folded into the axes after it; every solution is a
+    7-vector with ``value`` at ``index``, checked by the 7-joint chain's own ``fk``. Which joint
+    (0-based) leaves a closed form, for the catalogue's arms:
+
+    - :func:`robokin.robots.iiwa14` (spherical shoulder and wrist): ``q[0]``, ``q[2]``, ``q[4]``,
+      ``q[6]`` at any value; ``q[1]`` and ``q[5]`` away from 0 and pi (there axes 1 and 3, or 5
+      and 7, line up); never ``q[3]``, the elbow: the shoulder's and the wrist's points are
+      then a fixed distance apart, a continuum of solutions or none.
+    - :func:`robokin.robots.panda`: ``q[6]`` (the flange joint: a spherical shoulder, axes 5, 6
+      meeting) at any value, ``q[5]`` away from 0 and pi; no other (the 88 mm and 82.5 mm
+      offsets).
+    - :func:`robokin.robots.gen3`: ``q[0]``, ``q[2]``, and ``q[3]`` (the elbow: only the 11.8 mm
+      shoulder offset sets the wrist's distance, so this one is ill-conditioned); no other.
+
+    A sweep over the held value traces the arm's self-motion through one pose (as
+    :func:`rpr_self_motion` does for the RPR arm)::
+
+        iiwa = robokin.robots.iiwa14()
+        T = iiwa.fk([0.4, 0.7, -0.2, -1.1, 0.5, 0.9, -0.3])
+        for v in np.linspace(-0.8, 0.4, 61):
+            s = robokin.closed.solve(T, iiwa, locked={2: v})  # every row reaches T, s.q[:, 2] == v
 
     Args:
         target: Tool frame (4, 4).
         chain: A 6R Chain with a decomposition; ValueError naming the reason otherwise.
         limits: ``"default"`` (the chain's), ``None`` or ``(lower, upper)``, for ``within_limits``.
+        locked: None, or ``{index: value}`` for a 7-joint chain: joint ``index`` (0-based, as in
+            ``q``) held at ``value`` (within ``limits`` when there are limits). ValueError for an
+            index out of range, a value outside the limits, a chain without 7 joints, or a hold
+            that leaves no closed form (the message says why).
 
     Returns:
         IKSolutions (every solution, ``within_limits`` marking those within the limits).
     """
     if not isinstance(chain, Chain):
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
-    return ClosedSolver(chain, limits, **options).solve(target)
+    return ClosedSolver(chain, limits, locked, **options).solve(target)

@@ -3,6 +3,12 @@ are sampled and solved with the core's batch IK (``robokin.ik_batch``: the GIL r
 core); a voxel's reachability index is the fraction solved, and its best manipulability the
 largest ``chain.manipulability`` over the solutions found.
 
+A 6R arm with a closed form (:func:`robokin.closed.family`) is solved by it instead, for the
+``"pose"`` task (``ClosedSolver.solve_batch``, also on every core): a target counts as solved when
+one of its solutions is within the joint limits, and the manipulability is the best over all of
+those. The meaning is the numerical IK's, without its misses (a target the restarts fail to
+solve) or its tolerance; the IK options and ``q0`` are then unused.
+
 Determinism: target ``g = voxel * K + j`` (voxel in C order of the grid, j the orientation) draws
 its orientation from a counter-based generator of ``(seed, g)`` and its IK restarts from
 ``seed + g``. Any split of the grid into blocks (threads, chunks, Dask workers) therefore gives
@@ -24,6 +30,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from . import _core
+from . import closed as _closed
 from ._checks import chain as check_chain
 from ._checks import number, real_array, whole
 from ._checks import seed as check_seed
@@ -155,6 +162,7 @@ class ReachabilityPlan:
     task: str
     q0: np.ndarray
     options: IKOptions  # the batch IK's, its task the map's
+    closed: Optional[_core.ClosedSolver] = None  # the arm's closed form, which then replaces the IK
 
     @property
     def shape(self) -> Tuple[int, ...]:
@@ -171,6 +179,12 @@ class ReachabilityPlan:
         centres = np.column_stack([a[c] for a, c in zip(self.axes, cells)])
         g0 = first * K
         targets = _targets(self.task, np.repeat(centres, K, axis=0), _uniforms(self.seed, g0, count * K, 3))
+        if self.closed is not None:
+            q, _, within = self.closed.solve_batch(targets)  # (count K, 8, 6): every solution
+            m = np.zeros(within.shape)
+            if within.any():
+                m[within] = self.chain.manipulability(q[within], task=self.task)
+            return within.any(axis=1).reshape(count, K).sum(axis=1) / K, m.reshape(count, -1).max(axis=1)
         r = ik_batch(self.chain, targets, self.q0, seed=(self.seed + g0) % 2**64, **keywords(self.options))
         ok = r.success.reshape(count, K)
         m = np.zeros(count * K)
@@ -205,6 +219,10 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     s = check_seed(seed)
     options = IKOptions(**{**keywords(IK_OPTIONS), **ik_options, "task": task})  # names and kinds checked
     options.validate()  # ranges
+    if q0 is not None:  # checked here: the closed form, when the arm has one, does not read it
+        q0 = real_array(q0, "q0")
+        if q0.shape != (chain.dof,) or not np.all(np.isfinite(q0)):
+            raise ValueError(f"q0: expected {chain.dof} finite joint values, got shape {q0.shape}")
     if q0 is None:  # the middle of finite limits, else the finite one, else 0
         lo, hi = chain.limits
         q0 = np.zeros(chain.dof)
@@ -212,7 +230,8 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
         with np.errstate(invalid="ignore"):  # inf - inf where unlimited: not used
             q0 = np.where(np.isfinite(lo) & np.isfinite(hi), (lo + hi) / 2, q0)
     h = number(resolution, "resolution", positive=True)
-    return ReachabilityPlan(chain, axes, h, K, s, task, q0, options)
+    closed = _core.ClosedSolver(chain) if task == "pose" and _closed.family(chain).solvable else None
+    return ReachabilityPlan(chain, axes, h, K, s, task, q0, options, closed)
 
 
 def _targets(task: str, centres: np.ndarray, u: np.ndarray) -> np.ndarray:

@@ -28,25 +28,49 @@ struct ClosedFamilyOptions {
 
 // The joints at the zero configuration, in the base frame: axis[i] (unit, the direction in which
 // joint i turns or slides positively) through point[i]; tool, the tool frame; size, the sum of the
-// lengths of the chain's fixed translations (the unit of distances).
+// lengths of the chain's fixed translations (the unit of distances). number[i] is joint i's number
+// in its chain (1-based: the names of families and reasons use it), held the number of a joint held
+// at a value (0: none), whose motion is folded into the axes after it and the tool.
 struct JointAxes {
   std::vector<Eigen::Vector3d> axis, point;
   std::vector<bool> prismatic;
+  std::vector<int> number;
   Rigid tool;
   double size = 0;
+  int held = 0;
 };
 JointAxes joint_axes(const Chain& chain);
 
-// The closed-form families: none; a spherical wrist (axes 4, 5, 6 meet in a point) with axes 2 and
-// 3 parallel; three parallel axes 2, 3, 4 with axes 5 and 6 meeting (the UR family).
-enum class FamilyKind { None, SphericalWrist, ThreeParallel };
+// The axes that remain when joint `joint` (0-based) is held at `value`: E_1 .. E_j(value) .. E_n T0
+// = E_1 .. E_{j-1} E'_{j+1} .. E'_n T0' with E'_k = E_j E_k E_j^-1 (axis k moved by E_j) and
+// T0' = E_j T0. Throws std::invalid_argument("locked: ...") for a joint out of range, a value that
+// is not finite, or a joint already held.
+JointAxes locked_axes(const JointAxes& axes, int joint, double value);
+// joint_axes of a 7-joint chain with joint `held` (0-based) at `value`, the 6 others free; the
+// chain's own axes when held < 0. Throws std::invalid_argument("locked: ...") as locked_axes, and
+// for a chain without 7 joints (holding one must leave 6).
+JointAxes joint_axes(const Chain& chain, int held, double value);
+
+// The chain read from the tool to the base: G = E_1(q1) .. E_n(qn) (G = T T0^-1) gives
+// G^-1 = E_n(-qn) .. E_1(-q1), the axes in reverse order with their directions negated, solved for
+// G^-1 with an identity tool (joint k of the reversed axes is joint n + 1 - k, with the same value).
+JointAxes reversed_axes(const JointAxes& axes);
+
+// The closed-form families of a 6R: none; a spherical wrist (axes 4, 5, 6 meet in a point) with
+// axes 2 and 3 parallel; three parallel axes 2, 3, 4 with axes 5 and 6 meeting (the UR family); a
+// spherical wrist with axes 1 and 2 meeting (axis 3 passing through neither that point nor the
+// wrist's: the iiwa or the Gen3 with a shoulder or elbow joint held). A family may hold for the
+// reversed axes (reversed_axes): a spherical shoulder (axes 1, 2, 3 meet).
+enum class FamilyKind { None, SphericalWrist, ThreeParallel, WristMeet };
 
 struct ClosedFamily {
   FamilyKind kind = FamilyKind::None;
+  bool reversed = false;  // the family is the reversed axes' (center, shoulder in base coordinates)
   std::string name;    // "spherical wrist, axes 2, 3 parallel", ..., or "none"
   std::string reason;  // why none (empty otherwise): "axes 4, 5, 6 do not meet: 3.2 mm apart; ..."
-  std::vector<std::pair<int, int>> meet, parallel;  // consecutive axes (1-based) that meet / are parallel
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // where the wrist's axes meet (base frame, q = 0)
+  std::vector<std::pair<int, int>> meet, parallel;  // consecutive axes (joint numbers) that meet / are parallel
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // where the wrist's axes meet (base frame, q = 0)
+  Eigen::Vector3d shoulder = Eigen::Vector3d::Zero();  // where axes 1, 2 meet (WristMeet)
   double tol_distance = 0;  // the distance tolerance used (m): tol x size
 };
 

@@ -14,6 +14,12 @@
 //     away from it, in the plane normal to axis 2;
 //   "wrist no flip|flip": (a4 x a6) . a5 >= 0 or < 0 for the axes a4, a5, a6 at the solution (the
 //     sine of the DH angle of joint 5 of the UR and PUMA tables).
+//   spherical wrist, axes 1, 2 meeting (at s; axis 3 through neither s nor the wrist centre c): q3
+//     (3: |c - s| fixed by q3 alone), q1, q2 (2), then the wrist; the elbow's label is the turn
+//     about axis 3 (a3, at the solution) from the shoulder to the wrist: "up" when
+//     a3 . ((s - e) x (c - e)) > 0, e the point of axis 3 nearest s.
+// A family of the reversed axes (reversed_axes) is solved for the inverse pose and its solutions
+// read back; its labels are the reversed arm's (its shoulder is the chain's wrist end).
 // Singular cases are flagged: "shoulder singular" (the two q1 coincide), "elbow straight|folded",
 // "wrist singular" (axes 4 and 6, or 2 and 6, aligned: a continuum of which q4 = 0, or q6 = 0, is
 // returned).
@@ -24,23 +30,32 @@
 
 namespace robokin {
 
-// An arm's geometry as the closed form reads it, once.
+// An arm's geometry as the closed form reads it, once: the axes of the 6R solved (a 7-joint chain's
+// with one joint held: locked_axes), its family, and, when the family holds from the tool to the
+// base (family.reversed), the reversed axes its solver reads (closed_arm fills them; an arm made
+// from axes and family alone has them read at each solve).
 struct ClosedArm {
   JointAxes axes;
   ClosedFamily family;
+  JointAxes solved;  // reversed_axes(axes) when family.reversed, else empty
+  int held = -1;  // the held joint (0-based), or -1
+  double held_value = 0;
 };
 
 // Throws std::invalid_argument("chain: no closed form for this arm (<reason>)") when closed_family
-// finds none.
-ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {});
+// finds none, std::invalid_argument("locked: ...") for a held joint out of range, a value that is
+// not finite, or a chain without 7 joints (holding one must leave 6).
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {}, int held = -1,
+                     double held_value = 0.0);
 
-// Every solution of the tool frame T; slot[k] (when given, size 8) is row k's slot as in
-// kURPostures (shoulder left 0 / right 1, elbow up 0 / down 1, wrist no flip 0 / flip 1; a singular
-// one's 0).
+// Every solution of the tool frame T (rows of chain.dof() joints: a held joint's value in its
+// place); slot[k] (when given, size 8) is row k's slot as in kURPostures (shoulder left 0 / right 1,
+// elbow up 0 / down 1, wrist no flip 0 / flip 1; a singular one's 0).
 ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const Rigid& T, const JointLimits& limits,
                                  int* slot = nullptr);
 
-// A batch, as ik_ur_batch (ik_closed.hpp): q_out (count, 8, 6), NaN rows where a slot has none.
+// A batch, as ik_ur_batch (ik_closed.hpp): q_out (count, 8, chain.dof()), NaN rows where a slot has
+// none.
 void closed_solve_batch(const ClosedArm& arm, const Chain& chain, const Rigid* targets, long count,
                         const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
                         Progress* progress = nullptr);

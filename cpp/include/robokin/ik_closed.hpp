@@ -33,7 +33,7 @@ void check_length(double value, const char* name, bool positive = false);
 // limits). Held inline (no allocation: a closed form returns at most kMaxSolutions of at most
 // kMaxDof joints).
 struct ClosedFormSolutions {
-  static constexpr int kMaxSolutions = 8, kMaxDof = 6;
+  static constexpr int kMaxSolutions = 8, kMaxDof = 7;  // 7: a 6R's closed form with a seventh joint held
   int dof = 0;
   std::array<double, kMaxSolutions * kMaxDof> q{};  // row-major: the first count() rows of dof values
   std::array<const char*, kMaxSolutions> postures{};  // static strings: no allocation per label
@@ -45,7 +45,7 @@ struct ClosedFormSolutions {
   double* row(int k) { return q.data() + k * dof; }
   // Appends a solution; throws std::length_error beyond kMaxSolutions rows or kMaxDof joints.
   void add(const double* joints, const char* posture, bool within = true) {
-    if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: at most 8 solutions of 1 to 6 joints");
+    if (n_ >= kMaxSolutions || dof < 1 || dof > kMaxDof) throw std::length_error("ClosedFormSolutions: at most 8 solutions of 1 to 7 joints");
     std::copy(joints, joints + dof, row(n_));
     within_limits[n_] = within;
     postures[n_++] = posture;
