@@ -262,7 +262,7 @@ def test_ik_solutions_state_beyond_the_inline_capacity_is_refused():
             type(good).__new__(type(good)).__setstate__(state)
 
 
-CORE_RESULTS = ["IKResult", "IKBatchResult", "ReachResult", "TrackResult", "RRR3Newton", "RRR3Fk",
+CORE_RESULTS = ["IKResult", "IKBatchResult", "IKSolutions", "ReachResult", "TrackResult", "RRR3Newton", "RRR3Fk",
                 "RRR3Plan", "RRR3Workspace", "ServoResult"]
 
 

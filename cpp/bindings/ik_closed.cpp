@@ -4,6 +4,7 @@
 #include "chain_args.hpp"
 #include "closed_parts.hpp"
 #include "progress.hpp"
+#include "results.hpp"
 
 #include "robokin/ik_closed.hpp"
 
@@ -218,14 +219,23 @@ ClosedFormSolutions solutions_from_state(const py::tuple& t) {
 void bind_solutions(py::module_& m) {
   py::class_<ClosedFormSolutions>(m, "IKSolutions",
                                   "Every closed-form solution of a pose: q (k, dof), one posture label per row and\n"
-                                  "whether each row is within the joint limits (none is dropped for its limits).")
-      .def_property_readonly("q", &solutions_q, "(k, dof) joint vectors, one per solution.")
+                                  "whether each row is within the joint limits (none is dropped for its limits).",
+                                  py::dynamic_attr())
+      .def_property_readonly(
+          "q",
+          [](py::handle self) {
+            return kept_attribute(self, "q", [&] { return solutions_q(self.cast<const ClosedFormSolutions&>()); });
+          },
+          "(k, dof) joint vectors, one per solution.")
       .def_property_readonly(
           "within_limits",
-          [](const ClosedFormSolutions& s) {
-            py::array_t<bool> out(static_cast<py::ssize_t>(s.count()));
-            std::copy(s.within_limits.begin(), s.within_limits.begin() + s.count(), out.mutable_data());
-            return out;
+          [](py::handle self) {
+            return kept_attribute(self, "within_limits", [&] {
+              const auto& s = self.cast<const ClosedFormSolutions&>();
+              py::array_t<bool> out(static_cast<py::ssize_t>(s.count()));
+              std::copy(s.within_limits.begin(), s.within_limits.begin() + s.count(), out.mutable_data());
+              return out;
+            });
           },
           "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
           "False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).")
