@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
+from closed_helpers import angle_distance, random_q
 
 P = math.pi
 POSES = 2000
@@ -18,16 +19,6 @@ ARMS_6R = [n for n in rk.robots.names() if rk.robots.get(n).dof == 6 and rk.clos
 HELD = [(n, j) for n in ("iiwa14", "panda", "gen3") for j in range(7)
         if rk.closed.family(rk.robots.get(n), locked={j: 0.3}).solvable]
 DEGENERATE_AT_0_AND_PI = {("iiwa14", 1), ("iiwa14", 5), ("panda", 5)}
-
-
-def within(chain, rng, count):
-    lo, hi = chain.limits
-    lo, hi = np.where(np.isfinite(lo), lo, -P), np.where(np.isfinite(hi), hi, P)
-    return rng.uniform(lo + 0.02 * (hi - lo), hi - 0.02 * (hi - lo), (count, chain.dof))
-
-
-def angle_distance(a, b):
-    return np.max(np.abs(np.remainder(a - b + P, 2 * P) - P), axis=-1)
 
 
 def test_the_cases_are_the_catalogue_arms_with_a_closed_form():
@@ -40,7 +31,7 @@ def test_the_cases_are_the_catalogue_arms_with_a_closed_form():
 def test_6r_arm_on_random_poses(name):
     chain = rk.robots.get(name)
     rng = np.random.default_rng(len(name) * 101)
-    Q = within(chain, rng, POSES)
+    Q = random_q(chain, rng, POSES, margin=0.02)
     T = chain.fk(Q)
     q8, singular, _ = rk.closed.ClosedSolver(chain, limits=None).solve_batch(T)
     found = ~np.isnan(q8[:, :, 0])
@@ -51,7 +42,7 @@ def test_6r_arm_on_random_poses(name):
     assert np.all(d[~singular] < 1e-6) and (~singular).sum() > 0.9 * POSES
     # 48 random starts on each of 40 poses: every IK success is one of the closed form's solutions.
     k = np.repeat(np.arange(40), 48)
-    r = rk.ik_batch(chain, T[k], within(chain, rng, len(k)), seed=1, restarts=0, max_iter=200)
+    r = rk.ik_batch(chain, T[k], random_q(chain, rng, len(k), margin=0.02), seed=1, restarts=0, max_iter=200)
     assert r.success.sum() > 0.3 * len(k)
     for i in np.nonzero(r.success)[0]:
         assert angle_distance(q8[k[i]][found[k[i]]], r.q[i]).min() < 1e-4  # near singular: IK tol 1e-9 ~ 1e-6 rad
@@ -76,7 +67,7 @@ def newton_held(chain, T, starts, j, iterations=80):
 def test_held_joint_on_random_poses(name, j):
     chain = rk.robots.get(name)
     rng = np.random.default_rng(len(name) * 31 + j)
-    Q = within(chain, rng, POSES)
+    Q = random_q(chain, rng, POSES, margin=0.02)
     for n, q in enumerate(Q):
         T = chain.fk(q)
         s = rk.closed.solve(T, chain, limits=None, locked={j: q[j]})
@@ -87,7 +78,8 @@ def test_held_joint_on_random_poses(name, j):
         assert s.singular or angle_distance(s.q, q).min() < (1e-4 if near else 1e-6)
         if n < 20:
             # The Gen3's elbow held: Newton converges only from near a solution (test_closed_locked).
-            starts = q + rng.normal(0, 0.05, (48, 7)) if (name, j) == ("gen3", 3) else within(chain, rng, 48)
+            local = (name, j) == ("gen3", 3)
+            starts = q + rng.normal(0, 0.05, (48, 7)) if local else random_q(chain, rng, 48, margin=0.02)
             starts[:, j] = q[j]
             qn, err = newton_held(chain, T, starts, j)
             for row in qn[err < 1e-10]:

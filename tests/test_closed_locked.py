@@ -12,23 +12,13 @@ import numpy as np
 import pytest
 
 import robokin as rk
+from closed_helpers import angle_distance, random_q
 
 P = math.pi
 ARMS = {"iiwa14": rk.robots.iiwa14(), "panda": rk.robots.panda(), "gen3": rk.robots.gen3()}
 # The locks (0-based joint indices) that leave a 6R with a closed form, at a generic value.
 SOLVABLE = {"iiwa14": [0, 1, 2, 4, 5, 6], "panda": [5, 6], "gen3": [0, 2, 3]}
 CASES = [(name, j) for name, locks in SOLVABLE.items() for j in locks]
-
-
-def random_q(chain, rng, count):
-    lo, hi = chain.limits
-    lo, hi = np.where(np.isfinite(lo), lo, -P), np.where(np.isfinite(hi), hi, P)
-    return rng.uniform(lo + 0.05 * (hi - lo), hi - 0.05 * (hi - lo), (count, chain.dof))
-
-
-def angle_distance(a, b):
-    """Largest joint difference, angles compared modulo 2 pi."""
-    return np.max(np.abs(np.remainder(a - b + P, 2 * P) - P), axis=-1)
 
 
 @pytest.mark.parametrize("name", ARMS)
