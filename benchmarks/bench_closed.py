@@ -73,6 +73,16 @@ def same_solutions(ours, theirs):
         raise AssertionError(f"EAIK and robokin disagree: {len(q)} against {len(ours)} solutions")
 
 
+def against_eaik(solver, bot, poses):
+    """Checks that the two give the same solutions on every pose, then times one call of each on
+    the poses in turn (interleaved): (robokin, EAIK) seconds per call."""
+    for T in poses:
+        same_solutions(solver.solve(T), bot.IK(T))
+    ns = {"solver": solver, "bot": bot, "frames": itertools.cycle(poses), "nxt": next}
+    ours, theirs = per_call_interleaved(["solver.solve(nxt(frames))", "bot.IK(nxt(frames))"], ns)
+    return ours[0], theirs[0]
+
+
 def eaik_figures(goals):
     try:
         from eaik.IK_DH import DhRobot
@@ -87,14 +97,10 @@ def eaik_figures(goals):
         chain = chain or rk.Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)])
         bot = DhRobot(np.array(alpha, float), np.array(a, float), np.array(d, float))
         solver = rk.closed.ClosedSolver(chain, None)
-        poses = list(chain.fk(rng.uniform(-P, P, (200, 6))))
-        for T in poses:
-            same_solutions(solver.solve(T), bot.IK(T))
-        ns = {"solver": solver, "bot": bot, "frames": itertools.cycle(poses), "nxt": next}
-        ours, theirs = per_call_interleaved(["solver.solve(nxt(frames))", "bot.IK(nxt(frames))"], ns)
-        print(f"{name} ({bot.getKinematicFamily()}, {solver.family}): robokin {fmt(ours[0])}, EAIK "
-              f"{fmt(theirs[0])}: {ours[0] / theirs[0]:.3f} x (the same solutions on 200 poses)")
-        goal(goals, f"closed.ClosedSolver.solve per call vs EAIK, {name}", ours[0] / theirs[0], "x", 0.5, "EAIK, same run")
+        ours, theirs = against_eaik(solver, bot, list(chain.fk(rng.uniform(-P, P, (200, 6)))))
+        print(f"{name} ({bot.getKinematicFamily()}, {solver.family}): robokin {fmt(ours)}, EAIK "
+              f"{fmt(theirs)}: {ours / theirs:.3f} x (the same solutions on 200 poses)")
+        goal(goals, f"closed.ClosedSolver.solve per call vs EAIK, {name}", ours / theirs, "x", 0.5, "EAIK, same run")
     batch = chain.fk(rng.uniform(-P, P, (1_000_000, 6)))
     threads = os.cpu_count() or 1
     (ours, _), (theirs, _) = once_interleaved([lambda: solver.solve_batch(batch),
@@ -128,15 +134,10 @@ def held_figures(goals):
             print(line)
             continue
         solver = rk.closed.ClosedSolver(iiwa, None, locked={j: 0.3})
-        poses = list(iiwa.fk(Q))
-        for T in poses:
-            same_solutions(solver.solve(T), bot.IK(T))
-        ns = {"solver": solver, "bot": bot, "frames": itertools.cycle(poses), "nxt": next}
-        ours, theirs = per_call_interleaved(["solver.solve(nxt(frames))", "bot.IK(nxt(frames))"], ns)
-        print(f"{line}: robokin {fmt(ours[0])}, EAIK {fmt(theirs[0])}: {ours[0] / theirs[0]:.3f} x "
-              f"(the same solutions on 200 poses)")
-        goal(goals, f"ClosedSolver(locked=).solve per call vs EAIK fixed_axes, iiwa 14 q[{j}]", ours[0] / theirs[0],
-             "x", 0.5, "EAIK, same run")
+        ours, theirs = against_eaik(solver, bot, list(iiwa.fk(Q)))
+        print(f"{line}: robokin {fmt(ours)}, EAIK {fmt(theirs)}: {ours / theirs:.3f} x (the same solutions on 200 poses)")
+        goal(goals, f"ClosedSolver(locked=).solve per call vs EAIK fixed_axes, iiwa 14 q[{j}]", ours / theirs, "x", 0.5,
+             "EAIK, same run")
     return goals
 
 
