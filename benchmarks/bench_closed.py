@@ -135,7 +135,8 @@ def held_figures(goals):
             continue
         solver = rk.closed.ClosedSolver(iiwa, None, locked={j: 0.3})
         ours, theirs = against_eaik(solver, bot, list(iiwa.fk(Q)))
-        print(f"{line}: robokin {fmt(ours)}, EAIK {fmt(theirs)}: {ours / theirs:.3f} x (the same solutions on 200 poses)")
+        print(f"{line}: robokin {fmt(ours)}, EAIK {fmt(theirs)}: {ours / theirs:.3f} x "
+              "(the same solutions on 200 poses)")
         goal(goals, f"ClosedSolver(locked=).solve per call vs EAIK fixed_axes, iiwa 14 q[{j}]", ours / theirs, "x", 0.5,
              "EAIK, same run")
     return goals
