@@ -109,13 +109,13 @@ void write_rigid(const Rigid& T, double* m) {
 
 // fk's `part`: "frame" (4 x 4 per configuration, the default) or "position" (the tool point, 3 values).
 FkOutput fk_part_of(py::handle obj) {
-  if (!py::isinstance<py::str>(obj))
+  if (!PyUnicode_Check(obj.ptr()))
     throw py::type_error("part: expected the string 'frame' or 'position', got " +
                          std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
-  const std::string s = py::cast<std::string>(obj);
-  if (s == "frame") return FkOutput::Frame;
-  if (s == "position") return FkOutput::Position;
-  fail("part: expected 'frame' or 'position', got '" + s + "'");
+  // Compared in place: no std::string made per call (fk is called in loops).
+  if (PyUnicode_CompareWithASCIIString(obj.ptr(), "frame") == 0) return FkOutput::Frame;
+  if (PyUnicode_CompareWithASCIIString(obj.ptr(), "position") == 0) return FkOutput::Position;
+  fail("part: expected 'frame' or 'position', got '" + py::cast<std::string>(obj) + "'");
 }
 
 }  // namespace
