@@ -52,8 +52,8 @@ class ResultClass {
   }
 
   // A field shown as Python computes it from the struct: get(const T&) -> Python value (kept by
-  // kept_attribute when it is a Python object), and its inverse for unpickling, set(T&, py::handle) (which checks what it reads; the fields before it
-  // are already restored).
+  // kept_attribute when it is a Python object), and its inverse for unpickling, set(T&, py::handle)
+  // (which checks what it reads; the fields before it are already restored).
   template <class Get, class Set>
   ResultClass& value_as(const char* name, Get get, Set set, const char* doc) {
     using R = decltype(get(std::declval<const T&>()));

@@ -261,16 +261,21 @@ bool reaches(const Rigid& F, const Rigid& T, double size) {
 
 }  // namespace
 
-ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
+ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
   ClosedArm arm;
   arm.axes = joint_axes(chain, held, held_value);
   if (held >= 0) arm.held = held, arm.held_value = held_value;
   arm.family = closed_family(arm.axes, options);
+  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);
+  return arm;
+}
+
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
+  ClosedArm arm = read_closed_arm(chain, options, held, held_value);
   if (arm.family.kind == FamilyKind::None)
     throw std::invalid_argument(std::string(held >= 0 ? "locked" : "chain") + ": no closed form for this arm" +
                                 (held >= 0 ? " with q[" + std::to_string(held) + "] held" : "") + " (" +
                                 arm.family.reason + ")");
-  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);
   return arm;
 }
 
@@ -282,10 +287,7 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
   if (arm.family.reversed) G = G.inverse();
   const FamilyKind kind = arm.family.kind;
-  // An arm assembled by hand (axes and family, not closed_arm) has no reversed axes yet: read here.
-  JointAxes local;
-  if (arm.family.reversed && arm.solved.axis.size() != 6) local = reversed_axes(arm.axes);
-  const JointAxes& g = !arm.family.reversed ? arm.axes : arm.solved.axis.size() == 6 ? arm.solved : local;
+  const JointAxes& g = arm.family.reversed ? arm.solved : arm.axes;
   if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
   else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
   else solve_spherical(g, arm.family.center, G, c);

@@ -64,10 +64,7 @@ double IkStarts::Stored::distance(const Target& target, int k) const {
 IkStarts::IkStarts(const Chain& chain) : n_(chain.dof()) {
   limits_ = JointLimits{chain.lower(), chain.upper(), {}};
   for (int i = 0; i < n_; ++i) limits_.prismatic.push_back(chain.prismatic(i));
-  ClosedArm arm;
-  arm.axes = joint_axes(chain);
-  arm.family = closed_family(arm.axes);
-  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);  // read once, not at each solve
+  ClosedArm arm = read_closed_arm(chain);
   if (arm.family.kind != FamilyKind::None) arm_ = std::move(arm);
 }
 

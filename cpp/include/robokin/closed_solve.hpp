@@ -32,8 +32,8 @@ namespace robokin {
 
 // An arm's geometry as the closed form reads it, once: the axes of the 6R solved (a 7-joint chain's
 // with one joint held: locked_axes), its family, and, when the family holds from the tool to the
-// base (family.reversed), the reversed axes its solver reads (closed_arm fills them; an arm made
-// from axes and family alone has them read at each solve).
+// base (family.reversed), the reversed axes its solver reads. Made by read_closed_arm (or
+// closed_arm), which fill every member.
 struct ClosedArm {
   JointAxes axes;
   ClosedFamily family;
@@ -42,8 +42,13 @@ struct ClosedArm {
   double held_value = 0;
 };
 
-// Throws std::invalid_argument("chain: no closed form for this arm (<reason>)") when closed_family
-// finds none, std::invalid_argument("locked: ...") for a held joint out of range, a value that is
+// The arm as the closed form reads it, whatever its family (family.kind None: no closed form, the
+// reason in family.reason). Throws std::invalid_argument("locked: ...") as closed_arm does.
+ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {}, int held = -1,
+                          double held_value = 0.0);
+
+// read_closed_arm for an arm that must have a closed form. Throws std::invalid_argument("chain: no
+// closed form for this arm (<reason>)") when closed_family finds none, std::invalid_argument("locked: ...") for a held joint out of range, a value that is
 // not finite, or a chain without 7 joints (holding one must leave 6).
 ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {}, int held = -1,
                      double held_value = 0.0);
