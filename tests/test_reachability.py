@@ -144,6 +144,7 @@ def test_orientations_are_uniform_rotations():
     (dict(timeout=-1.0), "timeout"),
     (dict(stall_window=-1), "stall_window"),
     (dict(q0=np.zeros(5)), "q0"),
+    (dict(q0=np.full(6, np.nan)), r"q0: contains NaN or inf"),
 ])
 def test_bad_arguments_are_errors_naming_them(kwargs, name):
     args = dict(bounds=((0, 0.5), (0, 0.5), (0, 0.5)), resolution=0.25)

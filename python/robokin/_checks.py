@@ -72,6 +72,23 @@ def real_array(value, name: str) -> np.ndarray:
         raise TypeError(f"{name}: expected real numbers, got {value!r} ({exc})") from None
 
 
+def joints(chain_, value, name: str = "q") -> np.ndarray:
+    """One configuration of ``chain_``: ``(dof,)`` finite real numbers."""
+    a = real_array(value, name)
+    if a.shape != (chain_.dof,):
+        raise ValueError(f"{name}: expected shape ({chain_.dof},), got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: contains NaN or inf")
+    return a
+
+
+def flag(value, name: str) -> bool:
+    """True or False (numpy's bool too); anything else, even 0 or 1, is refused by name."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}: expected True or False, got {type(value).__name__}")
+    return bool(value)
+
+
 def planar_points(value, name: str) -> np.ndarray:
     """``value`` as a finite (K, 2) float array, K >= 1."""
     p = real_array(value, name)

@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from ._checks import chain as check_chain
-from ._checks import real_array
+from ._checks import flag, joints, real_array
 from ._core import Chain
 from ._figures import new_figure
 from .plots import joint_axes
@@ -39,19 +39,7 @@ _AXIS, _FRAME, _TOOL, _ELLIPSOID = 0.07, 0.06, 0.12, 0.25
 
 
 def _chain_q(chain, q, name: str = "q") -> np.ndarray:
-    check_chain(chain)
-    a = real_array(q, name)
-    if a.shape != (chain.dof,):
-        raise ValueError(f"{name}: expected shape ({chain.dof},), got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: contains NaN or inf")
-    return a
-
-
-def _flag(value, name: str) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name}: expected True or False, got {type(value).__name__}")
-    return bool(value)
+    return joints(check_chain(chain), q, name)
 
 
 def _arm_size(frames: np.ndarray) -> float:
@@ -156,7 +144,7 @@ def arm(chain: Chain, q, ax=None, *, frames=True, axes=True, ellipsoid=False):
         ValueError: q has not dof finite entries.
     """
     q = _chain_q(chain, q)
-    flags = [_flag(v, n) for v, n in ((frames, "frames"), (axes, "axes"), (ellipsoid, "ellipsoid"))]
+    flags = [flag(v, n) for v, n in ((frames, "frames"), (axes, "axes"), (ellipsoid, "ellipsoid"))]
     if ax is None:
         fig = new_figure(figsize=(6, 6), layout="constrained")
         ax = fig.add_subplot(projection="3d")

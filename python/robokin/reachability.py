@@ -32,7 +32,7 @@ import numpy as np
 from . import _core
 from . import closed as _closed
 from ._checks import chain as check_chain
-from ._checks import number, real_array, whole
+from ._checks import joints, number, real_array, whole
 from ._checks import seed as check_seed
 from ._core import IKOptions
 from ._options import keywords, with_options
@@ -220,9 +220,7 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     options = IKOptions(**{**keywords(IK_OPTIONS), **ik_options, "task": task})  # names and kinds checked
     options.validate()  # ranges
     if q0 is not None:  # checked here: the closed form, when the arm has one, does not read it
-        q0 = real_array(q0, "q0")
-        if q0.shape != (chain.dof,) or not np.all(np.isfinite(q0)):
-            raise ValueError(f"q0: expected {chain.dof} finite joint values, got shape {q0.shape}")
+        q0 = joints(chain, q0, "q0")
     if q0 is None:  # the middle of finite limits, else the finite one, else 0
         lo, hi = chain.limits
         q0 = np.zeros(chain.dof)
