@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, random_q
+from closed_helpers import angle_distance, newton_held, random_q
 
 P = math.pi
 POSES = 2000
@@ -48,26 +48,13 @@ def test_6r_arm_on_random_poses(name):
         assert angle_distance(q8[k[i]][found[k[i]]], r.q[i]).min() < 1e-4  # near singular: IK tol 1e-9 ~ 1e-6 rad
 
 
-def newton_held(chain, T, starts, j, iterations=80):
-    """Damped Newton from each start (rows), joint j held: the pose error on the other joints."""
-    q = starts.copy()
-    free = [i for i in range(7) if i != j]
-    for _ in range(iterations):
-        F = chain.fk(q)
-        e = np.concatenate([T[:3, 3] - F[:, :3, 3], 0.5 * np.cross(F[:, :3, :3], T[:3, :3], axis=1).sum(axis=2)],
-                           axis=1)
-        J = chain.jacobian(q)[:, :, free]
-        step = np.linalg.solve(J @ J.transpose(0, 2, 1) + 1e-9 * np.eye(6), e[:, :, None])
-        q[:, free] += (J.transpose(0, 2, 1) @ step)[:, :, 0]
-    return q, np.abs(chain.fk(q) - T).max(axis=(1, 2))
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize("name,j", HELD)
 def test_held_joint_on_random_poses(name, j):
     chain = rk.robots.get(name)
     rng = np.random.default_rng(len(name) * 31 + j)
     Q = random_q(chain, rng, POSES, margin=0.02)
+    converged = 0
     for n, q in enumerate(Q):
         T = chain.fk(q)
         s = rk.closed.solve(T, chain, limits=None, locked={j: q[j]})
@@ -82,5 +69,7 @@ def test_held_joint_on_random_poses(name, j):
             starts = q + rng.normal(0, 0.05, (48, 7)) if local else random_q(chain, rng, 48, margin=0.02)
             starts[:, j] = q[j]
             qn, err = newton_held(chain, T, starts, j)
-            for row in qn[err < 1e-10]:
+            converged += int(np.count_nonzero(err < 1e-12))
+            for row in qn[err < 1e-12]:  # converged to rounding (1e-10 leaves ~1e-6 rad near a singularity)
                 assert angle_distance(s.q, row).min() < 1e-6
+    assert converged >= 200  # of 20 x 48 starts: the comparison compares something

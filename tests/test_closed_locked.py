@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, random_q
+from closed_helpers import angle_distance, newton_held, random_q
 
 P = math.pi
 ARMS = {"iiwa14": rk.robots.iiwa14(), "panda": rk.robots.panda(), "gen3": rk.robots.gen3()}
@@ -75,22 +75,6 @@ def test_every_solution_reaches_and_the_source_is_among_them(name, j):
         assert len(set(s.postures)) == len(s)  # one label per solution
 
 
-def newton_held(chain, T, q0, j, iterations=60):
-    """Damped Newton on the pose error from q0, joint j held: the other columns of the Jacobian."""
-    q = q0.copy()
-    free = [i for i in range(7) if i != j]
-    for _ in range(iterations):
-        F = chain.fk(q)
-        dp = T[:3, 3] - F[:3, 3]
-        dr = 0.5 * sum(np.cross(F[:3, k], T[:3, k]) for k in range(3))
-        e = np.concatenate([dp, dr])
-        if np.linalg.norm(e) < 1e-13:
-            break
-        J = chain.jacobian(q)[:, free]
-        q[free] += J.T @ np.linalg.solve(J @ J.T + 1e-9 * np.eye(6), e)
-    return q, np.abs(chain.fk(q) - T).max()
-
-
 @pytest.mark.parametrize("name,j", CASES)
 def test_numerical_ik_finds_nothing_the_closed_form_misses(name, j):
     chain = ARMS[name]
@@ -104,12 +88,11 @@ def test_numerical_ik_finds_nothing_the_closed_form_misses(name, j):
             # The Gen3's elbow held: only the 11.8 mm shoulder offset changes the wrist centre's
             # distance from the shoulder, and Newton converges only from near a solution.
             starts = q + rng.normal(0.0, 0.05, (48, 7))
-        for q0 in starts:
-            q0[j] = q[j]
-            qn, err = newton_held(chain, T, q0, j)
-            if err < 1e-10:
-                found += 1
-                assert angle_distance(s.q, qn).min() < 1e-6
+        starts[:, j] = q[j]
+        ends, errors = newton_held(chain, T, starts, j)
+        for qn in ends[errors < 1e-10]:
+            found += 1
+            assert angle_distance(s.q, qn).min() < 1e-6
     assert found >= 20  # the starts do converge: the check compares something
 
 
@@ -174,7 +157,10 @@ def test_bad_locks():
         rk.closed.solve(T, iiwa, locked={7: 0.1})
     with pytest.raises(ValueError, match=r"locked: q\[2\] = 3.5 is outside the joint's limits"):
         rk.closed.solve(T, iiwa, locked={2: 3.5})
-    assert len(rk.closed.solve(T, iiwa, limits=None, locked={2: 3.5})) >= 0  # no limits: any value
+    q35 = np.array([0.4, 0.7, 3.5, -1.1, 0.5, 0.9, -0.3])  # q[2] beyond its limit of 2.97 rad
+    s = rk.closed.solve(iiwa.fk(q35), iiwa, limits=None, locked={2: 3.5})  # no limits: any value
+    assert len(s) and np.all(s.q[:, 2] == 3.5) and angle_distance(s.q, q35).min() < 1e-6
+    assert np.abs(iiwa.fk(s.q) - iiwa.fk(q35)).max() < 1e-9
     with pytest.raises(ValueError, match="locked: the held value must be finite"):
         rk.closed.solve(T, iiwa, locked={2: math.nan})
     with pytest.raises(ValueError, match="locked: holding a joint needs a chain of 7 joints.*this one has 6"):
@@ -242,3 +228,8 @@ def test_a_family_read_from_the_tool_serves_the_ik_restarts():
         assert r.success and np.abs(chain.fk(r.q) - T).max() < 1e-8
         s = rk.closed.solve(T, chain, limits=None)
         assert angle_distance(s.q, q).min() < 1e-6 and angle_distance(s.q, r.q).min() < 1e-5
+        # One iteration from a far start cannot reach T; the one restart can, only from an exact start.
+        far = np.full(6, 2.9)
+        assert not rk.ik(chain, T, far, restarts=0, max_iter=1).success
+        one = rk.ik(chain, T, far, restarts=1, max_iter=1)
+        assert one.success and one.attempts == 2 and angle_distance(s.q, one.q).min() < 1e-9

@@ -113,7 +113,7 @@ py::tuple ClosedSolver::solve_batch(ArrayLike targets_obj) const {
   return closed_batch_py(targets_obj, "closed form", [&](const Rigid* targets, long count, double* q, bool* within,
                                                          bool* singular, Progress* progress) {
     closed_solve_batch(arm, *chain, targets, count, limits, q, within, singular, progress);
-  }, chain->dof() == 7 && arm.held >= 0 ? 7 : 6);
+  }, chain->dof());  // 6, or 7 with one held (closed_arm refuses any other)
 }
 
 std::unique_ptr<ClosedSolver> solver_from_state(const py::tuple& t) {
