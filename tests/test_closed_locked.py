@@ -163,8 +163,11 @@ def test_bad_locks():
     assert np.abs(iiwa.fk(s.q) - iiwa.fk(q35)).max() < 1e-9
     with pytest.raises(ValueError, match="locked: the held value must be finite"):
         rk.closed.solve(T, iiwa, locked={2: math.nan})
-    with pytest.raises(ValueError, match="locked: holding a joint needs a chain of 7 joints.*this one has 6"):
-        rk.closed.solve(T, rk.robots.ur5(), locked={1: 0.1})
+    with pytest.raises(ValueError, match=r"locked: joint index -1 out of range .* \(indices 0 to 6\)"):
+        rk.closed.solve(T, iiwa, locked={-1: 0.1})
+    for index in (1, 6):  # the chain's size is the first thing wrong, whatever the index
+        with pytest.raises(ValueError, match="locked: holding a joint needs a chain of 7 joints.*this one has 6"):
+            rk.closed.solve(T, rk.robots.ur5(), locked={index: 0.1})
     with pytest.raises(ValueError, match="locked: holding a joint needs a chain of 7 joints"):
         rk.closed.family(rk.robots.ur5(), locked={1: 0.1})
     with pytest.raises(ValueError, match=r"locked: no closed form for this arm with q\[3\] held \(.*continuum"):

@@ -33,41 +33,40 @@ std::optional<URArm> ur_layout(const Chain& chain) {
   }
 }
 
-ClosedArm closed_arm_arg(const Chain& chain, const ClosedFamilyOptions& o, int held, double value) {
+ClosedArm closed_arm_arg(const Chain& chain, const ClosedFamilyOptions& o, const std::optional<HeldJoint>& held) {
   try {
-    return closed_arm(chain, o, held, value);
+    return closed_arm(chain, o, held);
   } catch (const std::invalid_argument& e) {
     fail(e.what());
   }
 }
 
-// A held joint: None, or {index: value} with one int index (0-based, as in q) and a real value.
-// TypeError for another kind; ValueError for an index out of range, a value that is not finite or
-// outside `limits` (when there are limits). The chain's own checks (7 joints) are closed_arm's.
-std::pair<int, double> held_arg(const Chain& chain, py::handle obj, const JointLimits& limits) {
-  if (obj.is_none()) return {-1, 0.0};
+// A held joint: None, or {index: value} with one int index (0-based, as in q) and a real value; a
+// TypeError for another kind. What the values must be (7 joints, the index in range, the value
+// finite) is the core's check (joint_axes).
+std::optional<HeldJoint> held_arg(py::handle obj) {
+  if (obj.is_none()) return std::nullopt;
   if (!py::isinstance<py::dict>(obj)) fail_kind("locked: expected None or a dict {joint index: value}");
   const py::dict d = py::reinterpret_borrow<py::dict>(obj);
   if (d.size() != 1) fail("locked: expected one joint {index: value}, got " + std::to_string(d.size()));
   const auto item = *d.begin();
   const py::handle key = item.first, value = item.second;
-  const bool integer = py::isinstance<py::int_>(key) || py::hasattr(key, "__index__");
-  if (!integer || py::isinstance<py::bool_>(key) || py::isinstance<py::float_>(key))
+  if (!PyIndex_Check(key.ptr()) || py::isinstance<py::bool_>(key))
     fail_kind("locked: the key must be a joint index (int), got " + py::repr(key).cast<std::string>());
-  const long index = key.attr("__index__")().cast<long>();
-  if (index < 0 || index >= chain.dof())
-    fail("locked: joint index " + std::to_string(index) + " out of range for a chain of " +
-         std::to_string(chain.dof()) + " joints (0 to " + std::to_string(chain.dof() - 1) + ")");
-  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
-                                            py::hasattr(value, "__float__")) || py::isinstance<py::str>(value))
+  if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || !PyNumber_Check(value.ptr()) ||
+      PyComplex_Check(value.ptr()))
     fail_kind("locked: the held value must be a real number, got " + py::repr(value).cast<std::string>());
-  const double v = value.attr("__float__")().cast<double>();
-  if (!std::isfinite(v)) fail("locked: the held value must be finite, got " + py::repr(value).cast<std::string>());
-  if (limits.lower.size() == chain.dof() && !(v >= limits.lower[index] && v <= limits.upper[index]))
-    fail("locked: q[" + std::to_string(index) + "] = " + py::repr(py::float_(v)).cast<std::string>() +
-         " is outside the joint's limits [" + py::repr(py::float_(limits.lower[index])).cast<std::string>() + ", " +
-         py::repr(py::float_(limits.upper[index])).cast<std::string>() + "]");
-  return {static_cast<int>(index), v};
+  return HeldJoint{PyNumber_AsSsize_t(key.ptr(), nullptr), value.attr("__float__")().cast<double>()};
+}
+
+// The held value within the chain's limits (when there are limits).
+void require_held_within(const std::optional<HeldJoint>& held, const JointLimits& limits) {
+  if (!held || limits.lower.size() == 0) return;
+  const auto text = [](double v) { return py::repr(py::float_(v)).cast<std::string>(); };
+  const long i = held->joint;
+  if (!(held->value >= limits.lower[i] && held->value <= limits.upper[i]))
+    fail("locked: q[" + std::to_string(i) + "] = " + text(held->value) + " is outside the joint's limits [" +
+         text(limits.lower[i]) + ", " + text(limits.upper[i]) + "]");
 }
 
 struct ClosedSolver {
@@ -82,9 +81,10 @@ struct ClosedSolver {
   ClosedSolver(py::object c, py::handle limits_obj, py::handle locked, const ClosedFamilyOptions& o)
       : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o),
         limits(limits_or_default(*chain, limits_obj, chain->dof())) {
-    const auto [held, value] = held_arg(*chain, locked, limits);
-    if (held < 0) ur = ur_layout(*chain);
-    if (!ur) arm = closed_arm_arg(*chain, options, held, value);
+    const std::optional<HeldJoint> held = held_arg(locked);
+    if (!held) ur = ur_layout(*chain);
+    if (!ur) arm = closed_arm_arg(*chain, options, held);
+    require_held_within(held, limits);
     limits_state = limits.lower.size() ? py::object(py::make_tuple(to_numpy(limits.lower), to_numpy(limits.upper)))
                                        : py::object(py::none());
   }
@@ -92,9 +92,9 @@ struct ClosedSolver {
   // None, or a new {index: value} of the held joint (a new dict: the solver's state is not a
   // caller's to change).
   py::object locked() const {
-    if (arm.held < 0) return py::none();
+    if (!arm.axes.held) return py::none();
     py::dict d;
-    d[py::int_(arm.held)] = py::float_(arm.held_value);
+    d[py::int_(arm.axes.held->joint)] = py::float_(arm.axes.held->value);
     return d;
   }
 
@@ -128,10 +128,9 @@ std::unique_ptr<ClosedSolver> solver_from_state(const py::tuple& t) {
 // parallel, tol_distance).
 py::tuple family_of(const Chain& chain, LockedLike locked, const py::kwargs& kwargs) {
   const ClosedFamilyOptions o = family_options(kwargs);
-  const auto [held, value] = held_arg(chain, locked, JointLimits{});
   ClosedFamily f;
   try {
-    f = closed_family(joint_axes(chain, held, value), o);
+    f = closed_family(joint_axes(chain, held_arg(locked)), o);
   } catch (const std::invalid_argument& e) {
     fail(e.what());
   }
@@ -178,7 +177,7 @@ void bind_solver_class(py::module_& m) {
       .def("__repr__", [](const ClosedSolver& s) {
         return "ClosedSolver(" + py::repr(s.owner).cast<std::string>() + ", family='" + s.family() + "'" +
                (s.limits_state.is_none() ? ", limits=None" : "") +
-               (s.arm.held >= 0 ? ", locked=" + py::repr(s.locked()).cast<std::string>() : "") + ")";
+               (s.arm.axes.held ? ", locked=" + py::repr(s.locked()).cast<std::string>() : "") + ")";
       });
 }
 

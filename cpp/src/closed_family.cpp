@@ -175,22 +175,23 @@ JointAxes joint_axes(const Chain& chain) {
   return g;
 }
 
-JointAxes locked_axes(const JointAxes& g, int joint, double value) {
+JointAxes locked_axes(const JointAxes& g, const HeldJoint& held) {
   const int n = static_cast<int>(g.axis.size());
   if (g.held) throw std::invalid_argument("locked: a joint is already held");
-  if (joint < 0 || joint >= n)
-    throw std::invalid_argument("locked: joint index " + std::to_string(joint) + " out of range for a chain of " +
+  if (held.joint < 0 || held.joint >= n)
+    throw std::invalid_argument("locked: joint index " + std::to_string(held.joint) + " out of range for a chain of " +
                                 std::to_string(n) + " joints (indices 0 to " + std::to_string(n - 1) + ")");
-  if (!std::isfinite(value)) throw std::invalid_argument("locked: the held value must be finite");
+  if (!std::isfinite(held.value)) throw std::invalid_argument("locked: the held value must be finite");
+  const int joint = static_cast<int>(held.joint);
   Rigid E;  // the held joint's motion, in the base frame
   if (g.prismatic[joint]) {
-    E.p = value * g.axis[joint];
+    E.p = held.value * g.axis[joint];
   } else {
-    E.R = Eigen::AngleAxisd(value, g.axis[joint]).toRotationMatrix();
+    E.R = Eigen::AngleAxisd(held.value, g.axis[joint]).toRotationMatrix();
     E.p = g.point[joint] - E.R * g.point[joint];
   }
   JointAxes out;
-  out.size = g.size, out.held = joint + 1, out.tool = E * g.tool;
+  out.size = g.size, out.held = held, out.tool = E * g.tool;
   for (int i = 0; i < n; ++i) {
     if (i == joint) continue;
     out.axis.push_back(i < joint ? g.axis[i] : Eigen::Vector3d(E.R * g.axis[i]));
@@ -201,12 +202,12 @@ JointAxes locked_axes(const JointAxes& g, int joint, double value) {
   return out;
 }
 
-JointAxes joint_axes(const Chain& chain, int held, double value) {
-  if (held < 0) return joint_axes(chain);
+JointAxes joint_axes(const Chain& chain, const std::optional<HeldJoint>& held) {
+  if (!held) return joint_axes(chain);
   if (chain.dof() != 7)
     throw std::invalid_argument("locked: holding a joint needs a chain of 7 joints (the 6 others are solved); "
                                 "this one has " + std::to_string(chain.dof()));
-  return locked_axes(joint_axes(chain), held, value);
+  return locked_axes(joint_axes(chain), *held);
 }
 
 JointAxes reversed_axes(const JointAxes& g) {
@@ -225,7 +226,7 @@ ClosedFamily closed_family(const Chain& chain, const ClosedFamilyOptions& option
   return closed_family(joint_axes(chain), options);
 }
 
-ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& options) {
+ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& options, JointAxes* reversed) {
   options.validate();
   ClosedFamily f;
   f.name = "none";
@@ -243,16 +244,19 @@ ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& option
     return f;
   }
   Reading r = read_family(g, options.tol, f.tol_distance);
-  if (r.kind == FamilyKind::None) {
-    const Reading back = read_family(reversed_axes(g), options.tol, f.tol_distance);
-    if (back.kind == FamilyKind::None) {
-      f.reason = r.why + "; from the tool: " + back.why.substr(0, back.why.find(';'));
-      return f;
-    }
-    r = back, f.reversed = true;
+  if (r.kind != FamilyKind::None) {
+    f.kind = r.kind, f.center = r.center, f.shoulder = r.shoulder, f.name = family_name(r.kind, false, g);
+    return f;
   }
-  f.kind = r.kind, f.center = r.center, f.shoulder = r.shoulder;
-  f.name = family_name(r.kind, f.reversed, f.reversed ? reversed_axes(g) : g);
+  JointAxes back_axes = reversed_axes(g);
+  const Reading back = read_family(back_axes, options.tol, f.tol_distance);
+  if (back.kind == FamilyKind::None) {
+    f.reason = r.why + "; from the tool: " + back.why.substr(0, back.why.find(';'));
+    return f;
+  }
+  f.kind = back.kind, f.center = back.center, f.shoulder = back.shoulder, f.reversed = true;
+  f.name = family_name(back.kind, true, back_axes);
+  if (reversed) *reversed = std::move(back_axes);
   return f;
 }
 

@@ -261,25 +261,27 @@ bool reaches(const Rigid& F, const Rigid& T, double size) {
 
 }  // namespace
 
-ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
+ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options,
+                          const std::optional<HeldJoint>& held) {
   ClosedArm arm;
-  arm.axes = joint_axes(chain, held, held_value);
-  if (held >= 0) arm.held = held, arm.held_value = held_value;
-  arm.family = closed_family(arm.axes, options);
-  if (arm.family.reversed) arm.solved = reversed_axes(arm.axes);
+  arm.axes = joint_axes(chain, held);
+  arm.family = closed_family(arm.axes, options, &arm.solved);
   return arm;
 }
 
-ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, int held, double held_value) {
-  ClosedArm arm = read_closed_arm(chain, options, held, held_value);
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options, const std::optional<HeldJoint>& held) {
+  ClosedArm arm = read_closed_arm(chain, options, held);
   if (arm.family.kind == FamilyKind::None)
-    throw std::invalid_argument(std::string(held >= 0 ? "locked" : "chain") + ": no closed form for this arm" +
-                                (held >= 0 ? " with q[" + std::to_string(held) + "] held" : "") + " (" +
+    throw std::invalid_argument(std::string(held ? "locked" : "chain") + ": no closed form for this arm" +
+                                (held ? " with q[" + std::to_string(held->joint) + "] held" : "") + " (" +
                                 arm.family.reason + ")");
   return arm;
 }
 
 namespace {
+
+// The held joint's index in q, or -1.
+int held_index(const ClosedArm& arm) { return arm.axes.held ? static_cast<int>(arm.axes.held->joint) : -1; }
 
 // The candidates of the arm's family for T as the chain's joint vectors, packed (rows of n =
 // chain.dof() values into q): read back from the reversed axes, the held joint's value in its place.
@@ -291,10 +293,10 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
   else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
   else solve_spherical(g, arm.family.center, G, c);
-  const int n = 6 + (arm.held >= 0);
+  const int n = 6 + arm.axes.held.has_value(), held = held_index(arm);
   for (int k = 0; k < c.m; ++k)
     for (int i = 0, j = 0; i < n; ++i)
-      q[k * n + i] = i == arm.held ? arm.held_value : c.q[k][arm.family.reversed ? 5 - j++ : j++];
+      q[k * n + i] = i == held ? arm.axes.held->value : c.q[k][arm.family.reversed ? 5 - j++ : j++];
   return n;
 }
 
@@ -308,14 +310,10 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   const int n = out.dof = candidates(arm, T, c, q);
   out.singular = c.singular;
   if (c.m == 0) return out;
+  // The held joint keeps its value as given (within the limits, checked by the caller).
+  const int held = held_index(arm);
   bool fits[8];
-  fit_limits_rows(q, c.m, n, limits, fits);
-  // The held joint keeps its value as given (within the limits, checked by the caller; without
-  // limits fit_limits would wrap it).
-  const auto keep_held = [&](double* row) {
-    if (arm.held >= 0) row[arm.held] = arm.held_value;
-  };
-  for (int k = 0; k < c.m; ++k) keep_held(q + k * n);
+  fit_limits_rows(q, c.m, n, limits, fits, held);
   Rigid F[8];
   chain.fk_few(q, c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
@@ -323,9 +321,8 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
   for (int k = 0; k < c.m; ++k)
     if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
-      polish(chain, T, arm.held, q + k * n, F[k]);
-      fits[k] = fit_limits(q + k * n, n, limits);
-      keep_held(q + k * n);
+      polish(chain, T, held, q + k * n, F[k]);
+      fits[k] = fit_limits(q + k * n, n, limits, held);
       chain.fk(q + k * n, F[k]);
     }
   for (int k = 0; k < c.m; ++k) {

@@ -26,16 +26,17 @@ void validate_limits(int dof, const Eigen::VectorXd& lower, const Eigen::VectorX
   }
 }
 
-void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok) {
+void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok, int keep) {
   std::fill(ok, ok + rows, true);
   const bool limited = lim.lower.size() != 0;
   // The common case, every joint revolute and free to turn by a whole turn (limits, if any, that
   // hold [-pi, pi]): each value wrapped (settle_into_limits' first case), in one pass over all rows.
   bool wrap_only = true;
   for (int i = 0; i < n && wrap_only; ++i)
-    wrap_only = (lim.prismatic.empty() || !lim.prismatic[i]) && (!limited || (lim.lower(i) <= -M_PI && lim.upper(i) >= M_PI));
+    wrap_only = i == keep || (lim.prismatic.empty() || !lim.prismatic[i]) && (!limited || (lim.lower(i) <= -M_PI && lim.upper(i) >= M_PI));
   if (wrap_only) {
     for (int k = 0; k < rows * n; ++k) {
+      if (k % n == keep) continue;
       if (limited && !std::isfinite(q[k])) ok[k / n] = false;
       q[k] = wrap_angle(q[k]);
     }
@@ -44,6 +45,7 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
   // Otherwise joint by joint, row by row (a wide revolute joint's wrap is settle_into_limits'
   // first case, always taken there).
   for (int i = 0; i < n; ++i) {
+    if (i == keep) continue;
     const bool revolute = lim.prismatic.empty() || !lim.prismatic[i];
     if (!limited) {
       if (revolute)
@@ -61,9 +63,9 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
   }
 }
 
-bool fit_limits(double* q, int n, const JointLimits& lim) {
+bool fit_limits(double* q, int n, const JointLimits& lim, int keep) {
   bool ok;
-  fit_limits_rows(q, 1, n, lim, &ok);
+  fit_limits_rows(q, 1, n, lim, &ok, keep);
   return ok;
 }
 

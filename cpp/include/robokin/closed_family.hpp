@@ -5,6 +5,7 @@
 
 #include "robokin/chain.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,30 +27,36 @@ struct ClosedFamilyOptions {
   void validate() const;
 };
 
+// A joint held at a value (Python's locked={joint: value}): joint 0-based, as in q.
+struct HeldJoint {
+  long joint = 0;
+  double value = 0;
+};
+
 // The joints at the zero configuration, in the base frame: axis[i] (unit, the direction in which
 // joint i turns or slides positively) through point[i]; tool, the tool frame; size, the sum of the
 // lengths of the chain's fixed translations (the unit of distances). number[i] is joint i's number
-// in its chain (1-based: the names of families and reasons use it), held the number of a joint held
-// at a value (0: none), whose motion is folded into the axes after it and the tool.
+// in its chain (1-based: the names of families and reasons use it); held, a joint held at a value,
+// whose motion is folded into the axes after it and the tool.
 struct JointAxes {
   std::vector<Eigen::Vector3d> axis, point;
   std::vector<bool> prismatic;
   std::vector<int> number;
   Rigid tool;
   double size = 0;
-  int held = 0;
+  std::optional<HeldJoint> held;
 };
 JointAxes joint_axes(const Chain& chain);
 
-// The axes that remain when joint `joint` (0-based) is held at `value`: E_1 .. E_j(value) .. E_n T0
+// The axes that remain when joint held.joint is held at held.value: E_1 .. E_j(value) .. E_n T0
 // = E_1 .. E_{j-1} E'_{j+1} .. E'_n T0' with E'_k = E_j E_k E_j^-1 (axis k moved by E_j) and
 // T0' = E_j T0. Throws std::invalid_argument("locked: ...") for a joint out of range, a value that
 // is not finite, or a joint already held.
-JointAxes locked_axes(const JointAxes& axes, int joint, double value);
-// joint_axes of a 7-joint chain with joint `held` (0-based) at `value`, the 6 others free; the
-// chain's own axes when held < 0. Throws std::invalid_argument("locked: ...") as locked_axes, and
-// for a chain without 7 joints (holding one must leave 6).
-JointAxes joint_axes(const Chain& chain, int held, double value);
+JointAxes locked_axes(const JointAxes& axes, const HeldJoint& held);
+// joint_axes of a 7-joint chain with one joint held, the 6 others free; the chain's own axes when
+// none is. Throws std::invalid_argument("locked: ...") for a chain without 7 joints (holding one
+// must leave 6), then as locked_axes.
+JointAxes joint_axes(const Chain& chain, const std::optional<HeldJoint>& held);
 
 // The chain read from the tool to the base: G = E_1(q1) .. E_n(qn) (G = T T0^-1) gives
 // G^-1 = E_n(-qn) .. E_1(-q1), the axes in reverse order with their directions negated, solved for
@@ -75,7 +82,9 @@ struct ClosedFamily {
 };
 
 // Reads the family of chain's geometry. Throws std::invalid_argument for an invalid options.tol.
+// `reversed`, when given, receives reversed_axes(axes) when the family is theirs (read once).
 ClosedFamily closed_family(const Chain& chain, const ClosedFamilyOptions& options = {});
-ClosedFamily closed_family(const JointAxes& axes, const ClosedFamilyOptions& options = {});
+ClosedFamily closed_family(const JointAxes& axes, const ClosedFamilyOptions& options = {},
+                           JointAxes* reversed = nullptr);
 
 }  // namespace robokin

@@ -31,27 +31,25 @@
 namespace robokin {
 
 // An arm's geometry as the closed form reads it, once: the axes of the 6R solved (a 7-joint chain's
-// with one joint held: locked_axes), its family, and, when the family holds from the tool to the
-// base (family.reversed), the reversed axes its solver reads. Made by read_closed_arm (or
-// closed_arm), which fill every member.
+// with one joint held: locked_axes, axes.held), its family, and, when the family holds from the
+// tool to the base (family.reversed), the reversed axes its solver reads. Made by read_closed_arm
+// (or closed_arm), which fill every member.
 struct ClosedArm {
   JointAxes axes;
   ClosedFamily family;
   JointAxes solved;  // reversed_axes(axes) when family.reversed, else empty
-  int held = -1;  // the held joint (0-based), or -1
-  double held_value = 0;
 };
 
 // The arm as the closed form reads it, whatever its family (family.kind None: no closed form, the
-// reason in family.reason). Throws std::invalid_argument("locked: ...") as closed_arm does.
-ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {}, int held = -1,
-                          double held_value = 0.0);
+// reason in family.reason). Throws std::invalid_argument("locked: ...") as joint_axes does.
+ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {},
+                          const std::optional<HeldJoint>& held = std::nullopt);
 
 // read_closed_arm for an arm that must have a closed form. Throws std::invalid_argument("chain: no
-// closed form for this arm (<reason>)") when closed_family finds none, std::invalid_argument("locked: ...") for a held joint out of range, a value that is
-// not finite, or a chain without 7 joints (holding one must leave 6).
-ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {}, int held = -1,
-                     double held_value = 0.0);
+// closed form for this arm (<reason>)") when closed_family finds none ("locked: ..." with a joint
+// held), and as read_closed_arm.
+ClosedArm closed_arm(const Chain& chain, const ClosedFamilyOptions& options = {},
+                     const std::optional<HeldJoint>& held = std::nullopt);
 
 // Every solution of the tool frame T (rows of chain.dof() joints: a held joint's value in its
 // place); slot[k] (when given, size 8) is row k's slot as in kURPostures (shoulder left 0 / right 1,

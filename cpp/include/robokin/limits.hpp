@@ -26,9 +26,10 @@ void validate_limits(int dof, const Eigen::VectorXd& lower, const Eigen::VectorX
 // tolerance (1e-12 relative) so that a solution at a limit is not lost to rounding; false when a
 // joint cannot be brought within its limits (that joint is then left as it is, a revolute one
 // wrapped to [-pi, pi]; the others are still brought within theirs). The closed forms' mask.
-bool fit_limits(double* q, int n, const JointLimits& lim);
+// Joint `keep` (a held joint, its value within its limits by the caller's check) is left as it is.
+bool fit_limits(double* q, int n, const JointLimits& lim, int keep = -1);
 // fit_limits on each of `rows` solutions (row-major, n joints each): ok[r] is its result for row r.
-void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok);
+void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* ok, int keep = -1);
 
 // Brings v within [lo, hi], as it is when it is within (to tol, then clamped onto the limit), a
 // revolute joint's value otherwise by a multiple of 2 pi: to the nearest value of its class, the
