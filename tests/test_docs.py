@@ -69,3 +69,35 @@ def test_the_built_site_checker_finds_a_missing_name(tmp_path):
     assert check_reference.main(["check_reference.py", str(tmp_path)]) == 1
     expected = check_reference.expected_anchors()
     assert {"robokin.ik", "robokin.Chain.fk", "robokin.symbolic.fk", "module-robokin.symbolic"} <= expected
+
+
+def _public_callables():
+    """Every public function and static method of the package's namespace and public modules."""
+    modules = [rk] + [importlib.import_module(f"robokin.{m}") for m in _api_pages.public_modules()
+                      if m not in ("dask", "symbolic", "plots")]  # optional extras: their own tests
+    for module in modules:
+        for name in module.__all__:
+            obj = getattr(module, name)
+            if inspect.isclass(obj):
+                for attr, value in vars(obj).items():
+                    if isinstance(value, staticmethod):
+                        yield f"{obj.__name__}.{attr}", getattr(obj, attr)
+            elif callable(obj):
+                yield f"{module.__name__}.{name}", obj
+
+
+def test_help_reads_as_for_python_functions():
+    """pydoc heads a pybind11 built-in 'method of pybind11_detail_function_record... instance' and
+    inspect.signature fails on it: every public function and static method is a plain function
+    with its signature (robokin._signature)."""
+    import pydoc
+
+    checked = dict(_public_callables())
+    assert {"Chain.from_dh", "Chain.from_urdf", "robokin.urdf_tree", "robokin.joint_limit_cost"} <= set(checked)
+    for name, fn in checked.items():
+        text = pydoc.render_doc(fn, renderer=pydoc.plaintext)
+        assert "pybind11" not in text.splitlines()[2], (name, text.splitlines()[2])
+        signature = inspect.signature(fn)
+        assert "numpy" not in str(signature) or "ArrayLike" in str(signature), name
+    assert str(inspect.signature(rk.Chain.from_dh)).startswith("(rows: object, modified: bool = False, tool:")
+    assert rk.Chain.from_dh.__qualname__ == "Chain.from_dh" and rk.urdf_tree.__module__ == "robokin"

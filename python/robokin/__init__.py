@@ -9,6 +9,7 @@ from . import pose, traj
 from ._core import (RRR3, RRR3_DEFAULTS, Chain, ReachOptions, ReachResult, RRR3ConnectOptions, RRR3PlanOptions,
                     TrackResult, joint_limit_cost)
 from ._core import RRR3LoopOptions
+from ._signature import plain
 from ._core import RRR3NewtonOptions, RRR3WorkspaceOptions
 from .errors import NoRouteError, PrecisionWarning, UnreachableError
 from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
@@ -68,6 +69,13 @@ __all__ += ["IK_DEFAULTS", "URDFWarning"]
 
 # A URDF's links and joints, and the chain Chain.from_urdf builds by default.
 from ._core import UrdfJoint, UrdfTree, urdf_tree  # noqa: E402
+
+# help() and inspect.signature for the core's static methods and free functions as for Python's
+# own (robokin._signature says why).
+for _name in ("from_dh", "from_segments", "from_urdf"):
+    setattr(Chain, _name, staticmethod(plain(getattr(Chain, _name), "Chain." + _name, Chain.__module__)))
+joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
+urdf_tree = plain(urdf_tree, "urdf_tree", __name__)
 
 __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 
