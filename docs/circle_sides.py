@@ -1,5 +1,5 @@
 """Draws docs/circle_sides.png with the simulator's own renderer: why the circle is traced about
-phi = +0.45 rad from home (README, "The simulator").
+phi = +0.46 rad from home (docs/simulator.md).
 
     .venv/bin/python docs/circle_sides.py
 """
