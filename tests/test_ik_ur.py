@@ -8,6 +8,7 @@ kinematics and dynamics of UR robots", universal-robots.com support article).
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -341,3 +342,50 @@ def test_random_poses_near_the_wrist_and_elbow_singularities_find_their_source()
         s = rk.closed.ur(T, as_dict(t))
         assert_all_reach(t, s, T, 1e-9)
         assert np.min(angle_dist(s.q, q)) < 1e-6, q
+
+
+def test_the_layout_is_read_from_the_geometry(rng):
+    """The UR5 as its URDF describes it (joints about y, rotated frames), and with its elbow and
+    first wrist joint turning the other way (axes 3 and 4 against axis 2: the reading's scale -1),
+    are solved by the UR closed form itself (rk._core.ik_ur, no fallback): the same solutions and
+    labels as the DH table's, q3 and q4 negated for the reversed arm."""
+    from ur_urdf import UR5_URDF
+
+    dh = rk.robots.ur5()
+    urdf = rk.Chain.from_urdf(UR5_URDF, "base", "tool0")
+    reversed_xml = UR5_URDF
+    for name in ("elbow_joint", "wrist_1_joint"):
+        head, tail = reversed_xml.split(f'<joint name="{name}"', 1)
+        reversed_xml = head + f'<joint name="{name}"' + tail.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 -1 0"/>', 1)
+    flipped = rk.Chain.from_urdf(reversed_xml, "base", "tool0")
+    sign = np.array([1, 1, -1, -1, 1, 1])
+    for q in rng.uniform(-P, P, (50, 6)):
+        T = dh.fk(q)
+        want = rk._core.ik_ur(T, dh, None)
+        for chain, s in ((urdf, 1), (flipped, sign)):
+            got = rk._core.ik_ur(T, chain, None)
+            assert got.postures == want.postures
+            assert np.max(angle_dist(got.q * s, want.q)) < 1e-9
+            assert np.max(np.abs(chain.fk(got.q) - T)) < 1e-9
+
+
+@pytest.mark.parametrize("rows, why", [
+    ("puma", "axes 2, 3, 4 are not parallel"),
+    ([(0.01, P / 2, 0.1, 0, "R")], "axes 1 and 2 do not meet"),
+    ([(0.0, 1.2, 0.1, 0, "R")], "axes 1 and 2 are not perpendicular"),
+    ([None, None, None, (0.02, P / 2, 0.1, 0, "R")], "axes 4 and 5 do not meet"),
+    ([None, None, None, None, (0.0, -1.0, 0.1, 0, "R")], "axes 5 and 6 are not perpendicular"),
+    ([None, (0.4, 0.0, 0.0, 0, "R"), (0.0, 0.0, 0.0, 0, "R")], "axes 2, 3, 4 do not stand apart"),
+    ([None, None, (0.4, 0.0, 0.0, 0, "P")], "joint 3 is prismatic"),
+    ("5 joints", "it has 5 joints, not 6"),
+])
+def test_not_the_ur_layout_says_what_differs(rows, why):
+    table = rows_of(UR_TABLES["ur5"])
+    if rows == "puma":
+        chain = rk.robots.puma560()
+    elif rows == "5 joints":
+        chain = rk.Chain.from_dh(table[:5])
+    else:
+        chain = rk.Chain.from_dh([r if r is not None else table[i] for i, r in enumerate(rows)] + table[len(rows):])
+    with pytest.raises(ValueError, match=re.escape(f"robot: not an arm of the UR layout ({why}")):
+        rk._core.ik_ur(np.eye(4), chain, None)

@@ -7,7 +7,6 @@
 
 #include "kernel/fast_math.hpp"
 
-#include <kdl/segment.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -525,69 +524,12 @@ const char* ur_label(int shoulder, int elbow, int wrist) {
   return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
 }
 
-[[noreturn]] void not_ur(const std::string& why) {
-  throw std::invalid_argument("robot: not an arm of the UR layout (" + why + ")");
-}
-
 }  // namespace
 
 const char* const kURPostures[8] = {
     ur_label(0, 0, 0), ur_label(0, 0, 1), ur_label(0, 1, 0), ur_label(0, 1, 1),
     ur_label(1, 0, 0), ur_label(1, 0, 1), ur_label(1, 1, 0), ur_label(1, 1, 1),
 };
-
-URArm ur_arm(const Chain& chain) {
-  if (chain.dof() != 6) not_ur("it has " + std::to_string(chain.dof()) + " joints, not 6");
-  URArm arm;
-  Rigid since;  // fixed transform since the last joint
-  Rigid after[6];
-  int j = -1;
-  double size = 0;
-  for (const KDL::Segment& seg : chain.kdl().segments) {
-    const KDL::Joint& joint = seg.getJoint();
-    if (joint.getType() == KDL::Joint::Fixed) {
-      since = since * Rigid::from_kdl(seg.pose(0.0));
-      continue;
-    }
-    ++j;
-    if (joint.getType() >= KDL::Joint::TransAxis) not_ur("joint " + std::to_string(j + 1) + " is prismatic");
-    // The joint must turn about the z axis of the frame it starts from: pose(q) = Rz(+-q).
-    const Rigid P0 = Rigid::from_kdl(joint.pose(0.0)), P1 = Rigid::from_kdl(joint.pose(0.5));
-    const bool plus = (P1.R - rot_z(0.5)).cwiseAbs().maxCoeff() < 1e-12;
-    const bool minus = (P1.R - rot_z(-0.5)).cwiseAbs().maxCoeff() < 1e-12;
-    if ((P0.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-12 || P0.p.norm() > 0 || P1.p.norm() > 0 ||
-        !(plus || minus))
-      not_ur("joint " + std::to_string(j + 1) + " does not turn about the z axis of its frame");
-    arm.scale[j] = plus ? 1.0 : -1.0;
-    if (j == 0) arm.base = since;
-    else after[j - 1] = since;
-    since = Rigid::from_kdl(seg.pose(0.0));
-    size += since.p.norm();
-  }
-  arm.tool = since;
-  // Rows 1..5 as standard DH: Rz(theta) Tz(d) Tx(a) Rx(alpha).
-  const double expect_alpha[5] = {kPi / 2, 0, 0, kPi / 2, -kPi / 2};
-  double a[5], d[5];
-  const double tol = 1e-9 * std::max(1.0, size);
-  for (int i = 0; i < 5; ++i) {
-    const Rigid& F = after[i];
-    const double th = std::atan2(F.R(1, 0), F.R(0, 0)), al = std::atan2(F.R(2, 1), F.R(2, 2));
-    if ((F.R - rot_z(th) * rot_x(al)).cwiseAbs().maxCoeff() > 1e-9 ||
-        std::abs(-F.p.x() * std::sin(th) + F.p.y() * std::cos(th)) > tol)
-      not_ur("the frame after joint " + std::to_string(i + 1) + " is not a standard DH row");
-    if (std::abs(wrap_angle(al - expect_alpha[i])) > 1e-9)
-      not_ur("alpha of row " + std::to_string(i + 1) + " is not " +
-             (i == 0 || i == 3 ? "pi/2" : i == 4 ? "-pi/2" : "0"));
-    arm.theta[i] = th;
-    a[i] = F.p.x() * std::cos(th) + F.p.y() * std::sin(th);
-    d[i] = F.p.z();
-  }
-  if (std::abs(a[0]) > tol || std::abs(a[3]) > tol || std::abs(a[4]) > tol)
-    not_ur("a1, a4 and a5 must be 0");
-  if (std::abs(a[1]) <= tol || std::abs(a[2]) <= tol) not_ur("a2 and a3 must not be 0");
-  arm.d1 = d[0], arm.a2 = a[1], arm.a3 = a[2], arm.d4 = d[1] + d[2] + d[3], arm.d5 = d[4];
-  return arm;
-}
 
 namespace {
 // Near the wrist's singularity (joint 5 near 0 or pi) q234 = atan2(-M(1, 2), -M(0, 2)) is known only

@@ -242,12 +242,14 @@ def ur(target, robot, limits="default") -> IKSolutions:
     """All (up to 8) solutions of a Universal Robots arm (UR3/5/10/16 and the e-series: three
     parallel axes 2, 3, 4) for the tool frame ``target``, in closed form.
 
-    The arm is read off ``robot``: a UR URDF chain (``Chain.from_urdf(path, "base", "tool0")``,
-    solved as :func:`solve` does, the same labels), or standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``,
-    ``(0, pi/2, d4)``, ``(0, -pi/2, d5)``, ``(0, 0, d6)`` (theta offsets, a fixed base before joint 1,
-    offsets along the parallel axes, joints turning about -z and any tool after joint 6 allowed);
-    any other chain raises ``ValueError``. Each solution is checked by ``robot.fk``. Each call reads
-    the arm off the chain again: a loop over many poses of one arm holds a :class:`ClosedSolver`
+    The arm is read from ``robot``'s geometry, its joint axes at q = 0 whatever describes them (the
+    standard DH ``(0, pi/2, d1)``, ``(a2, 0, 0)``, ``(a3, 0, 0)``, ``(0, pi/2, d4)``, ``(0, -pi/2, d5)``,
+    ``(0, 0, d6)`` with any theta offsets, base and tool; a UR URDF,
+    ``Chain.from_urdf(path, "base", "tool0")``): axes 1 and 2 meeting at a right angle, 2, 3 and 4
+    parallel, 4 and 5, 5 and 6 meeting at right angles. Another arm with three parallel axes 2, 3, 4
+    (:func:`family`) is solved as :func:`solve` does, with the same labels; any other chain raises
+    ``ValueError``. Each solution is checked by ``robot.fk``. Each call reads the arm off the chain
+    again: a loop over many poses of one arm holds a :class:`ClosedSolver`
     (``ClosedSolver(chain, limits).solve(T)``, the same answers), which reads it once.
 
     Args:
@@ -277,7 +279,7 @@ def ur(target, robot, limits="default") -> IKSolutions:
     except ValueError:
         if robot is not chain or family(chain).name != "three parallel axes 2, 3, 4":
             raise
-    return ClosedSolver(chain, limits).solve(target)  # a UR arm from a URDF: the same family and labels
+    return ClosedSolver(chain, limits).solve(target)  # three parallel axes, other angles: the same labels
 
 
 def ur_batch(targets, robot, limits="default"):

@@ -116,8 +116,10 @@ struct URArm {
   Rigid base, tool;                      // fixed frames before joint 1 and after joint 6
 };
 
-// The chain's UR geometry; throws std::invalid_argument (naming what differs) when it has not the
-// UR layout.
+// The chain's UR geometry read from its joint axes at q = 0, whatever describes it (DH rows, a
+// URDF): axes 1, 2 meeting at a right angle, 2, 3, 4 parallel and apart, 4, 5 and 5, 6 meeting at
+// right angles (to 1e-9 rad and 1e-9 of the arm's size). Throws std::invalid_argument("robot: not
+// an arm of the UR layout (...)") naming what differs otherwise.
 URArm ur_arm(const Chain& chain);
 
 // Slots of the 8 UR solutions: shoulder (0 left, 1 right) * 4 + elbow (0 up, 1 down) * 2 + wrist

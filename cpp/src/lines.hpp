@@ -1,0 +1,34 @@
+// Two lines in space, each a point and a unit direction: their distance and nearest points (the
+// joint axes of closed_family and of the UR layout's reading).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace robokin {
+
+// Distance between the lines p + t a and q + u b (a, b unit); `nearest`, when given and the lines
+// are not parallel (|a x b| >= 1e-12), receives the midpoint of their nearest points.
+inline double line_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& q,
+                            const Eigen::Vector3d& b, Eigen::Vector3d* nearest = nullptr) {
+  const Eigen::Vector3d w = q - p;
+  const Eigen::Vector3d n = a.cross(b);
+  const double s = n.norm();
+  if (s < 1e-12) return (w - w.dot(a) * a).norm();
+  if (nearest) {
+    // Nearest points p + t a, q + u b: (w - t a + u b) perpendicular to a and b.
+    const double ab = a.dot(b), wa = w.dot(a), wb = w.dot(b), den = 1.0 - ab * ab;
+    const double t = (wa - ab * wb) / den, u = (ab * wa - wb) / den;
+    *nearest = 0.5 * ((p + t * a) + (q + u * b));
+  }
+  return std::abs(w.dot(n)) / s;
+}
+
+// The point of the line q + u b (b unit) nearest to x.
+inline Eigen::Vector3d foot_on_line(const Eigen::Vector3d& x, const Eigen::Vector3d& q, const Eigen::Vector3d& b) {
+  return q + (x - q).dot(b) * b;
+}
+
+}  // namespace robokin
