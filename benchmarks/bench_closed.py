@@ -6,12 +6,13 @@ interleaved).
 - ``rk.closed.ur(T, table)`` with a dict table (its chain looked up by value) against the same.
 Run with an older robokin (before ClosedSolver) it times its private ``_URSolver`` as the held one,
 for the before / after figures of benchmarks/README.md.
-- ``ClosedSolver.solve(T)`` (the subproblems' closed form, all solutions) against EAIK's
-  ``IK(T)`` (pip's ``eaik``, the ``bench`` extra; not needed otherwise) on the UR5 (robokin reading
-  ur_description's URDF, EAIK the DH table: the same kinematics), the ABB IRB 120 and the PUMA 560
-  (their DH tables without theta offsets, as EAIK's DhRobot takes them), after checking that both
-  return the same solutions on every pose; goal <= 0.5 x EAIK per call. The batch of 1e6 poses on
-  every core (``solve_batch``) against EAIK's ``IK_batched`` with as many threads.
+- ``ClosedSolver.solve(T)`` (all solutions) against EAIK's ``IK(T)`` (pip's ``eaik``, the ``bench``
+  extra; not needed otherwise) on the UR5 (robokin reading ur_description's URDF, EAIK the DH
+  table: the same kinematics), the KUKA KR 16 (robokin reading ROS-Industrial's URDF, EAIK given
+  its joint axes), the ABB IRB 120 and the PUMA 560 (their DH tables without theta offsets, as
+  EAIK's DhRobot takes them), after checking that both return the same solutions on every pose; goal <= 0.5 x EAIK per call. The
+  batch of 1e6 poses on every core (``solve_batch``) against EAIK's ``IK_batched`` with as many
+  threads.
 - The KUKA iiwa 14 with one joint held (``ClosedSolver(chain, locked={j: v})``, 7-vectors) against
   EAIK's ``DhRobot(..., fixed_axes=[(j, v)])``: for each joint, whether each finds a decomposition,
   and for those both solve, the same solutions on 200 poses and the time per call.
@@ -32,6 +33,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _timing import fmt, goal, once_interleaved, per_call_interleaved  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+from kr16_urdf import KR16_URDF  # noqa: E402
 from ur_urdf import UR5_URDF  # noqa: E402
 
 P = np.pi
@@ -83,6 +85,22 @@ def against_eaik(solver, bot, poses):
     return ours[0], theirs[0]
 
 
+def eaik_of_geometry(chain):
+    """EAIK's robot of the chain's joint axes at q = 0 (a frame per joint, its z along the axis, and
+    the tool frame): the same kinematics whatever describes the chain. (EAIK's own URDF reader,
+    given the KR 16's file, returns solutions that miss the poses of its tool frame.)"""
+    from eaik.IK_Homogeneous import HomogeneousRobot
+
+    frames = []
+    for point, z in rk.plots.joint_axes(chain, np.zeros(chain.dof)):
+        x = np.cross(z, (1.0, 0.0, 0.0) if abs(z[0]) < 0.9 else (0.0, 1.0, 0.0))
+        F = np.eye(4)
+        F[:3, 0], F[:3, 2], F[:3, 3] = x / np.linalg.norm(x), z, point
+        F[:3, 1] = np.cross(F[:3, 2], F[:3, 0])
+        frames.append(F)
+    return HomogeneousRobot(np.array(frames + [chain.fk(np.zeros(chain.dof))]))
+
+
 def eaik_figures(goals):
     try:
         from eaik.IK_DH import DhRobot
@@ -90,12 +108,18 @@ def eaik_figures(goals):
         print("EAIK not installed (pip install eaik, or the bench extra): not measured")
         goal(goals, "closed.ClosedSolver.solve per call vs EAIK", math.nan, "x", 0.5, "EAIK: not installed")
         return goals
+    kr16 = rk.Chain.from_urdf(KR16_URDF)
     arms = {"UR5 (URDF)": (rk.Chain.from_urdf(UR5_URDF, "base", "tool0"), UR5),
+            "KUKA KR 16 (URDF)": (kr16, eaik_of_geometry(kr16)),
             "IRB 120": (None, IRB120), "PUMA 560": (None, PUMA560)}
     rng = np.random.default_rng(1)
-    for name, (chain, (a, alpha, d)) in arms.items():
-        chain = chain or rk.Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)])
-        bot = DhRobot(np.array(alpha, float), np.array(a, float), np.array(d, float))
+    for name, (chain, arm) in arms.items():
+        if isinstance(arm, tuple):
+            a, alpha, d = arm
+            chain = chain or rk.Chain.from_dh([(a[i], alpha[i], d[i], 0.0, "R") for i in range(6)])
+            bot = DhRobot(np.array(alpha, float), np.array(a, float), np.array(d, float))
+        else:
+            bot = arm
         solver = rk.closed.ClosedSolver(chain, None)
         ours, theirs = against_eaik(solver, bot, list(chain.fk(rng.uniform(-P, P, (200, 6)))))
         print(f"{name} ({bot.getKinematicFamily()}, {solver.family}): robokin {fmt(ours)}, EAIK "

@@ -24,10 +24,12 @@ ClosedFamilyOptions family_options(const py::kwargs& kwargs) {
   return o;
 }
 
-// The UR geometry when the chain has the UR layout (its own closed form, ik_ur), else none.
-std::optional<URArm> ur_layout(const Chain& chain) {
+// The chain's geometry in a layout with a closed form of its own (ur_arm's, spherical_arm's), else
+// none.
+template <class Arm>
+std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
   try {
-    return ur_arm(chain);
+    return read(chain);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
@@ -75,15 +77,19 @@ struct ClosedSolver {
   ClosedFamilyOptions options;
   py::object limits_state;  // None or (lower, upper) as resolved: what pickling keeps
   JointLimits limits;
-  std::optional<URArm> ur;  // the UR layout of a DH table: robokin.closed.ur's closed form
-  ClosedArm arm;            // otherwise the subproblems' (closed_solve.hpp)
+  // The closed form of the arm's layout when it has one (ik_ur's, ik_spherical's: each solve in
+  // vectorised stages), otherwise the subproblems' (closed_solve.hpp); the same solutions and labels.
+  std::optional<URArm> ur;
+  std::optional<SphericalArm> spherical;
+  ClosedArm arm;
 
   ClosedSolver(py::object c, py::handle limits_obj, py::handle locked, const ClosedFamilyOptions& o)
       : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o),
         limits(limits_or_default(*chain, limits_obj, chain->dof())) {
     const std::optional<HeldJoint> held = held_arg(locked);
-    if (!held) ur = ur_layout(*chain);
-    if (!ur) arm = closed_arm_arg(*chain, options, held);
+    if (!held) ur = layout(*chain, ur_arm);
+    if (!held && !ur) spherical = layout(*chain, spherical_arm);
+    if (!ur && !spherical) arm = closed_arm_arg(*chain, options, held);
     require_held_within(held, limits);
     limits_state = limits.lower.size() ? py::object(py::make_tuple(to_numpy(limits.lower), to_numpy(limits.upper)))
                                        : py::object(py::none());
@@ -99,17 +105,25 @@ struct ClosedSolver {
   }
 
   ClosedFormSolutions solve(const Rigid& T) const {
-    return ur ? ik_ur(*ur, *chain, T, limits) : closed_solve(arm, *chain, T, limits);
+    if (ur) return ik_ur(*ur, *chain, T, limits);
+    return spherical ? ik_spherical(*spherical, *chain, T, limits) : closed_solve(arm, *chain, T, limits);
   }
   ClosedFormSolutions solve_py(ArrayLike target) const {
     return solve(Rigid::from_matrix(as_transform(target, "target")));
   }
   py::tuple solve_batch(ArrayLike targets) const;
-  std::string family() const { return ur ? "three parallel axes 2, 3, 4" : arm.family.name; }
+  std::string family() const {
+    return ur ? "three parallel axes 2, 3, 4" : spherical ? "spherical wrist, axes 2, 3 parallel" : arm.family.name;
+  }
 };
 
 py::tuple ClosedSolver::solve_batch(ArrayLike targets_obj) const {
   if (ur) return ur_batch_with(targets_obj, *chain, *ur, limits);
+  if (spherical)
+    return closed_batch_py(targets_obj, "closed form", [&](const Rigid* targets, long count, double* q, bool* within,
+                                                           bool* singular, Progress* progress) {
+      ik_spherical_batch(*spherical, *chain, targets, count, limits, q, within, singular, progress);
+    });
   return closed_batch_py(targets_obj, "closed form", [&](const Rigid* targets, long count, double* q, bool* within,
                                                          bool* singular, Progress* progress) {
     closed_solve_batch(arm, *chain, targets, count, limits, q, within, singular, progress);
@@ -146,8 +160,11 @@ void bind_solver_class(py::module_& m) {
       "with its chain, limits and options.");
   static const std::string init_doc = kwargs_doc<ClosedFamilyOptions>(
       "ClosedSolver(chain, limits='default', locked=None, *",
-      "The closed form of chain: robokin.closed.ur's for a UR table, else the subproblems' for any\n"
-      "arm robokin.closed.family recognises (ValueError saying why otherwise). limits: 'default'\n"
+      "The closed form of chain, read from its joint axes at q = 0 whatever describes it: the UR\n"
+      "closed form (robokin.closed.ur's) for the UR layout, the PUMA's (robokin.closed.puma560's) for\n"
+      "a spherical wrist in the ortho-parallel layout (KUKA KR, ABB IRB, Fanuc; a shoulder offset\n"
+      "allowed), each in vectorised stages; else the subproblems' for any arm robokin.closed.family\n"
+      "recognises (ValueError saying why otherwise); the same solutions and labels. limits: 'default'\n"
       "for the chain's, None for none, or (lower, upper): for within_limits. locked: None, or\n"
       "{index: value} for a 7-joint chain, the joint (0-based, as in q) held at that value (within\n"
       "limits) and the 6 others solved, as robokin.closed.solve: the value decides the family, so\n"

@@ -41,13 +41,13 @@ bool planar_tip_near(double a1, double a2, double t1, double t2, double x, doubl
 }
 
 double arm_size(const ArmGeometry& g, double d6) {
-  return std::abs(g.d1) + g.a2 + std::abs(g.a3) + std::abs(g.d3) + std::abs(g.d4) + std::abs(d6);
+  return std::abs(g.a1) + std::abs(g.d1) + g.a2 + std::abs(g.a3) + std::abs(g.d3) + std::abs(g.d4) + std::abs(d6);
 }
 
 // Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
 const char* const kShoulder[] = {"shoulder right", "shoulder left", "shoulder singular"};
 const char* const kElbow[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
-const char* const kWrist[] = {"", ", wrist no flip", ", wrist flip"};
+const char* const kWrist[] = {"", ", wrist no flip", ", wrist flip", ", wrist singular"};
 
 const char* arm_label(int shoulder, int elbow, int wrist) {
   static const std::vector<std::string> labels = [] {
@@ -57,7 +57,7 @@ const char* arm_label(int shoulder, int elbow, int wrist) {
         for (const char* w : kWrist) all.push_back(std::string(s) + ", " + e + w);
     return all;
   }();
-  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
+  return labels[(shoulder * 4 + elbow) * 4 + wrist].c_str();
 }
 
 // The elbow of a 2R with links a1, a2 whose tip is w from the first joint: c = cos, s = |sin| of
@@ -155,13 +155,14 @@ struct ArmSolution {
 // The arm's solutions (q1, q2, q3) putting the wrist centre (origin of frame 4; the tip for the
 // anthropomorphic arm) at p, written to out (at most 4); returns their count. In frame 1 the wrist is at
 //   (a2 c2 + a3 c23 - d4 s23, a2 s2 + a3 s23 + d4 c23, d3),
-// so with r = a2 c2 + a3 c23 - d4 s23:  px = c1 r + d3 s1,  py = s1 r - d3 c1,  pz - d1 = a2 s2 + ...
-// r = +-sqrt(px^2 + py^2 - d3^2) (shoulder right / left), q1 = atan2(py, px) + atan2(d3, r); then
-// a planar 2R in (r, pz - d1) with links a2 and L = |(a3, d4)| at an angle offset psi = atan2(d4, a3).
+// so with R = a1 + a2 c2 + a3 c23 - d4 s23:  px = c1 R + d3 s1,  py = s1 R - d3 c1,  pz - d1 = a2 s2 + ...
+// R = +-sqrt(px^2 + py^2 - d3^2) (shoulder right / left), q1 = atan2(py, px) + atan2(d3, R); then
+// a planar 2R in (R - a1, pz - d1) with links a2 and L = |(a3, d4)| at an angle offset
+// psi = atan2(d4, a3).
 int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, ArmSolution out[4]) {
   const double L = std::hypot(g.a3, g.d4);
   // In units of the arm's longest length, as in planar_2r_solve (no overflow or underflow).
-  const double unit = std::max({g.a2, L, std::abs(g.d3)});
+  const double unit = std::max({g.a2, L, std::abs(g.d3), std::abs(g.a1)});
   const double px = p.x() / unit, py = p.y() / unit, d3 = g.d3 / unit;
   const double rho2 = px * px + py * py;
   const double disc = rho2 - d3 * d3;
@@ -179,10 +180,10 @@ int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, Ar
   int n[2] = {0, 0};
   bool elbow_singular[2] = {false, false};
   for (int side = 0; side < sides; ++side) {
-    const double r = side == 0 ? rmag : -rmag;
-    y[2 + side] = g.d3, x[2 + side] = r;
+    const double R = side == 0 ? rmag : -rmag;
+    y[2 + side] = g.d3, x[2 + side] = R;
     double yx[2][2][2];
-    n[side] = planar_2r_args(g.a2, L, r, z, yx, lab[side], elbow_singular[side]);
+    n[side] = planar_2r_args(g.a2, L, R - g.a1, z, yx, lab[side], elbow_singular[side]);
     for (int k = 0; k < n[side]; ++k)
       for (int i = 0; i < 2; ++i) y[4 + 4 * side + 2 * k + i] = yx[k][i][0], x[4 + 4 * side + 2 * k + i] = yx[k][i][1];
   }
@@ -190,7 +191,7 @@ int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, Ar
   const double psi = t[1];
   int count = 0;
   for (int side = 0; side < sides; ++side) {
-    const double r = side == 0 ? rmag : -rmag;
+    const double r = (side == 0 ? rmag : -rmag) - g.a1;  // the wrist's x from joint 2, in frame 1
     const double q1 = t[0] + t[2 + side];
     for (int k = 0; k < n[side]; ++k) {
       const double th1 = t[4 + 4 * side + 2 * k], th2 = t[4 + 4 * side + 2 * k + 1];
@@ -202,7 +203,8 @@ int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, Ar
       if (n[side] == 1) {
         s.elbow = th2 > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
       } else {
-        // Elbow above the shoulder-wrist line: sin(theta') < 0 when the wrist is in front (r > 0).
+        // Elbow above the shoulder-wrist line: sin(theta') < 0 when the wrist is in front of joint
+        // 2 (r > 0).
         // theta' = atan2(s2, c2) with s2 = +-sqrt(...) != 0 here: sin(theta') has the sign of s2,
         // negative for the second solution of planar_2r_args (k = 1).
         const bool up = (k == 1) != (r < 0);
@@ -235,7 +237,7 @@ inline __attribute__((always_inline)) void dh_step(Rigid& F, double a, double d,
 // tool offset d6, from the joints' cosines c and sines s.
 Rigid wrist_arm_fk(const ArmGeometry& g, double d6, const double* c, const double* s) {
   Rigid F;
-  dh_step(F, 0, g.d1, +1, c[0], s[0]);
+  dh_step(F, g.a1, g.d1, +1, c[0], s[0]);
   dh_step(F, g.a2, 0, 0, c[1], s[1]);
   dh_step(F, g.a3, g.d3, -1, c[2], s[2]);
   dh_step(F, 0, g.d4, +1, c[3], s[3]);
@@ -247,7 +249,7 @@ Rigid wrist_arm_fk(const ArmGeometry& g, double d6, const double* c, const doubl
 // Frame 3 of the anthropomorphic arm (rows (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0)) at q.
 Rigid arm_fk(const ArmGeometry& g, const double* q) {
   Rigid F;
-  dh_step(F, 0, g.d1, +1, std::cos(q[0]), std::sin(q[0]));
+  dh_step(F, g.a1, g.d1, +1, std::cos(q[0]), std::sin(q[0]));
   dh_step(F, g.a2, 0, 0, std::cos(q[1]), std::sin(q[1]));
   dh_step(F, g.a3, 0, 0, std::cos(q[2]), std::sin(q[2]));
   return F;
@@ -262,6 +264,7 @@ void check_length(double v, const char* name, bool positive) {
 }
 
 void ArmGeometry::validate() const {
+  check_length(a1, "a1", false);
   check_length(d1, "d1", false);
   check_length(a2, "a2", true);
   check_length(a3, "a3", false);
@@ -379,17 +382,24 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   return out;
 }
 
-ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
-                                       const JointLimits& limits) {
-  arm.validate();
-  check_length(d6, "d6", false);
-  ClosedFormSolutions out;
-  out.dof = 6;
+namespace {
+
+// The candidates of the spherical-wrist arm for the frame T of its DH model (tool offset d6): up to
+// 8 joint vectors of DH angles, each with arm_label's shoulder and elbow indices, its wrist's flip
+// (0 or 1) and whether the wrist is singular (then q4 = 0 or pi: q4 + q6 alone is fixed).
+struct WristCandidates {
+  double q[8][6];
+  int shoulder[8], elbow[8], flip[8];
+  bool wrist_singular[8];
+  int n = 0;
+  bool singular = false;
+};
+
+// In stages, each stage's sines, cosines and arc tangents for every arm solution or candidate in
+// one vectorised pass (fast_math.hpp): the arm (q1, q2, q3), R03 from cos and sin of q1 and
+// q2 + q3, the wrist's q4, then q5, q6.
+void spherical_candidates(const ArmGeometry& arm, double d6, const Rigid& T, WristCandidates& out) {
   const Eigen::Vector3d pw = T.p - d6 * T.R.col(2);
-  // In stages, each stage's sines, cosines and arc tangents for every arm solution or candidate in
-  // one vectorised pass (fast_math.hpp): the arm (q1, q2, q3), R03 from cos and sin of q1 and
-  // q2 + q3, the wrist's q4, then q5, q6; the candidates within the limits are then checked by
-  // the forward model, in their order.
   ArmSolution arms[4];
   const int na = arm_solve(arm, pw, out.singular, arms);
   double ang[16], sn[16], cs[16];
@@ -428,24 +438,72 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
     y56[2 * k + 1] = c * m(1, 0) - s * m(0, 0), x56[2 * k + 1] = c * m(1, 1) - s * m(0, 1);
   }
   vmath::atan2(y56, x56, q56, 4 * na);
-  double q[8][6], angles[48], c[48], s[48];
-  const char* posture[8];
-  bool within[8];
-  const int n = 2 * na;
-  for (int k = 0; k < n; ++k) {
+  out.n = 2 * na;
+  for (int k = 0; k < out.n; ++k) {
     const ArmSolution& a = arms[k / 2];
-    double* v = q[k];
+    double* v = out.q[k];
     v[0] = a.q[0], v[1] = a.q[1], v[2] = a.q[2], v[3] = q4[k], v[4] = q56[2 * k], v[5] = q56[2 * k + 1];
-    within[k] = fit_limits(v, 6, limits);
-    posture[k] = arm_label(a.shoulder, a.elbow, k % 2 ? 2 : 1);
-    std::copy(v, v + 6, angles + 6 * k);
+    out.shoulder[k] = a.shoulder, out.elbow[k] = a.elbow, out.flip[k] = k % 2;
+    out.wrist_singular[k] = wrist_singular[k / 2];
   }
-  vmath::sincos(angles, s, c, 6 * n);
+}
+
+}  // namespace
+
+ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
+                                       const JointLimits& limits) {
+  arm.validate();
+  check_length(d6, "d6", false);
+  ClosedFormSolutions out;
+  out.dof = 6;
+  WristCandidates c;
+  spherical_candidates(arm, d6, T, c);
+  out.singular = c.singular;
+  // The candidates within the limits are checked by the DH model, in their order.
+  double angles[48], cs[48], sn[48];
+  bool within[8];
+  for (int k = 0; k < c.n; ++k) {
+    within[k] = fit_limits(c.q[k], 6, limits);
+    std::copy(c.q[k], c.q[k] + 6, angles + 6 * k);
+  }
+  vmath::sincos(angles, sn, cs, 6 * c.n);
   const double size = arm_size(arm, d6);
-  for (int k = 0; k < n; ++k) {
-    const Rigid F = wrist_arm_fk(arm, d6, c + 6 * k, s + 6 * k);
+  for (int k = 0; k < c.n; ++k) {
+    const Rigid F = wrist_arm_fk(arm, d6, cs + 6 * k, sn + 6 * k);
     if ((F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
-      out.add(q[k], posture[k], within[k]);
+      out.add(c.q[k], arm_label(c.shoulder[k], c.elbow[k], 1 + c.flip[k]), within[k]);
+  }
+  return out;
+}
+
+ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, const Rigid& T,
+                                 const JointLimits& limits, int* slot) {
+  ClosedFormSolutions out;
+  out.dof = 6;
+  WristCandidates c;
+  spherical_candidates(sa.arm, 0.0, sa.base.inverse() * T * sa.tool.inverse(), c);
+  out.singular = c.singular;
+  // The chain's joints of each candidate: one per arm solution where the wrist is singular (q4 = 0
+  // of the continuum, labelled "wrist singular" as closed_solve labels it).
+  double q[8][6];
+  int keep[8], m = 0;
+  for (int k = 0; k < c.n; ++k) {
+    if (c.wrist_singular[k] && c.flip[k]) continue;
+    for (int i = 0; i < 6; ++i) q[m][i] = sa.scale[i] * (c.q[k][i] - sa.theta[i]);
+    keep[m++] = k;
+  }
+  bool within[8];
+  fit_limits_rows(q[0], m, 6, limits, within);
+  Rigid F[8];
+  chain.fk_few(q[0], m, F);
+  const double size = arm_size(sa.arm, 0.0) + sa.base.p.norm() + sa.tool.p.norm();
+  for (int j = 0; j < m; ++j) {
+    if (!((F[j].p - T.p).norm() <= kTolP * size && (F[j].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    const int k = keep[j], wrist = c.wrist_singular[k] ? 3 : 1 + c.flip[k];
+    // kURPostures' slot: shoulder left 0 / right 1 (arm_label's 1 / 0; singular in the first),
+    // elbow up 0 / down 1 (straight or folded in the first), wrist no flip 0 / flip 1.
+    if (slot) slot[out.count()] = (c.shoulder[k] == 0) * 4 + (c.elbow[k] == 1) * 2 + (wrist == 2);
+    out.add(q[j], arm_label(c.shoulder[k], c.elbow[k], wrist), within[j]);
   }
   return out;
 }
@@ -769,6 +827,14 @@ void ik_ur_batch(const URArm& arm, const Chain& chain, const Rigid* targets, lon
                  double* q_out, bool* within_limits, bool* singular, Progress* progress) {
   closed_batch(
       count, 512, 6, [&](long k, int* slot) { return ik_ur(arm, chain, targets[k], limits, slot); },
+      q_out, within_limits, singular, progress);
+}
+
+void ik_spherical_batch(const SphericalArm& arm, const Chain& chain, const Rigid* targets, long count,
+                        const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
+                        Progress* progress) {
+  closed_batch(
+      count, 512, 6, [&](long k, int* slot) { return ik_spherical(arm, chain, targets[k], limits, slot); },
       q_out, within_limits, singular, progress);
 }
 

@@ -1,8 +1,11 @@
 // robokin._testing's hooks of the Paden-Kahan subproblems (subproblems.hpp), for their tests: each
-// returns (angles, singular) with the angles as a list.
+// returns (angles, singular) with the angles as a list; and closed_solve on them alone, for the
+// test that the layouts' own closed forms (ik_ur, ik_spherical) give its solutions and labels.
 #include "subproblems_hooks.hpp"
 
 #include "arrays.hpp"
+#include "robokin/closed_solve.hpp"
+#include "robokin/ik_closed.hpp"
 #include "robokin/subproblems.hpp"
 
 #include <pybind11/stl.h>
@@ -38,6 +41,25 @@ void bind_subproblem_hooks(py::module_& m) {
   m.def("subproblem4", [](ArrayLike h, ArrayLike k, ArrayLike p, double d) {
     return angles(subproblem4(v3(h, "h"), v3(k, "k").normalized(), v3(p, "p"), d));
   }, py::arg("h"), py::arg("k"), py::arg("p"), py::arg("d"));
+  // Every solution of the chain's 6R for the tool frame, without limits, by the subproblems whatever
+  // the arm's layout -> IKSolutions.
+  m.def("closed_solve_subproblems", [](const Chain& chain, ArrayLike target) {
+    const ClosedArm arm = closed_arm(chain);
+    return closed_solve(arm, chain, Rigid::from_matrix(as_transform(target, "target")), JointLimits{});
+  }, py::arg("chain"), py::arg("target"));
+  // Which layout's own closed form ClosedSolver takes for the chain: "ur", "spherical" or None.
+  m.def("closed_layout", [](const Chain& chain) -> py::object {
+    for (const auto& [name, read] : {std::pair<const char*, void (*)(const Chain&)>{
+                                         "ur", [](const Chain& c) { ur_arm(c); }},
+                                     {"spherical", [](const Chain& c) { spherical_arm(c); }}}) {
+      try {
+        read(chain);
+        return py::str(name);
+      } catch (const std::invalid_argument&) {
+      }
+    }
+    return py::none();
+  }, py::arg("chain"));
 }
 
 }  // namespace robokin::bind

@@ -1150,8 +1150,11 @@ class ClosedSolver:
         """
         ClosedSolver(chain, limits='default', locked=None, *, tol=1e-06)
         
-        The closed form of chain: robokin.closed.ur's for a UR table, else the subproblems' for any
-        arm robokin.closed.family recognises (ValueError saying why otherwise). limits: 'default'
+        The closed form of chain, read from its joint axes at q = 0 whatever describes it: the UR
+        closed form (robokin.closed.ur's) for the UR layout, the PUMA's (robokin.closed.puma560's) for
+        a spherical wrist in the ortho-parallel layout (KUKA KR, ABB IRB, Fanuc; a shoulder offset
+        allowed), each in vectorised stages; else the subproblems' for any arm robokin.closed.family
+        recognises (ValueError saying why otherwise); the same solutions and labels. limits: 'default'
         for the chain's, None for none, or (lower, upper): for within_limits. locked: None, or
         {index: value} for a 7-joint chain, the joint (0-based, as in q) held at that value (within
         limits) and the 6 others solved, as robokin.closed.solve: the value decides the family, so

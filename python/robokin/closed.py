@@ -386,8 +386,10 @@ def family(chain: Chain, locked=None, **options) -> Family:
 @with_options(ClosedFamilyOptions)
 def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKSolutions:
     """Every solution (up to 8) of a 6R arm whose geometry has a closed form (:func:`family`), for
-    the tool frame ``target``: from the Paden-Kahan subproblems on the chain's joint axes (a UR
-    table's own closed form, :func:`ur`, for a UR DH chain). URDF chains are read as they are.
+    the tool frame ``target``: from the Paden-Kahan subproblems on the chain's joint axes, or, for
+    the UR layout and a spherical wrist in the ortho-parallel layout (PUMA, KUKA KR, ABB IRB), read
+    from the same axes, those layouts' own closed forms (:func:`ur`, :func:`puma560`), which give the
+    same solutions and labels faster. URDF chains are read as they are.
 
     Each solution is checked by ``chain.fk`` (tool within 1e-9 x the arm's size, rotation entries
     within 1e-8). Labels as :func:`puma560` and :func:`ur`: ``"shoulder left|right"`` (the wrist

@@ -69,11 +69,12 @@ ClosedFormSolutions ik_planar_2r(double a1, double a2, double px, double py, con
 ClosedFormSolutions ik_planar_3r(double a1, double a2, double a3, double px, double py, double phi,
                                  bool geometric, const JointLimits& limits);
 
-// The arm of a 6R robot with a spherical wrist, standard DH: (0, pi/2, d1), (a2, 0, 0),
-// (a3, -pi/2 or 0, d3), then a wrist whose centre is d4 along z3. With d3 = d4 = 0 this is the
-// anthropomorphic arm (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0) of the course.
+// The arm of a 6R robot with a spherical wrist, standard DH: (a1, pi/2, d1), (a2, 0, 0),
+// (a3, -pi/2 or 0, d3), then a wrist whose centre is d4 along z3 (the ortho-parallel layout of most
+// industrial arms: a1 = 0 for the PUMA and the ABB IRB 120, 0.26 m for the KUKA KR 16). With
+// a1 = d3 = d4 = 0 this is the anthropomorphic arm (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0) of the course.
 struct ArmGeometry {
-  double d1 = 0, a2 = 0, a3 = 0, d3 = 0, d4 = 0;
+  double d1 = 0, a2 = 0, a3 = 0, d3 = 0, d4 = 0, a1 = 0;
 
   // Throws std::invalid_argument("name: ...") unless every length is finite, a2 positive and the
   // forearm has a length (a3 or d4 non-zero).
@@ -90,6 +91,33 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 // flip / no flip. When s5 = 0 (wrist singular) q4 + q6 is fixed: q4 is set to 0 (or pi).
 ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits);
+
+// The ortho-parallel spherical-wrist layout read from a chain's geometry, as URArm is for the UR
+// layout: the chain's joint i turns the DH angle scale * q + theta, base and tool are the fixed
+// frames before joint 1 and after joint 6 (the DH arm's tool offset d6 is 0: the wrist centre is
+// frame 6's origin).
+struct SphericalArm {
+  ArmGeometry arm;
+  double theta[6] = {0, 0, 0, 0, 0, 0};
+  double scale[6] = {1, 1, 1, 1, 1, 1};
+  Rigid base, tool;
+};
+
+// The chain's ortho-parallel geometry read from its joint axes at q = 0, whatever describes it:
+// axes 1 and 2 at a right angle (a1 apart), 2 and 3 parallel and apart, 3 and 4 at a right angle,
+// 4, 5, 6 meeting in one point at right angles (to 1e-9 rad and 1e-9 of the arm's size). Throws
+// std::invalid_argument("robot: not an arm of the spherical-wrist layout (...)") naming what differs.
+SphericalArm spherical_arm(const Chain& chain);
+
+// Every solution of the tool frame T (up to 8) in the chain's joints, as ik_spherical_wrist's
+// (the same labels, which are closed_solve.hpp's geometric ones), each checked by chain.fk and
+// marked within the limits or not; slot[k] (when given, size 8) is row k's slot as kURPostures'.
+ClosedFormSolutions ik_spherical(const SphericalArm& arm, const Chain& chain, const Rigid& T,
+                                 const JointLimits& limits, int* slot = nullptr);
+// ik_spherical on many frames, as ik_ur_batch.
+void ik_spherical_batch(const SphericalArm& arm, const Chain& chain, const Rigid* targets, long count,
+                        const JointLimits& limits, double* q_out, bool* within_limits, bool* singular,
+                        Progress* progress = nullptr);
 
 // Along a path of tool frames: for each, the spherical-wrist solution within the limits nearest to
 // the previous joints (q0 for the first), revolute angles shifted by 2 pi towards the previous value
