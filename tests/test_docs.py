@@ -73,8 +73,7 @@ def test_the_built_site_checker_finds_a_missing_name(tmp_path):
 
 def _public_callables():
     """Every public function and static method of the package's namespace and public modules."""
-    modules = [rk] + [importlib.import_module(f"robokin.{m}") for m in _api_pages.public_modules()
-                      if m not in ("dask", "symbolic", "plots")]  # optional extras: their own tests
+    modules = [rk] + [importlib.import_module(f"robokin.{m}") for m in _api_pages.public_modules()]
     for module in modules:
         for name in module.__all__:
             obj = getattr(module, name)
@@ -101,3 +100,15 @@ def test_help_reads_as_for_python_functions():
         assert "numpy" not in str(signature) or "ArrayLike" in str(signature), name
     assert str(inspect.signature(rk.Chain.from_dh)).startswith("(rows: object, modified: bool = False, tool:")
     assert rk.Chain.from_dh.__qualname__ == "Chain.from_dh" and rk.urdf_tree.__module__ == "robokin"
+
+
+def test_every_parameter_is_named_in_its_docstring():
+    """A public function's docstring says what each of its parameters is: its name appears in the
+    text (the options of a **kwargs are listed from their class by with_options / kwargs_doc)."""
+    missing = []
+    for name, fn in _public_callables():
+        doc = fn.__doc__ or ""
+        for p in inspect.signature(fn).parameters.values():
+            if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and p.name != "self" and p.name not in doc:
+                missing.append(f"{name}({p.name})")
+    assert not missing

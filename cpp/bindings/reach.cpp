@@ -85,8 +85,9 @@ void bind_reach(py::module_& m) {
         return std::move(out);
       },
       py::arg("chain"), py::arg("q"),
-      "Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2, W = diag(1 / (q_max - q_min)) (0 for an\n"
-      "unlimited joint): a float for q (dof,), an array (N,) for a batch (N, dof).");
+      "Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2 of the chain's limits, W = diag(1 /\n"
+      "(q_max - q_min)) (0 for an unlimited joint), qbar their middle: a float for q (dof,), an\n"
+      "array (N,) for a batch (N, dof).");
 }
 
 }  // namespace robokin::bind

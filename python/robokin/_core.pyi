@@ -1668,8 +1668,9 @@ def ik_ur_batch(targets: numpy.typing.ArrayLike, chain: Chain, limits: typing.Li
     ...
 def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     """
-    Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2, W = diag(1 / (q_max - q_min)) (0 for an
-    unlimited joint): a float for q (dof,), an array (N,) for a batch (N, dof).
+    Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2 of the chain's limits, W = diag(1 /
+    (q_max - q_min)) (0 for an unlimited joint), qbar their middle: a float for q (dof,), an
+    array (N,) for a batch (N, dof).
     """
 def plan_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], int, float]:
     """

@@ -205,9 +205,10 @@ def puma560_path(targets, q0, limits="default"):
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
-    """The RPR study's arm's self-motion set (redundant: infinitely many solutions); see
-    :func:`robokin.robots.rpr_self_motion`, which this is: a fixed-shape (2, K, 3) table whose NaN
-    rows, by design, are the samples of t1 where a branch has no solution within the limits."""
+    """The RPR study's arm's self-motion set at the tool point ``point`` (redundant: infinitely many
+    solutions), sampled at ``t1`` or at ``num`` angles; see :func:`robokin.robots.rpr_self_motion`,
+    which this is: a fixed-shape (2, K, 3) table whose NaN rows, by design, are the samples of t1
+    where a branch has no solution within the limits."""
     from .robots import rpr_self_motion as _sm
 
     return _sm(point, t1, num)

@@ -103,7 +103,8 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
                  task: Optional[str] = None, q0=None, chunks: int = _BLOCK, **ik_options) -> ReachabilityMap:
     """:func:`robokin.reachability.reachability` with the voxels cut into chunks of ``chunks``
     voxels, computed with Dask (the active ``distributed.Client`` when there is one). The same
-    arguments and options, and the same map, bit for bit, whatever the chunking and the workers."""
+    arguments (``chain``, ``bounds``, ``resolution``, ``orientations``, ``seed``, ``task``, ``q0``)
+    and options, and the same map, bit for bit, whatever the chunking and the workers."""
     p = plan(chain, bounds, resolution, orientations, seed, task, q0, **ik_options)
     whole(chunks, "chunks", 1, 2**63 - 1, "voxels per chunk")
     voxels = da.arange(p.voxels, chunks=int(chunks), dtype=np.int64)
@@ -116,8 +117,8 @@ def reachability(chain: _core.Chain, bounds, resolution, orientations: Optional[
 @with_options(_core.RRR3WorkspaceOptions)
 def region_areas(robots, *, chunks="auto", **options):
     """The 3-RRR sweep's areas (``RRR3Workspace.area``) of each row ``(base_radius,
-    platform_radius, l1, l2)`` of ``robots`` (N, 4) as a dask array (N,), chunk by chunk with the
-    core's batch call on the maps of the options."""
+    platform_radius, l1, l2)`` of ``robots`` (N, 4) as a dask array (N,), chunk by chunk (``chunks``
+    rows each, dask's chunk sizes) with the core's batch call on the maps of the options."""
     rd = _rows(robots, "robots", chunks)
     _core.rrr3_region_areas(np.empty((0,) + rd.shape[1:]), **options)  # the one-machine checks
     return rd.map_blocks(_areas_block, options, drop_axis=1, dtype=np.float64, meta=np.empty((0,)))

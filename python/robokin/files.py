@@ -117,7 +117,8 @@ def _remove_parts(directory: str, pattern, dead) -> list:
 
 def remove_stale(directory: str, stem: str, ext: str) -> list:
     """Removes the temporary files ``.STEM.PID.RANDOM.partEXT`` in ``directory`` whose process PID
-    no longer exists (left by a killed writer of the target ``STEM + EXT``); returns their paths.
+    no longer exists (left by a killed writer of the target ``STEM + EXT``, ``stem`` and ``ext``
+    its name and extension); returns their paths.
     Files of other targets, of live processes, or named otherwise are left alone."""
     return _remove_parts(directory, _part_pattern(stem, r"\d{1,10}", ext), lambda pid: not _alive(pid))
 

@@ -62,7 +62,8 @@ def _center(center) -> np.ndarray:
 
 
 def circle(n: int, radius: float = 0.1, center=(0.0, 0.0)) -> np.ndarray:
-    """``n`` points of a circle, counter-clockwise from angle 0, ``t_k = 2 pi k / n`` (no repeat).
+    """``n`` points of a circle of ``radius`` about ``center``, counter-clockwise from angle 0,
+    ``t_k = 2 pi k / n`` (no repeat).
 
     The seed program's circle has radius 0.1 m about the origin.
     """

@@ -20,7 +20,8 @@ __all__ = ["MAX_DRAWN", "draw_planar_chain", "joint_axes", "rpr_line_figure", "t
 
 
 def draw_planar_chain(ax, chain: Chain, q, color="C0", alpha=1.0, lw=2.0) -> None:
-    """Draws a planar chain's links in the xy plane: a polyline through its frames' origins."""
+    """Draws a planar chain's links at ``q`` in the xy plane on the matplotlib Axes ``ax``: a
+    polyline through its frames' origins, in ``color`` with opacity ``alpha`` and width ``lw``."""
     origins = chain.frames(q)[:, :2, 3]
     ax.plot(origins[:, 0], origins[:, 1], "-", color=color, alpha=alpha, lw=lw, solid_capstyle="round")
     ax.plot(origins[:-1, 0], origins[:-1, 1], "o", color=color, alpha=alpha, ms=3)

@@ -20,8 +20,9 @@ def plot_reachability(rmap: ReachabilityMap, path=None, axis: str = "z", slices:
                       title: Optional[str] = None):
     """A figure of ``rmap``: slices of the reachability index perpendicular to ``axis`` (at the
     coordinates ``slices``, m; None: three evenly spread through the grid), then the projection
-    along ``axis`` (the largest index over it). A planar map is one panel. With ``path`` the
-    figure is also saved there (atomically: the whole file or none).
+    along ``axis`` (the largest index over it). A planar map is one panel. ``title`` heads the
+    figure (None: the orientations per voxel and the voxel size). With ``path`` the figure is also saved there (atomically: the
+    whole file or none).
 
     Returns:
         The matplotlib Figure.

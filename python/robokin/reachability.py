@@ -200,9 +200,11 @@ class ReachabilityPlan:
 @with_options(IKOptions, defaults=IK_OPTIONS, exclude=("task",))
 def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = None, seed: int = 0,
          task: Optional[str] = None, q0=None, **ik_options) -> ReachabilityPlan:
-    """The plan of :func:`reachability`'s map (same arguments, same checks), to compute its blocks
-    with a scheduler of your own: ``p.block(first, count)`` gives the voxels ``first .. first +
-    count - 1`` (C order) as (index, best manipulability), ``p.result(index, manip)`` the map."""
+    """The plan of :func:`reachability`'s map (``chain``, ``bounds``, ``resolution``,
+    ``orientations``, ``seed``, ``task``, ``q0`` and the options as it takes them, the same
+    checks), to compute its blocks with a scheduler of your own: ``p.block(first, count)`` gives
+    the voxels ``first .. first + count - 1`` (C order) as (index, best manipulability),
+    ``p.result(index, manip)`` the map."""
     check_chain(chain)
     if task is None:
         task = chain.natural_task
