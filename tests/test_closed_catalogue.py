@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, newton_held, random_q
+from closed_helpers import angle_distance, newton_held, newton_steps, random_q
 
 P = math.pi
 POSES = 2000
@@ -23,7 +23,7 @@ DEGENERATE_AT_0_AND_PI = {("iiwa14", 1), ("iiwa14", 5), ("panda", 5)}
 
 def test_the_cases_are_the_catalogue_arms_with_a_closed_form():
     assert set(ARMS_6R) == {"irb120", "puma560", "ur3", "ur5", "ur10", "ur3e", "ur5e", "ur10e", "ur16e"}
-    assert len(HELD) == 11
+    assert len(HELD) == 13
 
 
 @pytest.mark.slow
@@ -68,7 +68,7 @@ def test_held_joint_on_random_poses(name, j):
             local = (name, j) == ("gen3", 3)
             starts = q + rng.normal(0, 0.05, (48, 7)) if local else random_q(chain, rng, 48, margin=0.02)
             starts[:, j] = q[j]
-            qn, err = newton_held(chain, T, starts, j)
+            qn, err = newton_held(chain, T, starts, j, iterations=newton_steps(name, j))
             converged += int(np.count_nonzero(err < 1e-12))
             for row in qn[err < 1e-12]:  # converged to rounding (1e-10 leaves ~1e-6 rad near a singularity)
                 assert angle_distance(s.q, row).min() < 1e-6

@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, newton_held, random_q
+from closed_helpers import angle_distance, newton_held, newton_steps, random_q
 
 P = math.pi
 ARMS = {"iiwa14": rk.robots.iiwa14(), "panda": rk.robots.panda(), "gen3": rk.robots.gen3()}
 # The locks (0-based joint indices) that leave a 6R with a closed form, at a generic value.
-SOLVABLE = {"iiwa14": [0, 1, 2, 4, 5, 6], "panda": [5, 6], "gen3": [0, 2, 3]}
+SOLVABLE = {"iiwa14": [0, 1, 2, 4, 5, 6], "panda": [3, 5, 6], "gen3": [0, 1, 2, 3]}
 CASES = [(name, j) for name, locks in SOLVABLE.items() for j in locks]
 
 
@@ -29,7 +29,7 @@ def test_which_locks_leave_a_closed_form(name):
     assert solvable == SOLVABLE[name]
 
 
-@pytest.mark.parametrize("name,locks", [("iiwa14", [0, 2, 4, 6]), ("panda", [6]), ("gen3", [0, 2, 3])])
+@pytest.mark.parametrize("name,locks", [("iiwa14", [0, 2, 4, 6]), ("panda", [6]), ("gen3", [0, 1, 2, 3])])
 def test_locks_that_hold_at_any_value(name, locks):
     for j in locks:
         for v in (0.0, 1e-9, 0.3, P / 2, -2.5):
@@ -41,6 +41,9 @@ def test_locks_that_fail_where_axes_line_up():
     for j, v in [(1, 0.0), (1, P), (5, 0.0), (5, -P)]:
         assert not rk.closed.family(iiwa, locked={j: v}).solvable
     assert not rk.closed.family(panda, locked={5: 0.0}).solvable and rk.closed.family(panda, locked={5: 3.0}).solvable
+    # The Panda's elbow at 0 (beyond its limit of -0.07 rad): axis 5 through the shoulder's point.
+    assert "axis 5 passes through the wrist centre" in rk.closed.family(panda, locked={3: 0.0}).reason
+    assert all(rk.closed.family(panda, locked={3: v}).solvable for v in (-0.07, -1.2, -3.07, 1.0, P))
 
 
 def test_the_families_the_locks_leave():
@@ -57,8 +60,12 @@ def test_the_families_the_locks_leave():
     # Axes that line up at 0: the iiwa's 1 and 3, the Panda's 5 and 7.
     assert "axes 1, 3 are parallel" in rk.closed.family(iiwa, locked={1: 0.0}).reason
     assert not rk.closed.family(panda, locked={5: 0.0}).solvable
-    # The Gen3's shoulder offset (axes 1, 2 and 2, 3 meet 11.8 mm apart along axis 2).
-    assert "axes 1, 3 do not meet: 11.8 mm apart" in rk.closed.family(gen3, locked={1: 0.3}).reason
+    # The Panda's elbow held: its shoulder spherical, axes 5, 6 meeting, axis 7 88 mm from them.
+    assert rk.closed.family(panda, locked={3: -1.2}).name == "spherical shoulder, axes 5, 6 meet before axis 7"
+    # The Gen3's shoulder offset (axes 1, 2 and 2, 3 meet 11.8 mm apart along axis 2): with joint 2
+    # held, axes 3, 4 meet 11.8 mm off axis 1; with joint 5 held, no spherical shoulder.
+    assert rk.closed.family(gen3, locked={1: 0.3}).name == "spherical wrist, axes 3, 4 meet after axis 1"
+    assert "axes 1, 2, 3 do not meet: 11.8 mm apart" in rk.closed.family(gen3, locked={4: 0.3}).reason
 
 
 @pytest.mark.parametrize("name,j", CASES)
@@ -89,7 +96,7 @@ def test_numerical_ik_finds_nothing_the_closed_form_misses(name, j):
             # distance from the shoulder, and Newton converges only from near a solution.
             starts = q + rng.normal(0.0, 0.05, (48, 7))
         starts[:, j] = q[j]
-        ends, errors = newton_held(chain, T, starts, j)
+        ends, errors = newton_held(chain, T, starts, j, iterations=newton_steps(name, j))
         for qn in ends[errors < 1e-10]:
             found += 1
             assert angle_distance(s.q, qn).min() < 1e-6

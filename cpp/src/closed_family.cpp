@@ -81,22 +81,27 @@ double point_line_distance(const JointAxes& g, int i, const Eigen::Vector3d& x) 
 }
 
 // The family of a 6R's axes, read in g's order (the kinds of FamilyKind), its wrist centre and the
-// point where axes 1, 2 meet; `why` says why none holds, in g's joint numbers.
+// point where the two axes before the wrist meet; `why` says why none holds, in g's joint numbers.
+// `after` is set, with `center` and `shoulder`, when WristMeetAfter holds (kind stays None unless
+// another family does: WristMeetAfter is taken only when none holds from either end).
 struct Reading {
   FamilyKind kind = FamilyKind::None;
+  bool after = false;
   Eigen::Vector3d center = Eigen::Vector3d::Zero(), shoulder = Eigen::Vector3d::Zero();
   std::string why;
 };
 
-// Axes 1, 2 meet (not parallel) at `shoulder` and axis 3 passes through neither that point nor the
-// wrist centre c (else |c - shoulder| is the same for every q3: no posture or a continuum); `why`
-// says what fails otherwise.
-bool meets_first_two(const JointAxes& g, double tol, double tol_d, const Eigen::Vector3d& c,
-                     Eigen::Vector3d& shoulder, std::string& why) {
-  if (line_angle(g.axis[0], g.axis[1]) <= tol) return why = axes_text(g, {0, 1}) + " are parallel", false;
-  const double d12 = line_distance(g, 0, 1, &shoulder);
-  if (d12 > tol_d) return why = axes_text(g, {0, 1}) + " do not meet: " + mm(d12), false;
-  if (point_line_distance(g, 2, shoulder) <= tol_d)
+// Axes first, first + 1 (0-based) meet (not parallel) at `shoulder`, the lone axis of 1 .. 3
+// does not pass through that point (else axes 1, 2, 3 meet in a point: its distance from the wrist
+// centre c is the same for every posture, a continuum of solutions or none), and axis 3 does not
+// pass through c (else c is moved by two joints alone); `why` says what fails otherwise.
+bool meets_pair(const JointAxes& g, int first, int lone, double tol, double tol_d, const Eigen::Vector3d& c,
+                Eigen::Vector3d& shoulder, std::string& why) {
+  const std::string pair = axes_text(g, {first, first + 1});
+  if (line_angle(g.axis[first], g.axis[first + 1]) <= tol) return why = pair + " are parallel", false;
+  const double d = line_distance(g, first, first + 1, &shoulder);
+  if (d > tol_d) return why = pair + " do not meet: " + mm(d), false;
+  if (point_line_distance(g, lone, shoulder) <= tol_d)
     return why = axes_text(g, {0, 1, 2}) + " meet in a point, as " + axes_text(g, {3, 4, 5}) +
                  " do: the distance between the two points is the same for every posture (a continuum "
                  "of solutions or none)", false;
@@ -122,13 +127,19 @@ Reading read_family(const JointAxes& g, double tol, double tol_d) {
     r.kind = FamilyKind::SphericalWrist;
     return r;
   }
-  std::string meet_why;
-  if (wrist <= tol_d && meets_first_two(g, tol, tol_d, r.center, r.shoulder, meet_why)) {
+  std::string meet_why, after_why;
+  if (wrist <= tol_d && meets_pair(g, 0, 2, tol, tol_d, r.center, r.shoulder, meet_why)) {
     r.kind = FamilyKind::WristMeet;
     return r;
   }
+  if (wrist <= tol_d && meets_pair(g, 1, 0, tol, tol_d, r.center, r.shoulder, after_why)) {
+    r.after = true;
+    return r;
+  }
   std::string& why = r.why;
-  if (wrist <= tol_d) why = "spherical wrist, but " + axes_text(g, {1, 2}) + " are not parallel: " + degrees(par23) + " and " + meet_why;
+  if (wrist <= tol_d)
+    why = "spherical wrist, but " + axes_text(g, {1, 2}) + " are not parallel: " + degrees(par23) + " and " +
+          meet_why + (after_why == meet_why ? "" : " and " + after_why);
   else why = axes_text(g, {3, 4, 5}) + " do not meet: " + (std::isinf(wrist) ? axes_text(g, {3, 4}) + " parallel" : mm(wrist));
   if (par234 <= tol) why += "; " + axes_text(g, {1, 2, 3}) + " are parallel, but " + axes_text(g, {4, 5}) + " do not meet";
   else why += "; " + axes_text(g, {1, 2, 3}) + " are not parallel: " + degrees(par234);
@@ -136,13 +147,17 @@ Reading read_family(const JointAxes& g, double tol, double tol_d) {
   return r;
 }
 
-// The family's name in the chain's joint numbers: a reversed family's wrist is a shoulder.
+// The family's name in the chain's joint numbers: a reversed family's wrist is a shoulder. The
+// lone axis of WristMeetAfter is named, before the pair in the chain's order (after it reversed).
 std::string family_name(FamilyKind kind, bool reversed, const JointAxes& g) {
   const std::string end = reversed ? "spherical shoulder, " : "spherical wrist, ";
   switch (kind) {
     case FamilyKind::ThreeParallel: return "three parallel " + axes_text(g, {1, 2, 3});
     case FamilyKind::SphericalWrist: return end + axes_text(g, {1, 2}) + " parallel";
     case FamilyKind::WristMeet: return end + axes_text(g, {0, 1}) + " meet";
+    case FamilyKind::WristMeetAfter:
+      return end + axes_text(g, {1, 2}) + " meet " + (reversed ? "before" : "after") + " axis " +
+             std::to_string(g.number[0]);
     default: return "none";
   }
 }
@@ -243,13 +258,21 @@ ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& option
                (n == 7 && !g.held ? "; hold one (locked={index: value}) to solve the 6 others" : "");
     return f;
   }
-  Reading r = read_family(g, options.tol, f.tol_distance);
+  Reading r = read_family(g, options.tol, f.tol_distance), back;
+  JointAxes back_axes;
+  if (r.kind == FamilyKind::None) {
+    back_axes = reversed_axes(g);
+    back = read_family(back_axes, options.tol, f.tol_distance);
+  }
+  // WristMeetAfter last: where another family holds from either end, that one (and its name) is kept.
+  if (r.kind == FamilyKind::None && back.kind == FamilyKind::None) {
+    if (r.after) r.kind = FamilyKind::WristMeetAfter;
+    else if (back.after) back.kind = FamilyKind::WristMeetAfter;
+  }
   if (r.kind != FamilyKind::None) {
     f.kind = r.kind, f.center = r.center, f.shoulder = r.shoulder, f.name = family_name(r.kind, false, g);
     return f;
   }
-  JointAxes back_axes = reversed_axes(g);
-  const Reading back = read_family(back_axes, options.tol, f.tol_distance);
   if (back.kind == FamilyKind::None) {
     f.reason = r.why + "; from the tool: " + back.why.substr(0, back.why.find(';'));
     return f;

@@ -152,6 +152,36 @@ void solve_meet(const JointAxes& g, const V3& center, const V3& s, const Rigid& 
   }
 }
 
+// Spherical wrist, axes 2, 3 meeting at s after axis 1: joints 2, 3 fix s, so q1 (3) puts the
+// wrist centre c at |c0 - s| from s as seen before joint 1, then q2, q3 (2) turn c0 onto it. The
+// shoulder's label: the turn about axis 1 from s (at the solution) to c; the elbow's: the turn
+// about axis 3 from axis 2 to c (straight / folded where they are coplanar: axis 3 between the two
+// or not).
+void solve_meet_after(const JointAxes& g, const V3& center, const V3& s, const Rigid& G, Candidates& out) {
+  const V3 c = G.R * center + G.p;
+  const V3 &h1 = g.axis[0], &p1 = g.point[0], &h2 = g.axis[1], &h3 = g.axis[2];
+  const SubproblemAngles t1 = subproblem3(h1, s - p1, c - p1, (center - s).norm());
+  out.singular = out.singular || t1.singular;
+  for (int i = 0; i < t1.count; ++i) {
+    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    const M3 R1 = axis_rotation(h1, q[0]);
+    const V3 s1 = p1 + R1 * (s - p1), w = c - s1;
+    const int shoulder = t1.singular ? 2 : (h1.dot((s1 - p1).cross(c - p1)) > 0 ? 0 : 1);
+    SubproblemAngles t2, t3;
+    subproblem2(h2, h3, center - s, R1.transpose() * (c - p1) + (p1 - s), t2, t3);
+    const bool elbow_singular = t2.singular || t3.singular;
+    out.singular = out.singular || elbow_singular;
+    for (int j = 0; j < t2.count; ++j) {
+      q[1] = t2.theta[j], q[2] = t3.theta[j];
+      const M3 R12 = R1 * axis_rotation(h2, q[1]), R3 = axis_rotation(h3, q[2]);
+      const V3 a2 = R1 * h2, a3 = R12 * h3;
+      const int elbow = elbow_singular ? (a2.cross(a3).dot(a3.cross(w)) > 0 ? 2 : 3)
+                                       : (a3.dot(a2.cross(w)) > 0 ? 0 : 1);
+      wrist(g, R12 * R3, G.R, q, shoulder, elbow, out);
+    }
+  }
+}
+
 // q6 (into q6) and q2 + q3 + q4 (returned) of the three-parallel family for q1 and q5: R16 = R1^T
 // R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
 // singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
@@ -292,6 +322,7 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   const JointAxes& g = arm.family.reversed ? arm.solved : arm.axes;
   if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
   else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
+  else if (kind == FamilyKind::WristMeetAfter) solve_meet_after(g, arm.family.center, arm.family.shoulder, G, c);
   else solve_spherical(g, arm.family.center, G, c);
   const int n = 6 + arm.axes.held.has_value(), held = held_index(arm);
   for (int k = 0; k < c.m; ++k)

@@ -337,9 +337,13 @@ class Family:
         name: ``"spherical wrist, axes 2, 3 parallel"`` (axes 4, 5, 6 meet in a point: the PUMA,
             KUKA KR, ABB IRB, Fanuc and Staubli arms), ``"three parallel axes 2, 3, 4"`` (axes 5
             and 6 meeting: the UR family), ``"spherical wrist, axes 1, 2 meet"`` (the iiwa with
-            ``q[2]`` held), the same read from the tool (``"spherical shoulder, axes 5, 6 meet"``:
-            the Panda with ``q[6]`` held; ``"spherical shoulder, axes 4, 5 parallel"``, ``"three
-            parallel axes 3, 4, 5"``), or ``"none"``. Axes are named by their joint numbers.
+            ``q[2]`` held), ``"spherical wrist, axes 2, 3 meet after axis 1"`` (the Gen3 with
+            ``q[1]`` held: ``"axes 3, 4 meet after axis 1"``), the same read from the tool
+            (``"spherical shoulder, axes 5, 6 meet"``: the Panda with ``q[6]`` held; ``"spherical
+            shoulder, axes 5, 6 meet before axis 7"``: the Panda with ``q[3]`` held; ``"spherical
+            shoulder, axes 4, 5 parallel"``, ``"three parallel axes 3, 4, 5"``), or ``"none"``.
+            Axes are named by their joint numbers; where two axes meet beside the wrist (or the
+            shoulder), the lone axis beyond them is named too.
         solvable: :func:`solve` has a closed form for it.
         reason: Why there is none (``"axes 4, 5, 6 do not meet: 3.2 mm apart; ..."``), else ``""``.
         meet: Consecutive axes (1-based pairs) whose lines meet.
@@ -402,7 +406,12 @@ def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKS
     ``"wrist singular"`` (a continuum, one representative) at singularities, ``singular`` set.
     For a spherical wrist with axes 1, 2 meeting at s, ``"elbow up"`` means that the arm turns
     positively about axis 3 (a3, at the solution) from the shoulder to the wrist centre c:
-    a3 . ((s - e) x (c - e)) > 0, e the point of axis 3 nearest s. A family read from the tool (a
+    a3 . ((s - e) x (c - e)) > 0, e the point of axis 3 nearest s. For a spherical wrist with
+    axes 2, 3 meeting at s after axis 1, ``"shoulder left"`` means that the wrist centre c turns
+    positively about axis 1 (a1) from s (at the solution): a1 . ((s - o) x (c - o)) > 0, o on
+    axis 1; ``"elbow up"`` that it turns positively about axis 3 from axis 2: a3 . (a2 x (c - s))
+    > 0 (where the two elbows coincide, ``"elbow straight"`` when a3 lies between a2 and c - s).
+    A family read from the tool (a
     ``"spherical shoulder"``) is solved for the inverse pose, and its labels are those of the arm
     read from the tool: its "shoulder" is at the chain's tool end.
     A loop over many poses holds a :class:`ClosedSolver` (the arm read once).
@@ -417,10 +426,13 @@ def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKS
       and 7, line up); never ``q[3]``, the elbow: the shoulder's and the wrist's points are
       then a fixed distance apart, a continuum of solutions or none.
     - :func:`robokin.robots.panda`: ``q[6]`` (the flange joint: a spherical shoulder, axes 5, 6
-      meeting) at any value, ``q[5]`` away from 0 and pi; no other (the 88 mm and 82.5 mm
-      offsets).
-    - :func:`robokin.robots.gen3`: ``q[0]``, ``q[2]``, and ``q[3]`` (the elbow: only the 11.8 mm
-      shoulder offset sets the wrist's distance, so this one is ill-conditioned); no other.
+      meeting) at any value, ``q[3]`` (the elbow: a spherical shoulder, axes 5, 6 meeting before
+      axis 7) at any value within its limits (at 0 axis 5 passes through the shoulder's point),
+      ``q[5]`` away from 0 and pi; no other (the 88 mm and 82.5 mm offsets).
+    - :func:`robokin.robots.gen3`: ``q[0]``, ``q[2]``, ``q[3]`` (the elbow: only the 11.8 mm
+      shoulder offset sets the wrist's distance, so this one is ill-conditioned) and ``q[1]``
+      (axes 3, 4 then meet 11.8 mm off axis 1: only that offset lets joint 1 move their point,
+      ill-conditioned too); no other.
 
     A sweep over the held value traces the arm's self-motion through one pose (as
     :func:`rpr_self_motion` does for the RPR arm)::

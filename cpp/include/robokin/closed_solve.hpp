@@ -18,6 +18,14 @@
 //     (3: |c - s| fixed by q3 alone), q1, q2 (2), then the wrist; the elbow's label is the turn
 //     about axis 3 (a3, at the solution) from the shoulder to the wrist: "up" when
 //     a3 . ((s - e) x (c - e)) > 0, e the point of axis 3 nearest s.
+//   spherical wrist, axes 2, 3 meeting (at s) after axis 1 (axis 1 not through s, axis 3 not
+//     through the wrist centre c): q1 (3: joints 2, 3 fix s, so c seen before joint 1 is |c0 - s|
+//     from s, c0 the wrist centre at q = 0), q2, q3 (2), then the wrist. "shoulder left" when c
+//     turns positively about axis 1 (a1) from s1, s at the solution: a1 . ((s1 - o) x (c - o)) > 0,
+//     o on axis 1; "elbow up" when c turns positively about axis 3 (a3, at the solution) from axis
+//     2 (a2): a3 . (a2 x (c - s1)) > 0; where c - s1 lies in the plane of a2 and a3 (the two
+//     elbows coincide), "elbow straight" when a3 lies between a2 and c - s1, (a2 x a3) .
+//     (a3 x (c - s1)) > 0, "elbow folded" otherwise.
 // A family of the reversed axes (reversed_axes) is solved for the inverse pose and its solutions
 // read back; its labels are the reversed arm's (its shoulder is the chain's wrist end).
 // Singular cases are flagged: "shoulder singular" (the two q1 coincide), "elbow straight|folded",
