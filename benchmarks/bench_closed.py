@@ -16,6 +16,10 @@ for the before / after figures of benchmarks/README.md.
 - The KUKA iiwa 14 with one joint held (``ClosedSolver(chain, locked={j: v})``, 7-vectors) against
   EAIK's ``DhRobot(..., fixed_axes=[(j, v)])``: for each joint, whether each finds a decomposition,
   and for those both solve, the same solutions on 200 poses and the time per call.
+- The Panda with its elbow ``q[3]`` held (a spherical shoulder, axes 5, 6 meeting before axis 7:
+  EAIK's SPHERICAL_SECOND_TWO_INTERSECTING) against EAIK given the same axes and points at q = 0
+  (its H / P description and the flange's orientation, the Panda's table being modified DH, which
+  DhRobot does not take), the same way.
 """
 
 from __future__ import annotations
@@ -166,10 +170,50 @@ def held_figures(goals):
     return goals
 
 
+def panda_eaik(j, value):
+    """EAIK's robot of the Panda's axes and points at q = 0 (H / P, the flange's orientation),
+    joint j held at value: an IKRobot as DhRobot is, so that IK(T) goes through the same wrapper."""
+    from eaik.IK_Robot import IKRobot
+    from eaik.pybindings import EAIK
+
+    panda = rk.robots.panda()
+    F = panda.frames(np.zeros(7))  # modified DH: joint k turns about z of frame k
+    tip = panda.fk(np.zeros(7))
+    offsets = np.diff(np.vstack([np.zeros(3), F[1:, :3, 3], tip[:3, 3]]), axis=0)
+
+    class HPTipRobot(IKRobot):
+        def __init__(self):
+            super().__init__()
+            self._robot = EAIK.Robot(np.ascontiguousarray(F[1:, :3, 2].T), np.ascontiguousarray(offsets.T),
+                                     tip[:3, :3], [(j, value)], True)
+
+    return HPTipRobot()
+
+
+def panda_held_figures(goals):
+    """The Panda with q[3] held: robokin's family against EAIK's, the same solutions, the time per call."""
+    try:
+        bot = panda_eaik(3, -1.2)
+    except ImportError:
+        print("EAIK not installed: the Panda with q[3] held not measured")
+        return goals
+    panda = rk.robots.panda()
+    Q = np.random.default_rng(3).uniform(*panda.limits, (200, 7))
+    Q[:, 3] = -1.2
+    solver = rk.closed.ClosedSolver(panda, None, locked={3: -1.2})
+    ours, theirs = against_eaik(solver, bot, list(panda.fk(Q)))
+    print(f"Panda, q[3] held at -1.2: robokin {solver.family!r}, EAIK {bot.getKinematicFamily()!r}: robokin "
+          f"{fmt(ours)}, EAIK {fmt(theirs)}: {ours / theirs:.3f} x (the same solutions on 200 poses)")
+    goal(goals, "ClosedSolver(locked=).solve per call vs EAIK fixed_axes, Panda q[3]", ours / theirs, "x", 0.5,
+         "EAIK, same run")
+    return goals
+
+
 def main():
     goals = per_call_figures([])
     goals = eaik_figures(goals)
-    return held_figures(goals)
+    goals = held_figures(goals)
+    return panda_held_figures(goals)
 
 
 if __name__ == "__main__":
