@@ -1,5 +1,6 @@
 """What the closed-form tests share: configurations drawn inside the limits, the distance of joint
-vectors modulo 2 pi, and a damped Newton with one joint held (an independent numerical IK)."""
+vectors modulo 2 pi, a damped Newton with one joint held (an independent numerical IK), random DH
+rows of a given shape, a bisection, and EAIK's robot of a chain (a peer library, when installed)."""
 
 import math
 
@@ -44,3 +45,56 @@ def newton_steps(name, j):
     start Newton mostly creeps along that constraint (800 steps converge about as often as 80 do
     elsewhere)."""
     return 800 if (name, j) == ("panda", 3) else 80
+
+
+def random_rows(rng, zero, parallel=()):
+    """Standard DH rows [a, alpha, d, theta, "R"] x 6 with random lengths (0.05 to 0.5 m, either
+    sign) and twists (0.3 to pi - 0.3 rad, either sign), the (row, column) entries of `zero` set to 0
+    (a_i = 0: axes i and i + 1 meet; with d_i = 0 too, axes i - 1, i and i + 1 meet in one point)
+    and the twists of the rows in `parallel` to 0 (axes i and i + 1 parallel)."""
+    length = lambda: rng.uniform(0.05, 0.5) * rng.choice([-1, 1])  # noqa: E731
+    twist = lambda: rng.uniform(0.3, P - 0.3) * rng.choice([-1, 1])  # noqa: E731
+    rows = [[length(), twist(), length(), rng.uniform(-P, P), "R"] for _ in range(6)]
+    for i, k in zero:
+        rows[i][k] = 0.0
+    for i in parallel:
+        rows[i][1] = 0.0
+    return rows
+
+
+def bisect(f, lo, hi):
+    """A root of f between lo and hi (f(lo), f(hi) of opposite signs), to rounding."""
+    flo = f(lo)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if (f(mid) > 0) == (flo > 0):
+            lo, flo = mid, f(mid)
+        else:
+            hi = mid
+    return lo
+
+
+def eaik_robot(chain, locked=None):
+    """EAIK's robot (pip's eaik; the test is skipped without it) of the chain's joint lines at q = 0,
+    read from its Jacobian (axis w, a point o + w x v of each line, o the tool's origin), with the
+    tool's orientation; locked={j: value} holds joint j."""
+    import pytest
+
+    EAIK = pytest.importorskip("eaik.pybindings.EAIK")
+    zero = np.zeros(chain.dof)
+    J, tool = chain.jacobian(zero), chain.fk(zero)
+    w, v = J[3:].T, J[:3].T
+    points = tool[:3, 3] + np.cross(w, v)
+    offsets = np.diff(np.vstack([np.zeros(3), points, tool[:3, 3]]), axis=0)
+    fixed = [] if locked is None else [(j, float(value)) for j, value in locked.items()]
+    return EAIK.Robot(np.ascontiguousarray(w.T), np.ascontiguousarray(offsets.T), tool[:3, :3], fixed, True)
+
+
+def eaik_solutions(robot, T):
+    """EAIK's exact solutions of T (its least-squares ones dropped), (k, n)."""
+    e = robot.calculate_IK(T)
+    if not e.num_solutions():
+        return np.zeros((0, 0))
+    return np.atleast_2d(np.asarray(e.Q, float))[~np.asarray(e.is_LS, bool)]

@@ -14,23 +14,12 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, newton_held, newton_steps, random_q
+from closed_helpers import (angle_distance, bisect, eaik_robot, eaik_solutions, newton_held, newton_steps, random_q,
+                            random_rows)
 
 P = math.pi
 WRIST = "spherical wrist, axes 2, 3 meet after axis 1"
 SHOULDER = "spherical shoulder, axes 4, 5 meet before axis 6"
-
-
-def random_rows(rng, zero):
-    """Standard DH rows (a, alpha, d, theta) with random lengths and twists, the (row, column)
-    entries of `zero` set to 0 (a_i = 0: axes i and i + 1 meet; with d_i = 0 too, axes i - 1, i
-    and i + 1 meet in one point)."""
-    length = lambda: rng.uniform(0.05, 0.5) * rng.choice([-1, 1])  # noqa: E731
-    twist = lambda: rng.uniform(0.3, P - 0.3) * rng.choice([-1, 1])  # noqa: E731
-    rows = [[length(), twist(), length(), rng.uniform(-P, P), "R"] for _ in range(6)]
-    for i, k in zero:
-        rows[i][k] = 0.0
-    return rows
 
 
 def random_arm(rng, reversed_=False):
@@ -114,20 +103,6 @@ def test_labels_are_the_geometric_definitions():
                 assert label == label_parts(chain, qk)
                 seen.add(label)
     assert len(seen) == 8
-
-
-def bisect(f, lo, hi):
-    """A root of f between lo and hi (f(lo), f(hi) of opposite signs), to rounding."""
-    flo = f(lo)
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        if (f(mid) > 0) == (flo > 0):
-            lo, flo = mid, f(mid)
-        else:
-            hi = mid
-    return lo
 
 
 def singular_q(chain, rng, which):
@@ -244,28 +219,17 @@ def test_the_panda_with_its_elbow_held():
     assert found >= 100
 
 
-def eaik_robot(chain, j, value):
-    """EAIK's robot of the chain's axes at q = 0 (its H / P description, the tool's orientation),
-    joint j held at value."""
-    EAIK = pytest.importorskip("eaik.pybindings.EAIK")
-    F = chain.frames(np.zeros(chain.dof))  # modified DH: joint k turns about z of frame k
-    H, points, tip = F[1:, :3, 2], F[1:, :3, 3], chain.fk(np.zeros(chain.dof))
-    offsets = np.diff(np.vstack([np.zeros(3), points, tip[:3, 3]]), axis=0)
-    return EAIK.Robot(np.ascontiguousarray(H.T), np.ascontiguousarray(offsets.T), tip[:3, :3], [(j, value)], True)
-
-
 def test_the_panda_against_eaik():
     rng = np.random.default_rng(12)
     for value in (-0.4, -1.2, -2.6):
-        robot = eaik_robot(PANDA, 3, value)
-        assert robot.has_known_decomposition()
+        robot = eaik_robot(PANDA, {3: value})
+        assert robot.has_known_decomposition() and robot.get_kinematic_family().endswith("SECOND_TWO_INTERSECTING")
         Q = random_q(PANDA, rng, 60)
         Q[:, 3] = value
         for q in Q:
             T = PANDA.fk(q)
             s = rk.closed.solve(T, PANDA, limits=None, locked={3: value})
-            e = robot.calculate_IK(T)
-            exact = np.atleast_2d(np.asarray(e.Q, float))[~np.asarray(e.is_LS, bool)]
+            exact = eaik_solutions(robot, T)
             assert len(exact) == len(s)
             gap = angle_distance(exact[:, None, :], s.q[None, :, :])
             assert gap.min(axis=1).max() < 1e-6 and gap.min(axis=0).max() < 1e-6

@@ -82,11 +82,10 @@ double point_line_distance(const JointAxes& g, int i, const Eigen::Vector3d& x) 
 
 // The family of a 6R's axes, read in g's order (the kinds of FamilyKind), its wrist centre and the
 // point where the two axes before the wrist meet; `why` says why none holds, in g's joint numbers.
-// `after` is set, with `center` and `shoulder`, when WristMeetAfter holds (kind stays None unless
-// another family does: WristMeetAfter is taken only when none holds from either end).
+// `late` is set, with `center` (and `shoulder`), when WristMeetAfter or ParallelFirst holds (kind
+// stays None unless another family does: those two are taken only when none holds from either end).
 struct Reading {
-  FamilyKind kind = FamilyKind::None;
-  bool after = false;
+  FamilyKind kind = FamilyKind::None, late = FamilyKind::None;
   Eigen::Vector3d center = Eigen::Vector3d::Zero(), shoulder = Eigen::Vector3d::Zero();
   std::string why;
 };
@@ -107,6 +106,23 @@ bool meets_pair(const JointAxes& g, int first, int lone, double tol, double tol_
                  "of solutions or none)", false;
   if (point_line_distance(g, 2, c) <= tol_d)
     return why = "axis " + std::to_string(g.number[2]) + " passes through the wrist centre", false;
+  return true;
+}
+
+// Axes 1, 2, 3 parallel (a planar arm: no two of them the same line), axis 4 not parallel to them,
+// axes 5, 6 meeting at c56 off axis 4 (else joint 4 does not move c56's height along axis 1, which
+// joints 1 to 3 keep: a continuum of solutions or none); `why` says what fails otherwise.
+bool parallel_first(const JointAxes& g, double tol, double tol_d, bool meet56, const Eigen::Vector3d& c56,
+                    std::string& why) {
+  const std::string three = axes_text(g, {0, 1, 2}) + " are parallel, but ";
+  if (parallel_gap(g, 0, 2) > tol) return false;  // the reason says so already
+  if (line_distance(g, 0, 1) <= tol_d || line_distance(g, 1, 2) <= tol_d)
+    return why = three + "two of them are one line", false;
+  if (line_angle(g.axis[0], g.axis[3]) <= tol) return why = three + "so is axis " + std::to_string(g.number[3]), false;
+  if (!meet56) return why = three + axes_text(g, {4, 5}) + " do not meet", false;
+  if (point_line_distance(g, 3, c56) <= tol_d)
+    return why = three + "axis " + std::to_string(g.number[3]) + " passes through the point where " +
+                 axes_text(g, {4, 5}) + " meet", false;
   return true;
 }
 
@@ -133,22 +149,30 @@ Reading read_family(const JointAxes& g, double tol, double tol_d) {
     return r;
   }
   if (wrist <= tol_d && meets_pair(g, 1, 0, tol, tol_d, r.center, r.shoulder, after_why)) {
-    r.after = true;
+    r.late = FamilyKind::WristMeetAfter;
+    return r;
+  }
+  std::string first_why;
+  if (parallel_first(g, tol, tol_d, meet56, c56, first_why)) {
+    r.late = FamilyKind::ParallelFirst, r.center = c56;
     return r;
   }
   std::string& why = r.why;
   if (wrist <= tol_d)
-    why = "spherical wrist, but " + axes_text(g, {1, 2}) + " are not parallel: " + degrees(par23) + " and " +
-          meet_why + (after_why == meet_why ? "" : " and " + after_why);
+    why = "spherical wrist, but " +
+          (par23 > tol ? axes_text(g, {1, 2}) + " are not parallel: " + degrees(par23) + " and " : "") + meet_why +
+          (after_why == meet_why ? "" : " and " + after_why);
   else why = axes_text(g, {3, 4, 5}) + " do not meet: " + (std::isinf(wrist) ? axes_text(g, {3, 4}) + " parallel" : mm(wrist));
   if (par234 <= tol) why += "; " + axes_text(g, {1, 2, 3}) + " are parallel, but " + axes_text(g, {4, 5}) + " do not meet";
   else why += "; " + axes_text(g, {1, 2, 3}) + " are not parallel: " + degrees(par234);
   if (!first_two) why += "; " + axes_text(g, {0, 1}) + " are parallel";
+  if (!first_why.empty()) why += "; " + first_why;
   return r;
 }
 
 // The family's name in the chain's joint numbers: a reversed family's wrist is a shoulder. The
-// lone axis of WristMeetAfter is named, before the pair in the chain's order (after it reversed).
+// lone axis of WristMeetAfter is named, before the pair in the chain's order (after it reversed);
+// ParallelFirst's parallel axes are the first (last) in the chain's order, unlike ThreeParallel's.
 std::string family_name(FamilyKind kind, bool reversed, const JointAxes& g) {
   const std::string end = reversed ? "spherical shoulder, " : "spherical wrist, ";
   switch (kind) {
@@ -158,6 +182,9 @@ std::string family_name(FamilyKind kind, bool reversed, const JointAxes& g) {
     case FamilyKind::WristMeetAfter:
       return end + axes_text(g, {1, 2}) + " meet " + (reversed ? "before" : "after") + " axis " +
              std::to_string(g.number[0]);
+    case FamilyKind::ParallelFirst:
+      return "three parallel " + axes_text(g, {0, 1, 2}) + (reversed ? " last, " : " first, ") + axes_text(g, {4, 5}) +
+             " meet";
     default: return "none";
   }
 }
@@ -264,10 +291,11 @@ ClosedFamily closed_family(const JointAxes& g, const ClosedFamilyOptions& option
     back_axes = reversed_axes(g);
     back = read_family(back_axes, options.tol, f.tol_distance);
   }
-  // WristMeetAfter last: where another family holds from either end, that one (and its name) is kept.
+  // WristMeetAfter and ParallelFirst last: where another family holds from either end, that one
+  // (and its name) is kept.
   if (r.kind == FamilyKind::None && back.kind == FamilyKind::None) {
-    if (r.after) r.kind = FamilyKind::WristMeetAfter;
-    else if (back.after) back.kind = FamilyKind::WristMeetAfter;
+    if (r.late != FamilyKind::None) r.kind = r.late;
+    else back.kind = back.late;
   }
   if (r.kind != FamilyKind::None) {
     f.kind = r.kind, f.center = r.center, f.shoulder = r.shoulder, f.name = family_name(r.kind, false, g);

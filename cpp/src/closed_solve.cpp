@@ -182,6 +182,59 @@ void solve_meet_after(const JointAxes& g, const V3& center, const V3& s, const R
   }
 }
 
+// The motion of joint i of g turned by angle (a rotation about its axis through its point).
+Rigid joint_motion(const JointAxes& g, int i, double angle) {
+  Rigid E;
+  E.R = axis_rotation(g.axis[i], angle);
+  E.p = g.point[i] - E.R * g.point[i];
+  return E;
+}
+
+// Three parallel axes 1, 2, 3 (direction h), axes 5, 6 meeting at c0: joints 1 to 3 keep heights
+// along h and turn about h, so q4 (4) restores c's height and q5, q6 (2) turn h as the tool sees it
+// back onto h as joint 4 leaves it; joints 1 to 3, M = G (E4 E5 E6)^-1, are a planar arm moving axis
+// 3's point p3 to w = M p3: q1 (3), q2 (1), q3 from M's turn about h. Labels: the shoulder the turn
+// about axis 4 from h to c, the elbow the planar arm's turn at axis 2, the wrist (a5 x a6) . h.
+void solve_parallel_first(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
+  const V3 c = G.R * center + G.p;
+  const V3 &h = g.axis[0], &h4 = g.axis[3], &h5 = g.axis[4], &h6 = g.axis[5];
+  const V3 &p1 = g.point[0], &p2 = g.point[1], &p3 = g.point[2];
+  // Axes 2 and 3 may point against axis 1 (parallel lines): R(h2, q) = R(h, s2 q).
+  const double s2 = g.axis[1].dot(h) > 0 ? 1.0 : -1.0, s3 = g.axis[2].dot(h) > 0 ? 1.0 : -1.0;
+  const SubproblemAngles t4 = subproblem4(h, h4, center - g.point[3], h.dot(c - g.point[3]));
+  out.singular = out.singular || t4.singular;
+  for (int i = 0; i < t4.count; ++i) {
+    double q[6] = {0, 0, 0, t4.theta[i], 0, 0};
+    SubproblemAngles t5, t6;
+    subproblem2(h5, h6, G.R.transpose() * h, axis_rotation(h4, q[3]).transpose() * h, t5, t6);
+    const bool wrist_singular = t5.singular || t6.singular;
+    out.singular = out.singular || wrist_singular;
+    for (int k = 0; k < t5.count; ++k) {
+      q[4] = t5.theta[k], q[5] = t6.theta[k];
+      const Rigid E4 = joint_motion(g, 3, q[3]), E45 = E4 * joint_motion(g, 4, q[4]);
+      const Rigid M = G * (E45 * joint_motion(g, 5, q[5])).inverse();  // E1 E2 E3
+      const V3 w = M.R * p3 + M.p;
+      const SubproblemAngles t1 = subproblem3(h, p2 - p1, w - p1, (p3 - p2).norm());
+      out.singular = out.singular || t1.singular;
+      const V3 x = h.unitOrthogonal();
+      const double q123 = subproblem1(h, x, M.R * x).theta[0];
+      const Rigid M4 = M * E4, M5 = M * E45;
+      const V3 a4 = M.R * h4, o4 = M.R * g.point[3] + M.p;
+      const int shoulder = t4.singular ? 2 : (a4.dot(h.cross(c - o4)) > 0 ? 0 : 1);
+      const int wrist = wrist_singular ? 2 : ((M4.R * h5).cross(M5.R * h6).dot(h) >= 0 ? 0 : 1);
+      for (int j = 0; j < t1.count; ++j) {
+        q[0] = t1.theta[j];
+        const M3 R1 = axis_rotation(h, q[0]);
+        q[1] = subproblem1(g.axis[1], p3 - p2, R1.transpose() * (w - p1) + (p1 - p2)).theta[0];
+        q[2] = s3 * (q123 - q[0] - s2 * q[1]);
+        const V3 o2 = p1 + R1 * (p2 - p1), arm = o2 - p1, fore = w - o2;
+        const int elbow = t1.singular ? (arm.dot(fore) > 0 ? 2 : 3) : (h.dot(arm.cross(fore)) > 0 ? 0 : 1);
+        out.add(q, shoulder, elbow, wrist);
+      }
+    }
+  }
+}
+
 // q6 (into q6) and q2 + q3 + q4 (returned) of the three-parallel family for q1 and q5: R16 = R1^T
 // R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
 // singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
@@ -323,6 +376,7 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   if (kind == FamilyKind::ThreeParallel) solve_parallel(g, arm.family.center, G, c);
   else if (kind == FamilyKind::WristMeet) solve_meet(g, arm.family.center, arm.family.shoulder, G, c);
   else if (kind == FamilyKind::WristMeetAfter) solve_meet_after(g, arm.family.center, arm.family.shoulder, G, c);
+  else if (kind == FamilyKind::ParallelFirst) solve_parallel_first(g, arm.family.center, G, c);
   else solve_spherical(g, arm.family.center, G, c);
   const int n = 6 + arm.axes.held.has_value(), held = held_index(arm);
   for (int k = 0; k < c.m; ++k)

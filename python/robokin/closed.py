@@ -338,12 +338,15 @@ class Family:
             KUKA KR, ABB IRB, Fanuc and Staubli arms), ``"three parallel axes 2, 3, 4"`` (axes 5
             and 6 meeting: the UR family), ``"spherical wrist, axes 1, 2 meet"`` (the iiwa with
             ``q[2]`` held), ``"spherical wrist, axes 2, 3 meet after axis 1"`` (the Gen3 with
-            ``q[1]`` held: ``"axes 3, 4 meet after axis 1"``), the same read from the tool
+            ``q[1]`` held: ``"axes 3, 4 meet after axis 1"``), ``"three parallel axes 1, 2, 3
+            first, axes 5, 6 meet"`` (the Unitree Z1 with ``q[0]`` held: ``"three parallel axes 2,
+            3, 4 first, axes 6, 7 meet"``), the same read from the tool
             (``"spherical shoulder, axes 5, 6 meet"``: the Panda with ``q[6]`` held; ``"spherical
             shoulder, axes 5, 6 meet before axis 7"``: the Panda with ``q[3]`` held; ``"spherical
-            shoulder, axes 4, 5 parallel"``, ``"three parallel axes 3, 4, 5"``), or ``"none"``.
-            Axes are named by their joint numbers; where two axes meet beside the wrist (or the
-            shoulder), the lone axis beyond them is named too.
+            shoulder, axes 4, 5 parallel"``, ``"three parallel axes 3, 4, 5"``, ``"three parallel
+            axes 4, 5, 6 last, axes 1, 2 meet"``), or ``"none"``. Axes are named by their joint
+            numbers; where two axes meet beside the wrist (or the shoulder), the lone axis beyond
+            them is named too, and three parallel axes at an end of the arm are the first (last).
         solvable: :func:`solve` has a closed form for it.
         reason: Why there is none (``"axes 4, 5, 6 do not meet: 3.2 mm apart; ..."``), else ``""``.
         meet: Consecutive axes (1-based pairs) whose lines meet.
@@ -411,7 +414,11 @@ def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKS
     positively about axis 1 (a1) from s (at the solution): a1 . ((s - o) x (c - o)) > 0, o on
     axis 1; ``"elbow up"`` that it turns positively about axis 3 from axis 2: a3 . (a2 x (c - s))
     > 0 (where the two elbows coincide, ``"elbow straight"`` when a3 lies between a2 and c - s).
-    A family read from the tool (a
+    For three parallel axes 1, 2, 3 (direction a1) first, axes 5, 6 meeting at c: ``"shoulder
+    left"`` when c turns positively about axis 4 (a4 through o4, at the solution) from a1:
+    a4 . (a1 x (c - o4)) > 0; ``"elbow up"`` when the planar arm of joints 1 to 3 turns positively
+    at axis 2: a1 . ((o2 - o1) x (w - o2)) > 0, o1, o2, w on axes 1, 2, 3; ``"wrist no flip"`` when
+    (a5 x a6) . a1 >= 0. A family read from the tool (a
     ``"spherical shoulder"``) is solved for the inverse pose, and its labels are those of the arm
     read from the tool: its "shoulder" is at the chain's tool end.
     A loop over many poses holds a :class:`ClosedSolver` (the arm read once).

@@ -68,21 +68,24 @@ JointAxes reversed_axes(const JointAxes& axes);
 // spherical wrist with axes 1 and 2 meeting (axis 3 passing through neither that point nor the
 // wrist's: the iiwa or the Gen3 with a shoulder or elbow joint held); a spherical wrist with axes
 // 2 and 3 meeting after axis 1 (axis 1 not through that point, axis 3 not through the wrist's: the
-// Panda with its elbow held, read from the tool). A family may hold for the reversed axes
-// (reversed_axes): a spherical shoulder (axes 1, 2, 3 meet). WristMeetAfter is tried last, after
-// the others from both ends, so that an arm the others read keeps their name.
-enum class FamilyKind { None, SphericalWrist, ThreeParallel, WristMeet, WristMeetAfter };
+// Panda with its elbow held, read from the tool); three parallel axes 1, 2, 3 with axes 5 and 6
+// meeting off axis 4 (the Unitree Z1 with its first joint held). A family may hold for the reversed
+// axes (reversed_axes): a spherical shoulder (axes 1, 2, 3 meet). WristMeetAfter and ParallelFirst
+// are tried last, after the others from both ends, so that an arm the others read keeps their name.
+enum class FamilyKind { None, SphericalWrist, ThreeParallel, WristMeet, WristMeetAfter, ParallelFirst };
 
 struct ClosedFamily {
   FamilyKind kind = FamilyKind::None;
   bool reversed = false;  // the family is the reversed axes' (center, shoulder in base coordinates)
   // "spherical wrist, axes 2, 3 parallel", "three parallel axes 2, 3, 4", "spherical wrist, axes
   // 1, 2 meet", "spherical wrist, axes 2, 3 meet after axis 1" ("spherical shoulder, axes 5, 6
-  // meet before axis 7" from the tool: the names say where the lone axis is), or "none"
+  // meet before axis 7" from the tool: the names say where the lone axis is), "three parallel
+  // axes 1, 2, 3 first, axes 5, 6 meet" ("... last, axes 1, 2 meet" from the tool), or "none"
   std::string name;
   std::string reason;  // why none (empty otherwise): "axes 4, 5, 6 do not meet: 3.2 mm apart; ..."
   std::vector<std::pair<int, int>> meet, parallel;  // consecutive axes (joint numbers) that meet / are parallel
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // where the wrist's axes meet (base frame, q = 0)
+  // Where the wrist's axes meet (base frame, q = 0): axes 4, 5, 6, or 5, 6 (ThreeParallel, ParallelFirst).
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
   // Where the two axes that meet before the wrist meet: axes 1, 2 (WristMeet), 2, 3 (WristMeetAfter).
   Eigen::Vector3d shoulder = Eigen::Vector3d::Zero();
   double tol_distance = 0;  // the distance tolerance used (m): tol x size

@@ -26,6 +26,14 @@
 //     2 (a2): a3 . (a2 x (c - s1)) > 0; where c - s1 lies in the plane of a2 and a3 (the two
 //     elbows coincide), "elbow straight" when a3 lies between a2 and c - s1, (a2 x a3) .
 //     (a3 x (c - s1)) > 0, "elbow folded" otherwise.
+//   three parallel axes 1, 2, 3 (direction a1) first, axes 5, 6 meeting at c (axis 4 parallel to
+//     neither, not through c): q4 (4: joints 1 to 3 keep c's height along a1), q5, q6 (2: a1 as the
+//     tool sees it, turned back by joint 4, is a1), then joints 1 to 3 as a planar arm moving axis
+//     3's point (w, at the solution): q1 (3), q2 (1), q3 from their sum. "shoulder left" when c
+//     turns positively about axis 4 (a4, through o4, at the solution) from a1: a4 . (a1 x (c - o4))
+//     > 0; "elbow up" when the planar arm turns positively at axis 2 (through o2; o1 on axis 1):
+//     a1 . ((o2 - o1) x (w - o2)) > 0 ("elbow straight" where the two coincide and (o2 - o1) .
+//     (w - o2) > 0, "folded" otherwise); "wrist no flip" when (a5 x a6) . a1 >= 0.
 // A family of the reversed axes (reversed_axes) is solved for the inverse pose and its solutions
 // read back; its labels are the reversed arm's (its shoulder is the chain's wrist end).
 // Singular cases are flagged: "shoulder singular" (the two q1 coincide), "elbow straight|folded",
