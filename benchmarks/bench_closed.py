@@ -17,9 +17,8 @@ for the before / after figures of benchmarks/README.md.
   EAIK's ``DhRobot(..., fixed_axes=[(j, v)])``: for each joint, whether each finds a decomposition,
   and for those both solve, the same solutions on 200 poses and the time per call.
 - The Panda with its elbow ``q[3]`` held (a spherical shoulder, axes 5, 6 meeting before axis 7:
-  EAIK's SPHERICAL_SECOND_TWO_INTERSECTING) against EAIK given the same axes and points at q = 0
-  (its H / P description and the flange's orientation, the Panda's table being modified DH, which
-  DhRobot does not take), the same way.
+  EAIK's SPHERICAL_SECOND_TWO_INTERSECTING) against EAIK given its joint axes (as the KR 16; the
+  Panda's table is modified DH, which DhRobot does not take), the same way.
 """
 
 from __future__ import annotations
@@ -89,10 +88,11 @@ def against_eaik(solver, bot, poses):
     return ours[0], theirs[0]
 
 
-def eaik_of_geometry(chain):
+def eaik_of_geometry(chain, locked=None):
     """EAIK's robot of the chain's joint axes at q = 0 (a frame per joint, its z along the axis, and
     the tool frame): the same kinematics whatever describes the chain. (EAIK's own URDF reader,
-    given the KR 16's file, returns solutions that miss the poses of its tool frame.)"""
+    given the KR 16's file, returns solutions that miss the poses of its tool frame.) locked={j: v}
+    holds joint j at v (EAIK's fixed_axes)."""
     from eaik.IK_Homogeneous import HomogeneousRobot
 
     frames = []
@@ -102,7 +102,8 @@ def eaik_of_geometry(chain):
         F[:3, 0], F[:3, 2], F[:3, 3] = x / np.linalg.norm(x), z, point
         F[:3, 1] = np.cross(F[:3, 2], F[:3, 0])
         frames.append(F)
-    return HomogeneousRobot(np.array(frames + [chain.fk(np.zeros(chain.dof))]))
+    fixed = [(j, float(v)) for j, v in (locked or {}).items()]
+    return HomogeneousRobot(np.array(frames + [chain.fk(np.zeros(chain.dof))]), fixed_axes=fixed)
 
 
 def eaik_figures(goals):
@@ -170,34 +171,14 @@ def held_figures(goals):
     return goals
 
 
-def panda_eaik(j, value):
-    """EAIK's robot of the Panda's axes and points at q = 0 (H / P, the flange's orientation),
-    joint j held at value: an IKRobot as DhRobot is, so that IK(T) goes through the same wrapper."""
-    from eaik.IK_Robot import IKRobot
-    from eaik.pybindings import EAIK
-
-    panda = rk.robots.panda()
-    F = panda.frames(np.zeros(7))  # modified DH: joint k turns about z of frame k
-    tip = panda.fk(np.zeros(7))
-    offsets = np.diff(np.vstack([np.zeros(3), F[1:, :3, 3], tip[:3, 3]]), axis=0)
-
-    class HPTipRobot(IKRobot):
-        def __init__(self):
-            super().__init__()
-            self._robot = EAIK.Robot(np.ascontiguousarray(F[1:, :3, 2].T), np.ascontiguousarray(offsets.T),
-                                     tip[:3, :3], [(j, value)], True)
-
-    return HPTipRobot()
-
-
 def panda_held_figures(goals):
     """The Panda with q[3] held: robokin's family against EAIK's, the same solutions, the time per call."""
+    panda = rk.robots.panda()
     try:
-        bot = panda_eaik(3, -1.2)
+        bot = eaik_of_geometry(panda, {3: -1.2})
     except ImportError:
         print("EAIK not installed: the Panda with q[3] held not measured")
         return goals
-    panda = rk.robots.panda()
     Q = np.random.default_rng(3).uniform(*panda.limits, (200, 7))
     Q[:, 3] = -1.2
     solver = rk.closed.ClosedSolver(panda, None, locked={3: -1.2})

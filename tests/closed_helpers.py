@@ -77,19 +77,19 @@ def bisect(f, lo, hi):
 
 
 def eaik_robot(chain, locked=None):
-    """EAIK's robot (pip's eaik; the test is skipped without it) of the chain's joint lines at q = 0,
-    read from its Jacobian (axis w, a point o + w x v of each line, o the tool's origin), with the
-    tool's orientation; locked={j: value} holds joint j."""
+    """EAIK's robot (pip's eaik; the test is skipped without it) of the chain's joint lines at q = 0
+    (rk.plots.joint_axes: read from the Jacobian, not from closed_family) with the tool's
+    orientation; locked={j: value} holds joint j."""
     import pytest
+
+    import robokin as rk
 
     EAIK = pytest.importorskip("eaik.pybindings.EAIK")
     zero = np.zeros(chain.dof)
-    J, tool = chain.jacobian(zero), chain.fk(zero)
-    w, v = J[3:].T, J[:3].T
-    points = tool[:3, 3] + np.cross(w, v)
-    offsets = np.diff(np.vstack([np.zeros(3), points, tool[:3, 3]]), axis=0)
+    lines, tool = rk.plots.joint_axes(chain, zero), chain.fk(zero)
+    offsets = np.diff(np.vstack([np.zeros(3), lines[:, 0], tool[:3, 3]]), axis=0)
     fixed = [] if locked is None else [(j, float(value)) for j, value in locked.items()]
-    return EAIK.Robot(np.ascontiguousarray(w.T), np.ascontiguousarray(offsets.T), tool[:3, :3], fixed, True)
+    return EAIK.Robot(np.ascontiguousarray(lines[:, 1].T), np.ascontiguousarray(offsets.T), tool[:3, :3], fixed, True)
 
 
 def eaik_solutions(robot, T):
