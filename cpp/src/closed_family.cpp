@@ -1,6 +1,8 @@
 // A chain's joint axes at the zero configuration and the closed-form family they allow.
 #include "robokin/closed_family.hpp"
 
+#include "lines.hpp"
+
 #include <Eigen/Geometry>
 #include <kdl/segment.hpp>
 
@@ -22,18 +24,7 @@ double line_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // Distance between the lines of axes i and j, and the midpoint of their nearest points (for
 // parallel lines, the distance only).
 double line_distance(const JointAxes& g, int i, int j, Eigen::Vector3d* nearest = nullptr) {
-  const Eigen::Vector3d &a = g.axis[i], &b = g.axis[j];
-  const Eigen::Vector3d w = g.point[j] - g.point[i];
-  const Eigen::Vector3d n = a.cross(b);
-  const double s = n.norm();
-  if (s < 1e-12) return (w - w.dot(a) * a).norm();
-  if (nearest) {
-    // Nearest points p_i + t a, p_j + u b: (w - t a + u b) perpendicular to a and b.
-    const double ab = a.dot(b), wa = w.dot(a), wb = w.dot(b), den = 1.0 - ab * ab;
-    const double t = (wa - ab * wb) / den, u = (ab * wa - wb) / den;
-    *nearest = 0.5 * ((g.point[i] + t * a) + (g.point[j] + u * b));
-  }
-  return std::abs(w.dot(n)) / s;
+  return robokin::line_distance(g.point[i], g.axis[i], g.point[j], g.axis[j], nearest);
 }
 
 // "axes 2, 3, 4": the joint numbers of g's axes at the 0-based indices, in increasing order.
