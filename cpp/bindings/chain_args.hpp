@@ -74,7 +74,7 @@ inline Vector nullspace_gains(const Chain& chain, py::handle nullspace) {
 // gains its `nullspace` argument gives for the chain; validated against the chain.
 template <class Options>
 Options options_with_nullspace(const Chain& chain, const py::kwargs& kwargs, py::handle nullspace) {
-  Options o = OptionsClass<Options>::from_kwargs(kwargs);
+  Options o = options_arg<Options>(kwargs);
   o.nullspace_gains = nullspace_gains(chain, nullspace);
   o.validate(chain);
   return o;

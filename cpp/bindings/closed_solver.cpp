@@ -18,12 +18,6 @@
 namespace robokin::bind {
 namespace {
 
-ClosedFamilyOptions family_options(const py::kwargs& kwargs) {
-  const ClosedFamilyOptions o = OptionsClass<ClosedFamilyOptions>::from_kwargs(kwargs);
-  o.validate();
-  return o;
-}
-
 // The chain's geometry in a layout with a closed form of its own (ur_arm's, spherical_arm's), else
 // none.
 template <class Arm>
@@ -141,7 +135,7 @@ std::unique_ptr<ClosedSolver> solver_from_state(const py::tuple& t) {
 // closed_family's answer as a tuple for robokin.closed.Family: (name, solvable, reason, meet,
 // parallel, tol_distance).
 py::tuple family_of(const Chain& chain, LockedLike locked, const py::kwargs& kwargs) {
-  const ClosedFamilyOptions o = family_options(kwargs);
+  const ClosedFamilyOptions o = options_arg<ClosedFamilyOptions>(kwargs);
   ClosedFamily f;
   try {
     f = closed_family(joint_axes(chain, held_arg(locked)), o);
@@ -171,7 +165,7 @@ void bind_solver_class(py::module_& m) {
       "a solver holds one value (a sweep makes one per value, or calls robokin.closed.solve).");
   cls.def(py::init([](const Chain& chain, ChainLimitsLike limits, LockedLike locked, const py::kwargs& kwargs) {
             return std::make_unique<ClosedSolver>(py::cast(chain, py::return_value_policy::reference), limits,
-                                                  locked, family_options(kwargs));
+                                                  locked, options_arg<ClosedFamilyOptions>(kwargs));
           }),
           py::arg("chain"), py::arg("limits") = "default", py::arg("locked") = py::none(), py::keep_alive<1, 2>(),
           init_doc.c_str())

@@ -58,17 +58,8 @@ bool may_be_long(const IkOptions& o) {
   return o.budget() > 1e-3 || (static_cast<long long>(o.max_restarts()) + 1) * o.max_iter > 1700;
 }
 
-using IkOptionsClass = OptionsClass<IkOptions>;
-
-// The options of a call: the keyword arguments (IkOptions' fields), validated.
-IkOptions options_arg(const py::kwargs& kwargs) {
-  IkOptions o = IkOptionsClass::from_kwargs(kwargs);
-  o.validate();
-  return o;
-}
-
 IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, SeedLike seed, const py::kwargs& kwargs) {
-  const IkOptions o = options_arg(kwargs);
+  const auto o = options_arg<IkOptions>(kwargs);
   const Target t = one_target(chain, o.task_for(chain), target);
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   const std::uint64_t s = seed_arg(seed);
@@ -88,7 +79,7 @@ IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, SeedLike see
 
 IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, SeedLike seed, bool path,
                           const py::kwargs& kwargs) {
-  const IkOptions o = options_arg(kwargs);
+  const auto o = options_arg<IkOptions>(kwargs);
   const int n = chain.dof();
   const std::vector<Target> targets = many_targets(chain, o.task_for(chain), targets_obj, "targets", "N");
   const long count = static_cast<long>(targets.size());
@@ -166,7 +157,7 @@ std::unique_ptr<BoundSolver> solver_from_state(const py::tuple& t) {
 }  // namespace
 
 void bind_ik(py::module_& m) {
-  IkOptionsClass(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.")
+  OptionsClass<IkOptions>(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.")
       .fields();
   ResultClass<IkResult>(m, "IKResult", "What one numerical IK solve found.", false)
       .value("success", &IkResult::success,
@@ -212,7 +203,7 @@ void bind_ik(py::module_& m) {
       kwargs_doc<IkOptions>("IKSolver(chain, *, seed=None", "The solver of chain with these options.");
   solver.def(py::init([](const Chain& chain, SeedLike seed, const py::kwargs& kwargs) {
              return std::make_unique<BoundSolver>(py::cast(chain, py::return_value_policy::reference),  // the caller's
-                                                  options_arg(kwargs), !seed.is_none(), seed_arg(seed));
+                                                  options_arg<IkOptions>(kwargs), !seed.is_none(), seed_arg(seed));
            }),
            py::arg("chain"), py::kw_only(), py::arg("seed") = py::none(), py::keep_alive<1, 2>(), init_doc.c_str())
       .def("solve", &BoundSolver::solve, py::arg("target"), py::arg("q0"), "Solves one target from q0 -> IKResult.")

@@ -306,4 +306,13 @@ class OptionsClass {
   }
 };
 
+// A call's options from its keyword arguments (a dict), validated on their own when T has
+// validate(); options checked against a model (ReachOptions' validate(chain)) are the caller's to check.
+template <class T>
+T options_arg(const py::handle& kwargs) {
+  T o = OptionsClass<T>::from_kwargs(kwargs);
+  if constexpr (HasValidate<T>::value) o.validate();
+  return o;
+}
+
 }  // namespace robokin::bind

@@ -16,8 +16,6 @@
 namespace robokin::bind {
 namespace {
 
-using ReachOptionsClass = OptionsClass<ReachOptions>;
-
 ReachResult reach(const Chain& chain, ArrayLike target, ArrayLike q_obj, TaskName task_obj, NullspaceLike nullspace,
                   const py::kwargs& kwargs) {
   const Task task = task_of(task_obj, chain);
@@ -49,7 +47,7 @@ TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskNa
 }  // namespace
 
 void bind_reach(py::module_& m) {
-  ReachOptionsClass(m, "ReachOptions", "The options of one Reach (the RPR study, Algorithm 1); the seed's values by default.")
+  OptionsClass<ReachOptions>(m, "ReachOptions", "The options of one Reach (the RPR study, Algorithm 1); the seed's values by default.")
       .fields();
   ResultClass<ReachResult>(m, "ReachResult", "What one Reach call did.", false)
       .value("converged", &ReachResult::converged, "True when the task error is below tol.")

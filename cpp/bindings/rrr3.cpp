@@ -52,12 +52,6 @@ py::array_t<double> ik_all(const RRR3& r, ArrayLike pose_obj) {
   return out;
 }
 
-RRR3NewtonOptions newton_options(const py::kwargs& kwargs) {
-  const RRR3NewtonOptions o = OptionsClass<RRR3NewtonOptions>::from_kwargs(kwargs);
-  o.validate();
-  return o;
-}
-
 RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, const py::kwargs& kwargs) {
   const Pose pose = as_pose(pose_obj);
   Array g = as_array(guess_obj, "guess");
@@ -65,13 +59,13 @@ RRR3Newton ik_newton(const RRR3& r, ArrayLike pose_obj, ArrayLike guess_obj, con
     fail("guess: expected (alpha, beta) as shape (2, 3) or (6,), got " + shape_of(g));
   require_finite(g.data(), 6, "guess");
   return r.ik_newton(pose, Eigen::Map<const Eigen::Vector3d>(g.data()), Eigen::Map<const Eigen::Vector3d>(g.data() + 3),
-                     newton_options(kwargs));
+                     options_arg<RRR3NewtonOptions>(kwargs));
 }
 
 RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, const py::kwargs& kwargs) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
   const Pose guess = as_pose(guess_obj, "guess");
-  return r.fk(alpha, guess, newton_options(kwargs));
+  return r.fk(alpha, guess, options_arg<RRR3NewtonOptions>(kwargs));
 }
 
 py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {

@@ -20,16 +20,11 @@
 namespace robokin::bind {
 namespace {
 
-using PlanOptionsClass = OptionsClass<RRR3PlanOptions>;
-using ConnectOptionsClass = OptionsClass<RRR3ConnectOptions>;
-using LoopOptionsClass = OptionsClass<RRR3LoopOptions>;
-
 RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
   Array pts = as_array(points_obj, "points");
   if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
   require_finite(pts.data(), pts.size(), "points");
-  const RRR3PlanOptions o = PlanOptionsClass::from_kwargs(kwargs);
-  o.validate();
+  const auto o = options_arg<RRR3PlanOptions>(kwargs);
   const long count = static_cast<long>(pts.shape(0));
   // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
   PythonProgress progress("RRR3.plan");
@@ -62,10 +57,8 @@ RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs
     }
     (has(loop_names, name) ? loop_kwargs : plan_kwargs)[item.first] = item.second;
   }
-  const RRR3LoopOptions loop = LoopOptionsClass::from_kwargs(loop_kwargs);
-  const RRR3PlanOptions o = PlanOptionsClass::from_kwargs(plan_kwargs);
-  loop.validate();
-  o.validate();
+  const auto loop = options_arg<RRR3LoopOptions>(loop_kwargs);
+  const auto o = options_arg<RRR3PlanOptions>(plan_kwargs);
   const long count = static_cast<long>(pts.shape(0));
   PythonProgress progress("RRR3.plan_loop");
   py::gil_scoped_release release;
@@ -74,24 +67,14 @@ RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs
 
 RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, const py::kwargs& kwargs) {
   const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
-  const RRR3ConnectOptions o = ConnectOptionsClass::from_kwargs(kwargs);
-  o.validate();
+  const auto o = options_arg<RRR3ConnectOptions>(kwargs);
   PythonProgress progress("RRR3.connect");
   py::gil_scoped_release release;
   return connect(r, start, goal, o, &progress);
 }
 
-using WorkspaceOptionsClass = OptionsClass<RRR3WorkspaceOptions>;
-
-// The options of one map, from the call's keyword arguments.
-RRR3WorkspaceOptions workspace_options(const py::kwargs& kwargs) {
-  const RRR3WorkspaceOptions o = WorkspaceOptionsClass::from_kwargs(kwargs);
-  o.validate();
-  return o;
-}
-
 RRR3Workspace workspace_map(const RRR3& r, const py::kwargs& kwargs) {
-  const RRR3WorkspaceOptions o = workspace_options(kwargs);
+  const RRR3WorkspaceOptions o = options_arg<RRR3WorkspaceOptions>(kwargs);
   PythonProgress progress("RRR3.workspace");
   py::gil_scoped_release release;
   return workspace(r, o, &progress);
@@ -110,7 +93,7 @@ py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) 
       fail("robots[" + std::to_string(k) + "]: " + e.what());
     }
   }
-  const RRR3WorkspaceOptions o = workspace_options(kwargs);
+  const RRR3WorkspaceOptions o = options_arg<RRR3WorkspaceOptions>(kwargs);
   std::vector<double> areas;
   PythonProgress progress("design study");
   {
@@ -196,10 +179,10 @@ void bind_workspace_result(py::module_& m) {
 
 // The options structs of plan, workspace, connect and plan_loop, from their headers' field lists.
 void bind_options(py::module_& m) {
-  PlanOptionsClass(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.").fields();
-  WorkspaceOptionsClass(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).").fields();
-  ConnectOptionsClass(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).").fields();
-  LoopOptionsClass(m, "RRR3LoopOptions", "The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'.")
+  OptionsClass<RRR3PlanOptions>(m, "RRR3PlanOptions", "The options of RRR3.plan (keywords); defaults as in the seed's simulator.").fields();
+  OptionsClass<RRR3WorkspaceOptions>(m, "RRR3WorkspaceOptions", "The options of RRR3.workspace (its arguments, one map's).").fields();
+  OptionsClass<RRR3ConnectOptions>(m, "RRR3ConnectOptions", "The options of RRR3.connect (keywords).").fields();
+  OptionsClass<RRR3LoopOptions>(m, "RRR3LoopOptions", "The options of RRR3.plan_loop of its own (keywords); the plan's are RRR3PlanOptions'.")
       .fields();
 }
 
