@@ -145,12 +145,8 @@ py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray ou
   py::array out = what == FkOutput::Position ? output_array(out_obj, 2, position_shape, q.data, q.size)
                                              : output_array(out_obj, 3, frame_shape, q.data, q.size);
   double* dst = float64_data(out);
-  PythonProgress progress("Chain.fk");
-  bool finite;
-  {
-    py::gil_scoped_release release;
-    finite = c.fk_batch(q.data, count, dst, what, &progress);
-  }
+  const bool finite =
+      released("Chain.fk", [&](Progress* progress) { return c.fk_batch(q.data, count, dst, what, progress); });
   if (!finite) {  // the same errors, in the same order, as when q was checked first
     require_finite(q.data, q.size, "q");
     require_finite_result(dst, width * count);

@@ -33,11 +33,7 @@ pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const B
   double* qd = q.mutable_data();
   bool* wd = within.mutable_data();
   bool* sd = singular.mutable_data();
-  PythonProgress progress(what);
-  {
-    py::gil_scoped_release release;
-    batch(targets.data(), count, qd, wd, sd, &progress);
-  }
+  released(what, [&](Progress* progress) { batch(targets.data(), count, qd, wd, sd, progress); });
   return py::make_tuple(q, singular, within);
 }
 

@@ -66,15 +66,8 @@ IkResult ik(const Chain& chain, ArrayLike target, ArrayLike q0_obj, SeedLike see
   // One solver per thread, kept between calls: no workspace allocation per solve.
   thread_local IkSolver solver(chain, o);
   solver.reset(chain, o);
-  IkResult r;
-  if (may_be_long(o)) {
-    PythonProgress progress("ik");
-    py::gil_scoped_release release;
-    r = solver.solve(t, q0.data(), s, &progress);
-  } else {
-    r = solver.solve(t, q0.data(), s);
-  }
-  return checked(r);
+  const auto solve = [&](Progress* progress) { return solver.solve(t, q0.data(), s, progress); };
+  return checked(may_be_long(o) ? released("ik", solve) : solve(nullptr));
 }
 
 IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q0_obj, SeedLike seed, bool path,
@@ -97,12 +90,9 @@ IkBatchResult ik_batch_py(const Chain& chain, ArrayLike targets_obj, ArrayLike q
   }
   require_finite(q0.data(), q0.size(), "q0");
   const std::uint64_t s = seed_arg(seed);
-  PythonProgress progress("ik_batch");
-  IkBatchResult r;
-  {
-    py::gil_scoped_release release;
-    r = robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, &progress);
-  }
+  const IkBatchResult r = released("ik_batch", [&](Progress* progress) {
+    return robokin::ik_batch(chain, o, targets.data(), count, q0.data(), q0_stride, path, s, progress);
+  });
   require_finite_errors(r.error_p.data(), r.error_r.data(), count, "targets");
   return r;
 }
@@ -131,17 +121,12 @@ struct BoundSolver {
     const Target t = one_target(*chain, *options.task, target);
     const Vector q0 = as_vector(q0_obj, "q0", chain->dof());
     const std::uint64_t s = seeded ? seed + calls++ : seed_arg(py::none());
-    IkResult r;
-    if (may_be_long(options)) {
-      PythonProgress progress("IKSolver.solve");
-      py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(busy);  // taken without the GIL: no deadlock with a solve in progress
-      r = solver.solve(t, q0.data(), s, &progress);
-    } else {
+    // The lock is taken inside: without the GIL when it is released (no deadlock with a solve in progress).
+    const auto solve = [&](Progress* progress) {
       std::lock_guard<std::mutex> lock(busy);
-      r = solver.solve(t, q0.data(), s);
-    }
-    return checked(r);
+      return solver.solve(t, q0.data(), s, progress);
+    };
+    return checked(may_be_long(options) ? released("IKSolver.solve", solve) : solve(nullptr));
   }
 };
 

@@ -3,6 +3,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
+#include "progress.hpp"
 
 #include "robokin/ik_3r.hpp"
 
@@ -44,11 +45,7 @@ void bind_ik_3r(py::module_& m) {
       [](const Chain& chain, int resolution) {
         if (resolution < 16 || resolution > 4096) fail("resolution: expected an integer in [16, 4096]");
         const Arm3R arm = arm_arg(chain);
-        CuspidalResult r;
-        {
-          py::gil_scoped_release release;
-          r = cuspidal_3r(arm, resolution);
-        }
+        const CuspidalResult r = released([&] { return cuspidal_3r(arm, resolution); });
         py::array_t<double> cusps = new_array({static_cast<py::ssize_t>(r.cusps.size()), 4});
         double* c = cusps.mutable_data();
         for (size_t k = 0; k < r.cusps.size(); ++k) {

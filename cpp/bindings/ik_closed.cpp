@@ -76,11 +76,9 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   double* qd = q.mutable_data();
   bool* okd = ok.mutable_data();
   bool* reachd = reachable.mutable_data();
-  PythonProgress progress("spherical wrist path");
-  {
-    py::gil_scoped_release release;
-    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, &progress);
-  }
+  released("spherical wrist path", [&](Progress* progress) {
+    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, progress);
+  });
   return py::make_tuple(q, ok, reachable);
 }
 

@@ -39,11 +39,8 @@ py::object chain_manipulability(const Chain& c, ArrayLike q_obj, MeasureName mea
   const py::ssize_t shape[1] = {count};
   py::array out = new_array(1, shape);
   double* dst = float64_data(out);
-  PythonProgress progress("Chain.manipulability");
-  {
-    py::gil_scoped_release release;
-    manipulability_batch(c, q.data, count, task, measure, dst, &progress);
-  }
+  released("Chain.manipulability",
+           [&](Progress* progress) { manipulability_batch(c, q.data, count, task, measure, dst, progress); });
   require_finite_result(dst, count);
   return std::move(out);
 }

@@ -2,6 +2,7 @@
 // solution sets and builds the result).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "progress.hpp"
 
 #include "robokin/postures.hpp"
 
@@ -54,12 +55,10 @@ void bind_postures(py::module_& m) {
       "plan_postures",
       [](py::object sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::object q0) {
         const PlanArgs a = plan_args(sets, qdot_max, dt, continuous, q0);
-        PosturePlan plan;
-        {
-          py::gil_scoped_release release;
-          plan = plan_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
+        const PosturePlan plan = released([&] {
+          return plan_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
                                a.has_q0 ? a.q0.data() : nullptr);
-        }
+        });
         py::array_t<long> pick(static_cast<py::ssize_t>(plan.pick.size()));
         std::copy(plan.pick.begin(), plan.pick.end(), pick.mutable_data());
         return py::make_tuple(pick, plan.reconfigurations, plan.motion);

@@ -78,4 +78,21 @@ class PythonProgress final : public Progress {
   double elapsed_ = 0;
 };
 
+// The shape of every long core call made from Python: fn(&progress) run with the GIL released and
+// a PythonProgress named `what` polling for Ctrl-C (and drawing the bar). What fn reads from Python
+// is converted before, with the GIL; fn returns a C++ value, which the caller checks after.
+template <class Fn>
+auto released(const char* what, Fn&& fn) {
+  PythonProgress progress(what);
+  pybind11::gil_scoped_release release;
+  return fn(&progress);
+}
+
+// fn() with the GIL released, for a core call that takes no Progress.
+template <class Fn>
+auto released(Fn&& fn) {
+  pybind11::gil_scoped_release release;
+  return fn();
+}
+
 }  // namespace robokin::bind

@@ -34,12 +34,9 @@ TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskNa
   const std::vector<Target> targets = many_targets(chain, task, points, "points");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   Reacher reacher(chain, task, options_with_nullspace<ReachOptions>(chain, kwargs, nullspace));
-  PythonProgress progress("track");
-  TrackResult r;
-  {
-    py::gil_scoped_release release;
-    r = reacher.track(targets.data(), static_cast<long>(targets.size()), q0, &progress);
-  }
+  const TrackResult r = released("track", [&](Progress* progress) {
+    return reacher.track(targets.data(), static_cast<long>(targets.size()), q0, progress);
+  });
   if (!r.error.allFinite()) fail("points: the task error is not finite (a point is too far away)");
   return r;
 }

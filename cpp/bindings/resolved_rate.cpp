@@ -31,12 +31,9 @@ ServoResult servo(const Chain& chain, ArrayLike poses, ArrayLike q0_obj, double 
   const std::vector<Target> targets = many_targets(chain, o.task_for(chain), poses, "poses");
   const Vector q0 = as_vector(q0_obj, "q0", chain.dof());
   RateController rate(chain, o);
-  PythonProgress progress("servo");
-  ServoResult r;
-  {
-    py::gil_scoped_release release;
-    r = rate.servo(o, dt, targets.data(), static_cast<long>(targets.size()), q0, &progress);
-  }
+  const ServoResult r = released("servo", [&](Progress* progress) {
+    return rate.servo(o, dt, targets.data(), static_cast<long>(targets.size()), q0, progress);
+  });
   if (!r.error_p.allFinite() || !r.error_r.allFinite())
     fail("poses: the tracking error is not finite (poses too far away)");
   return r;

@@ -34,11 +34,7 @@ py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_o
   py::array_t<double> out = new_array({n, 3});
   double* dst = out.mutable_data();
   const double* src = poses.data();
-  PythonProgress progress("RRR3.ik_batch");
-  {
-    py::gil_scoped_release release;
-    r.ik_batch(src, n, mode, dst, &progress);
-  }
+  released("RRR3.ik_batch", [&](Progress* progress) { r.ik_batch(src, n, mode, dst, progress); });
   return out;
 }
 
@@ -70,11 +66,7 @@ RRR3Fk fk(const RRR3& r, ArrayLike alpha_obj, ArrayLike guess_obj, const py::kwa
 
 py::array_t<double> fk_all(const RRR3& r, ArrayLike alpha_obj) {
   const Eigen::Vector3d alpha = as_vector(alpha_obj, "alpha", 3);
-  std::vector<Pose> poses;
-  {
-    py::gil_scoped_release release;
-    poses = r.fk_all(alpha);
-  }
+  const std::vector<Pose> poses = released([&] { return r.fk_all(alpha); });
   py::array_t<double> out = new_array({static_cast<py::ssize_t>(poses.size()), 3});
   for (size_t k = 0; k < poses.size(); ++k) std::copy(poses[k].data(), poses[k].data() + 3, out.mutable_data() + 3 * k);
   return out;

@@ -27,9 +27,7 @@ RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
   const auto o = options_arg<RRR3PlanOptions>(kwargs);
   const long count = static_cast<long>(pts.shape(0));
   // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
-  PythonProgress progress("RRR3.plan");
-  py::gil_scoped_release release;
-  return plan_path(r, pts.data(), count, o, &progress);
+  return released("RRR3.plan", [&](Progress* progress) { return plan_path(r, pts.data(), count, o, progress); });
 }
 
 // plan_loop(points, **kwargs): the loop's own options (sign, nominals) and the plan's (all but phi,
@@ -60,24 +58,19 @@ RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs
   const auto loop = options_arg<RRR3LoopOptions>(loop_kwargs);
   const auto o = options_arg<RRR3PlanOptions>(plan_kwargs);
   const long count = static_cast<long>(pts.shape(0));
-  PythonProgress progress("RRR3.plan_loop");
-  py::gil_scoped_release release;
-  return plan_loop(r, pts.data(), count, o, loop, &progress);
+  return released("RRR3.plan_loop",
+                  [&](Progress* progress) { return plan_loop(r, pts.data(), count, o, loop, progress); });
 }
 
 RRR3Plan connect_poses(const RRR3& r, ArrayLike start_obj, ArrayLike goal_obj, const py::kwargs& kwargs) {
   const Pose start = as_pose(start_obj, "start"), goal = as_pose(goal_obj, "goal");
   const auto o = options_arg<RRR3ConnectOptions>(kwargs);
-  PythonProgress progress("RRR3.connect");
-  py::gil_scoped_release release;
-  return connect(r, start, goal, o, &progress);
+  return released("RRR3.connect", [&](Progress* progress) { return connect(r, start, goal, o, progress); });
 }
 
 RRR3Workspace workspace_map(const RRR3& r, const py::kwargs& kwargs) {
   const RRR3WorkspaceOptions o = options_arg<RRR3WorkspaceOptions>(kwargs);
-  PythonProgress progress("RRR3.workspace");
-  py::gil_scoped_release release;
-  return workspace(r, o, &progress);
+  return released("RRR3.workspace", [&](Progress* progress) { return workspace(r, o, progress); });
 }
 
 py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) {
@@ -94,13 +87,9 @@ py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) 
     }
   }
   const RRR3WorkspaceOptions o = options_arg<RRR3WorkspaceOptions>(kwargs);
-  std::vector<double> areas;
-  PythonProgress progress("design study");
-  {
-    py::gil_scoped_release release;
-    areas = region_areas(robots, o, &progress);
-  }
-  return to_numpy(Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(areas.data(), areas.size())));
+  const std::vector<double> areas =
+      released("design study", [&](Progress* progress) { return region_areas(robots, o, progress); });
+  return to_numpy(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(areas.data(), areas.size())));
 }
 
 

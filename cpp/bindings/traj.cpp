@@ -58,11 +58,9 @@ py::tuple sample(const Law& law, py::array t_arr, const char* names) {
   py::array q = new_samples(count, n), qd = new_samples(count, n), qdd = new_samples(count, n);
   const double* t = float64_data(t_arr);
   const JointSamples out{float64_data(q), float64_data(qd), float64_data(qdd)};
-  PythonProgress progress("traj");
-  {
-    py::gil_scoped_release release;
-    parallel_for(count, 8192, [&](long begin, long end) { law.evaluate(t, begin, end, out); }, &progress);
-  }
+  released("traj", [&](Progress* progress) {
+    parallel_for(count, 8192, [&](long begin, long end) { law.evaluate(t, begin, end, out); }, progress);
+  });
   for (const py::array* a : {&q, &qd, &qdd})
     if (!all_finite(float64_data(*a), count * n))
       fail(std::string(names) + ": the trajectory is not finite (values or times too large)");
@@ -150,12 +148,9 @@ py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_n
   const long count = static_cast<long>(t.size());
   const py::ssize_t pshape[3] = {count, 4, 4};
   py::array poses = new_array(3, pshape), vel = new_samples(count, 6), acc = new_samples(count, 6);
-  {
-    const double *xp = float64_data(x), *xdp = float64_data(xd), *xddp = float64_data(xdd);
-    double *pp = float64_data(poses), *vp = float64_data(vel), *ap = float64_data(acc);
-    py::gil_scoped_release release;
-    parallel_for(count, 4096, [&](long b, long e) { line.evaluate(xp, xdp, xddp, b, e, pp, vp, ap); });
-  }
+  const double *xp = float64_data(x), *xdp = float64_data(xd), *xddp = float64_data(xdd);
+  double *pp = float64_data(poses), *vp = float64_data(vel), *ap = float64_data(acc);
+  released([&] { parallel_for(count, 4096, [&](long b, long e) { line.evaluate(xp, xdp, xddp, b, e, pp, vp, ap); }); });
   for (const py::array* a : {&poses, &vel, &acc})
     if (!all_finite(float64_data(*a), a->size())) fail("T0, T1: the trajectory is not finite (poses too far apart)");
   return py::make_tuple(t, poses, vel, acc);
