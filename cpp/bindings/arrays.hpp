@@ -215,6 +215,18 @@ inline void check_state(const py::tuple& t, size_t size, const char* what) {
     fail(std::string(what) + " state: not a state of this robokin (version 1, " + std::to_string(size) + " entries)");
 }
 
+// A new array of `shape` holding a copy of the values at data (row-major, as many as shape holds):
+// float64 through new_array, other element types (bool, int, ...) through pybind11.
+template <class T>
+py::array_t<T> array_of(const T* data, std::initializer_list<py::ssize_t> shape) {
+  auto out = [&] {
+    if constexpr (std::is_same_v<T, double>) return new_array(shape);
+    else return py::array_t<T>(std::vector<py::ssize_t>(shape));
+  }();
+  std::copy(data, data + out.size(), out.mutable_data());
+  return out;
+}
+
 // Copies a column-major Eigen matrix into a new row-major numpy array.
 template <class M>
 py::array_t<double> to_numpy(const M& m) {
@@ -224,10 +236,6 @@ py::array_t<double> to_numpy(const M& m) {
   return out;
 }
 
-inline py::array_t<double> to_numpy(const Eigen::VectorXd& v) {
-  py::array_t<double> out = new_array({static_cast<py::ssize_t>(v.size())});
-  Eigen::Map<Eigen::VectorXd>(out.mutable_data(), v.size()) = v;
-  return out;
-}
+inline py::array_t<double> to_numpy(const Eigen::VectorXd& v) { return array_of(v.data(), {v.size()}); }
 
 }  // namespace robokin::bind

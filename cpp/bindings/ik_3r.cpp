@@ -51,16 +51,12 @@ void bind_ik_3r(py::module_& m) {
         for (size_t k = 0; k < r.cusps.size(); ++k) {
           c[4 * k] = r.cusps[k].q2, c[4 * k + 1] = r.cusps[k].q3, c[4 * k + 2] = r.cusps[k].rho, c[4 * k + 3] = r.cusps[k].z;
         }
-        py::array_t<signed char> sign({static_cast<py::ssize_t>(resolution), static_cast<py::ssize_t>(resolution)});
-        std::copy(r.sign.begin(), r.sign.end(), sign.mutable_data());
-        py::array_t<int> label({static_cast<py::ssize_t>(resolution), static_cast<py::ssize_t>(resolution)});
-        std::copy(r.label.begin(), r.label.end(), label.mutable_data());
         py::dict out;
-        out["label"] = label;
+        out["label"] = array_of(r.label.data(), {resolution, resolution});
         out["cuspidal"] = r.cuspidal;
         out["cusps"] = cusps;
         out["aspects"] = r.aspects;
-        out["sign"] = sign;
+        out["sign"] = array_of(r.sign.data(), {resolution, resolution});
         return out;
       },
       py::arg("chain"), py::arg("resolution") = 256);

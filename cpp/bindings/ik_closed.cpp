@@ -150,11 +150,7 @@ py::tuple ur_geometry(const Chain& chain) {
   return py::make_tuple(d, to_numpy(g.tool.matrix()));
 }
 
-py::array_t<double> solutions_q(const ClosedFormSolutions& s) {
-  py::array_t<double> out = new_array({static_cast<py::ssize_t>(s.count()), static_cast<py::ssize_t>(s.dof)});
-  std::copy(s.row(0), s.row(s.count()), out.mutable_data());
-  return out;
-}
+py::array_t<double> solutions_q(const ClosedFormSolutions& s) { return array_of(s.row(0), {s.count(), s.dof}); }
 
 // The rows within the limits, in order.
 ClosedFormSolutions only_within_limits(const ClosedFormSolutions& s) {
@@ -230,9 +226,7 @@ void bind_solutions(py::module_& m) {
           [](py::handle self) {
             return kept_attribute(self, "within_limits", [&] {
               const auto& s = self.cast<const ClosedFormSolutions&>();
-              py::array_t<bool> out(static_cast<py::ssize_t>(s.count()));
-              std::copy(s.within_limits.begin(), s.within_limits.begin() + s.count(), out.mutable_data());
-              return out;
+              return array_of(s.within_limits.data(), {s.count()});
             });
           },
           "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"

@@ -59,8 +59,7 @@ void bind_postures(py::module_& m) {
           return plan_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
                                a.has_q0 ? a.q0.data() : nullptr);
         });
-        py::array_t<long> pick(static_cast<py::ssize_t>(plan.pick.size()));
-        std::copy(plan.pick.begin(), plan.pick.end(), pick.mutable_data());
+        const py::array_t<long> pick = array_of(plan.pick.data(), {static_cast<py::ssize_t>(plan.pick.size())});
         return py::make_tuple(pick, plan.reconfigurations, plan.motion);
       },
       py::arg("sets"), py::arg("qdot_max"), py::arg("dt"), py::arg("continuous"), py::arg("q0") = py::none(),

@@ -83,15 +83,8 @@ class ResultClass {
       cls_.def_property_readonly(name, [member, key = std::string(name)](py::handle self) {
         return kept_attribute(self, key.c_str(), [&]() -> py::array_t<Scalar> {
           const M& a = self.cast<const T&>().*member;
-          const py::ssize_t shape[2] = {a.rows(), a.cols()};
-          constexpr int ndim = M::ColsAtCompileTime == 1 ? 1 : 2;
-          if constexpr (std::is_same_v<Scalar, double>) {
-            py::array_t<double> copy = new_array(ndim, shape);
-            std::copy(a.data(), a.data() + a.size(), float64_data(copy));
-            return copy;
-          } else {
-            return py::array_t<Scalar>(std::vector<py::ssize_t>(shape, shape + ndim), a.data());
-          }
+          if constexpr (M::ColsAtCompileTime == 1) return array_of(a.data(), {a.rows()});
+          else return array_of(a.data(), {a.rows(), a.cols()});
         });
       }, doc);
     }

@@ -89,7 +89,7 @@ py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) 
   const RRR3WorkspaceOptions o = options_arg<RRR3WorkspaceOptions>(kwargs);
   const std::vector<double> areas =
       released("design study", [&](Progress* progress) { return region_areas(robots, o, progress); });
-  return to_numpy(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(areas.data(), areas.size())));
+  return array_of(areas.data(), {static_cast<py::ssize_t>(areas.size())});
 }
 
 
@@ -122,11 +122,7 @@ void bind_plan_results(py::module_& m) {
 
 // The cells of a workspace map as (n, n) codes; unpickled from the array, or from the bytes of
 // an earlier state.
-py::array_t<std::uint8_t> workspace_cells(const RRR3Workspace& w) {
-  py::array_t<std::uint8_t> out({w.n, w.n});
-  std::copy(w.cells.begin(), w.cells.end(), out.mutable_data());
-  return out;
-}
+py::array_t<std::uint8_t> workspace_cells(const RRR3Workspace& w) { return array_of(w.cells.data(), {w.n, w.n}); }
 
 void restore_cells(RRR3Workspace& w, py::handle v) {
   std::vector<std::uint8_t> cells;

@@ -43,10 +43,7 @@ py::array new_samples(long count, long n) {
 }
 
 py::array vector_array(const std::vector<double>& values) {
-  const py::ssize_t shape[1] = {static_cast<py::ssize_t>(values.size())};
-  py::array a = new_array(1, shape);
-  std::copy(values.begin(), values.end(), float64_data(a));
-  return a;
+  return array_of(values.data(), {static_cast<py::ssize_t>(values.size())});
 }
 
 
@@ -67,13 +64,6 @@ py::tuple sample(const Law& law, py::array t_arr, const char* names) {
   return py::make_tuple(t_arr, q, qd, qdd);
 }
 
-py::array copy_of(const double* data, long count) {
-  const py::ssize_t shape[1] = {count};
-  py::array a = new_array(1, shape);
-  std::copy(data, data + count, float64_data(a));
-  return a;
-}
-
 // Sample times: 1-D, at least 2, finite, strictly increasing, a finite span (a copy).
 py::array checked_times(ArrayLike t_obj) {
   Array t = as_array(t_obj, "t");
@@ -82,7 +72,7 @@ py::array checked_times(ArrayLike t_obj) {
   for (py::ssize_t k = 1; k < t.size(); ++k)
     if (!(t.data()[k] > t.data()[k - 1])) fail("t: times must be strictly increasing");
   if (!std::isfinite(t.data()[t.size() - 1] - t.data()[0])) fail("t: the time span is not finite");
-  return copy_of(t.data(), t.size());
+  return array_of(t.data(), {t.size()});
 }
 
 py::tuple quintic_at(const Vector& q0, const Vector& q1, const Vector& qd0, const Vector& qd1, py::array t,
