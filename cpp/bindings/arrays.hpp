@@ -188,6 +188,47 @@ inline Eigen::VectorXd as_vector(py::handle obj, const char* name, long n = -1, 
   return Eigen::Map<const Eigen::VectorXd>(a.data(), a.shape(0));
 }
 
+// One value of shape (width,) or a batch (N, width), finite (unless `finite` is false: a caller that
+// checks the values itself). Returns N, or -1 for a single value.
+inline long one_or_batch(const Float64View& v, const char* name, long width, bool finite = true) {
+  if (!((v.ndim == 1 && v.shape[0] == width) || (v.ndim == 2 && v.shape[1] == width)))
+    fail(std::string(name) + ": expected shape (" + std::to_string(width) + ",) or (N, " + std::to_string(width) +
+         "), got " + shape_of(v.ndim, v.shape));
+  if (finite) require_finite(v.data, v.size, name);
+  return v.ndim == 1 ? -1 : static_cast<long>(v.shape[0]);
+}
+
+// A finite batch of shape (count, inner...), e.g. "points: expected shape (K, 2), got (2,)".
+inline Array rows_arg(py::handle obj, const char* name, std::initializer_list<py::ssize_t> inner,
+                      const char* count = "K") {
+  Array a = as_array(obj, name);
+  const bool fits = a.ndim() == static_cast<py::ssize_t>(inner.size()) + 1 &&
+                    std::equal(inner.begin(), inner.end(), a.shape() + 1);
+  if (!fits) {
+    std::string want = count;
+    for (py::ssize_t d : inner) want += ", " + std::to_string(d);
+    fail(std::string(name) + ": expected shape (" + want + "), got " + shape_of(a));
+  }
+  require_finite(a.data(), a.size(), name);
+  return a;
+}
+
+// Whether the row-major 4x4 at m is a homogeneous rigid transform: an orthonormal rotation of
+// determinant +1 (within 1e-9), last row 0 0 0 1 (within 1e-12).
+inline bool is_rigid(const double* data) {
+  const Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> m(data);
+  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  return !(!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
+           (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0);
+}
+
+// The row-major 4x4 at m (finite), which must be a rigid transform: ValueError naming `name` if not.
+inline Eigen::Matrix4d rigid_at(const double* m, const char* name) {
+  if (!is_rigid(m))
+    fail(std::string(name) + ": not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)");
+  return Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m);
+}
+
 // A finite 4x4 homogeneous rigid transform (orthonormal rotation, last row 0 0 0 1).
 inline Eigen::Matrix4d as_transform(py::handle obj, const char* name) {
   // A (4, 4) float64 ndarray is read in place (Float64View); anything else through as_array.
@@ -200,12 +241,7 @@ inline Eigen::Matrix4d as_transform(py::handle obj, const char* name) {
     v = view_of(*a);
   }
   require_finite(v.data, 16, name);
-  const Eigen::Matrix4d m = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(v.data);
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
-      (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)
-    fail(std::string(name) + ": not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)");
-  return m;
+  return rigid_at(v.data, name);
 }
 
 // The version check of a pickled state tuple (version 1, `size` entries): ValueError naming `what`.

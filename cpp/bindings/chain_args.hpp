@@ -20,12 +20,7 @@ namespace robokin::bind {
 // q of shape (dof,) or (N, dof), finite (unless `finite` is false: a caller that checks the values
 // itself, as the batch FK does in its kernel). Returns N, or -1 for a single configuration.
 inline long check_q(const Chain& c, const Float64View& q, const char* name = "q", bool finite = true) {
-  const long n = c.dof();
-  if (!((q.ndim == 1 && q.shape[0] == n) || (q.ndim == 2 && q.shape[1] == n)))
-    fail(std::string(name) + ": expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) +
-         "), got " + shape_of(q.ndim, q.shape));
-  if (finite) require_finite(q.data, q.size, name);
-  return q.ndim == 1 ? -1 : static_cast<long>(q.shape[0]);
+  return one_or_batch(q, name, c.dof(), finite);
 }
 
 // Finite q can still give an overflowing result (lengths or prismatic joints near 1e308): a

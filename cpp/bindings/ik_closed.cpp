@@ -59,15 +59,10 @@ ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, doub
 
 py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
                                double d6, ArrayLike q0_obj, LimitsLike limits) {
-  Array a = as_array(targets_obj, "targets");
-  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
-    fail("targets: expected shape (K, 4, 4), got " + shape_of(a));
-  require_finite(a.data(), a.size(), "targets");
+  const Array a = rows_arg(targets_obj, "targets", {4, 4});
   const long count = a.shape(0);
   std::vector<Rigid> targets;
-  targets.reserve(count);
-  for (long k = 0; k < count; ++k)
-    targets.push_back(Rigid::from_matrix(as_transform(py::array_t<double>({4, 4}, a.data() + 16 * k), "targets")));
+  for (long k = 0; k < count; ++k) targets.push_back(Rigid::from_matrix(rigid_at(a.data() + 16 * k, "targets")));
   const Vector q0 = as_vector(q0_obj, "q0", 6);
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
   const JointLimits lim = limits_arg(limits, 6);
@@ -117,19 +112,13 @@ static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimits
 }
 
 std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
-  Array a = as_array(targets_obj, name);
-  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
-    fail(std::string(name) + ": expected shape (N, 4, 4), got " + shape_of(a));
-  require_finite(a.data(), a.size(), name);
+  const Array a = rows_arg(targets_obj, name, {4, 4}, "N");
   const long count = a.shape(0);
   std::vector<Rigid> targets(count);
   for (long k = 0; k < count; ++k) {
-    const Eigen::Matrix4d m = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(a.data() + 16 * k);
-    const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-    if (!m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-12) ||
-        (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0)
-      fail(std::string(name) + ": frame " + std::to_string(k) + " is not a rigid transform");
-    targets[k] = Rigid::from_matrix(m);
+    const double* m = a.data() + 16 * k;
+    if (!is_rigid(m)) fail(std::string(name) + ": frame " + std::to_string(k) + " is not a rigid transform");
+    targets[k] = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m));
   }
   return targets;
 }

@@ -49,17 +49,6 @@ long read_frames(py::handle obj, const char* name, bool rotations_too, std::vect
   return nd == 3 ? count : -1;
 }
 
-// Vectors (width,) or (N, width), finite. Returns N, or -1 for a single one.
-long read_vectors(py::handle obj, const char* name, long width, Array& a) {
-  a = as_array(obj, name);
-  const bool ok = (a.ndim() == 1 && a.shape(0) == width) || (a.ndim() == 2 && a.shape(1) == width);
-  if (!ok)
-    fail(std::string(name) + ": expected shape (" + std::to_string(width) + ",) or (N, " + std::to_string(width) +
-         "), got " + shape_of(a));
-  require_finite(a.data(), a.size(), name);
-  return a.ndim() == 2 ? a.shape(0) : -1;
-}
-
 // A new array of `count` values of shape `inner` (no leading axis when count < 0).
 py::array output(long count, std::vector<py::ssize_t> inner) {
   if (count >= 0) inner.insert(inner.begin(), count);
@@ -83,8 +72,8 @@ py::array checked(py::array out, const char* name) {
 // Frames built from vectors of `width` values by make(values) -> Rigid.
 template <class Make>
 py::array frames_from(py::handle obj, const char* name, long width, Make make) {
-  Array a;
-  const long count = read_vectors(obj, name, width, a);
+  const Array a = as_array(obj, name);
+  const long count = one_or_batch(view_of(a), name, width);
   py::array out = output(count, {4, 4});
   double* dst = float64_data(out);
   for (long k = 0; k < (count < 0 ? 1 : count); ++k) write_frame(make(a.data() + k * width), dst + 16 * k);

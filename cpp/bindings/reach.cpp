@@ -67,16 +67,14 @@ void bind_reach(py::module_& m) {
   m.def(
       "joint_limit_cost",
       [](const Chain& chain, ArrayLike q_obj) -> py::object {
-        Array q = as_array(q_obj, "q");
-        const long n = chain.dof();
-        if (!((q.ndim() == 1 && q.shape(0) == n) || (q.ndim() == 2 && q.shape(1) == n)))
-          fail("q: expected shape (" + std::to_string(n) + ",) or (N, " + std::to_string(n) + "), got " + shape_of(q));
-        require_finite(q.data(), q.size(), "q");
-        py::array_t<double> out = new_array({q.ndim() == 1 ? 1 : q.shape(0)});
-        for (py::ssize_t k = 0; k < out.size(); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data() + k * n);
+        Array holder;
+        const Float64View q = q_view(q_obj, holder);
+        const long count = check_q(chain, q), n = chain.dof();
+        py::array_t<double> out = new_array({count < 0 ? 1 : count});
+        for (py::ssize_t k = 0; k < out.size(); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data + k * n);
         // A finite q far outside the limits (near 1e300) squares to inf: say so rather than return it.
         if (!all_finite(out.data(), out.size())) fail("q: the cost is not finite (q is too far from the limits)");
-        if (q.ndim() == 1) return py::float_(out.data()[0]);
+        if (count < 0) return py::float_(out.data()[0]);
         return std::move(out);
       },
       py::arg("chain"), py::arg("q"),

@@ -27,9 +27,7 @@ py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)
 
 py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj) {
   const Mode mode = as_mode(mode_obj);
-  Array poses = as_array(poses_obj, "poses");
-  if (poses.ndim() != 2 || poses.shape(1) != 3) fail("poses: expected shape (N, 3), got " + shape_of(poses));
-  require_finite(poses.data(), poses.size(), "poses");
+  const Array poses = rows_arg(poses_obj, "poses", {3}, "N");
   const long n = static_cast<long>(poses.shape(0));
   py::array_t<double> out = new_array({n, 3});
   double* dst = out.mutable_data();

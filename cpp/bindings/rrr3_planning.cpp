@@ -21,9 +21,7 @@ namespace robokin::bind {
 namespace {
 
 RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
-  Array pts = as_array(points_obj, "points");
-  if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
-  require_finite(pts.data(), pts.size(), "points");
+  const Array pts = rows_arg(points_obj, "points", {2});
   const auto o = options_arg<RRR3PlanOptions>(kwargs);
   const long count = static_cast<long>(pts.shape(0));
   // The sizes (grid memory, work of the dynamic programme) are bounded by plan_path itself.
@@ -33,9 +31,7 @@ RRR3Plan plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
 // plan_loop(points, **kwargs): the loop's own options (sign, nominals) and the plan's (all but phi,
 // searched, and closed, always true).
 RRR3Loop loop_plan(const RRR3& r, ArrayLike points_obj, const py::kwargs& kwargs) {
-  Array pts = as_array(points_obj, "points");
-  if (pts.ndim() != 2 || pts.shape(1) != 2) fail("points: expected shape (K, 2), got " + shape_of(pts));
-  require_finite(pts.data(), pts.size(), "points");
+  const Array pts = rows_arg(points_obj, "points", {2});
   const std::vector<std::string> loop_names = field_names<RRR3LoopOptions>();
   std::vector<std::string> plan_names;
   for (const std::string& n : field_names<RRR3PlanOptions>())
