@@ -21,51 +21,30 @@ namespace robokin::bind {
 
 namespace py = pybind11;
 
-// The texts that signatures and stubs show for the Typed<Tag> parameters (internals.hpp).
-struct LimitsTag {  // limits_arg
-  static constexpr char text[] = "tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
-};
-struct ChainLimitsTag {  // limits_or_default
-  static constexpr char text[] = "typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
-};
-struct ModeTag {  // the 3-RRR's working mode
-  static constexpr char text[] = "tuple[int, int, int]";
-};
-struct SeedTag {
-  static constexpr char text[] = "int | None";
-};
-struct TaskTag {  // task_of: a task's name, or None for the chain's natural task
-  static constexpr char text[] = "typing.Literal['pose', 'position', 'xy', 'xyphi'] | None";
-};
-struct OutTag {  // output_array: the caller's array to write into, or None for a new one
-  static constexpr char text[] = "numpy.typing.NDArray[numpy.float64] | None";
-};
-struct FrameOrPositionTag {
-  static constexpr char text[] = "typing.Literal['frame', 'position']";
-};
-struct MeasureTag {
-  static constexpr char text[] = "typing.Literal['yoshikawa', 'condition', 'min_singular']";
-};
-struct NullspaceTag {
-  static constexpr char text[] = "typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None";
-};
-struct LockedTag {  // a closed form's held joint: {index: value}
-  static constexpr char text[] = "dict[int, float] | None";
-};
-struct OptionalArrayTag {
-  static constexpr char text[] = "numpy.typing.ArrayLike | None";
-};
-using LimitsLike = Typed<LimitsTag>;
-using ChainLimitsLike = Typed<ChainLimitsTag>;
-using ModeLike = Typed<ModeTag>;
-using SeedLike = Typed<SeedTag>;
-using TaskName = Typed<TaskTag>;
-using FkPart = Typed<FrameOrPositionTag>;
-using OutArray = Typed<OutTag>;
-using MeasureName = Typed<MeasureTag>;
-using NullspaceLike = Typed<NullspaceTag>;
-using OptionalArrayLike = Typed<OptionalArrayTag>;
-using LockedLike = Typed<LockedTag>;
+// The texts that signatures and stubs show for the Typed<Text> parameters (internals.hpp).
+inline constexpr char kLimitsLikeText[] = "tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
+using LimitsLike = Typed<kLimitsLikeText>;  // limits_arg
+inline constexpr char kChainLimitsLikeText[] =
+    "typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None";
+using ChainLimitsLike = Typed<kChainLimitsLikeText>;  // limits_or_default
+inline constexpr char kModeLikeText[] = "tuple[int, int, int]";
+using ModeLike = Typed<kModeLikeText>;  // the 3-RRR's working mode
+inline constexpr char kSeedLikeText[] = "int | None";
+using SeedLike = Typed<kSeedLikeText>;
+inline constexpr char kTaskNameText[] = "typing.Literal['pose', 'position', 'xy', 'xyphi'] | None";
+using TaskName = Typed<kTaskNameText>;  // task_of: a task's name, or None for the chain's natural task
+inline constexpr char kOutArrayText[] = "numpy.typing.NDArray[numpy.float64] | None";
+using OutArray = Typed<kOutArrayText>;  // output_array: the caller's array to write into, or None for a new one
+inline constexpr char kFkPartText[] = "typing.Literal['frame', 'position']";
+using FkPart = Typed<kFkPartText>;
+inline constexpr char kMeasureNameText[] = "typing.Literal['yoshikawa', 'condition', 'min_singular']";
+using MeasureName = Typed<kMeasureNameText>;
+inline constexpr char kNullspaceLikeText[] = "typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None";
+using NullspaceLike = Typed<kNullspaceLikeText>;
+inline constexpr char kLockedLikeText[] = "dict[int, float] | None";
+using LockedLike = Typed<kLockedLikeText>;  // a closed form's held joint: {index: value}
+inline constexpr char kOptionalArrayLikeText[] = "numpy.typing.ArrayLike | None";
+using OptionalArrayLike = Typed<kOptionalArrayLikeText>;
 
 }  // namespace robokin::bind
 

@@ -16,14 +16,10 @@
 namespace robokin::bind {
 namespace {
 
-struct JointMappingTag {
-  static constexpr char text[] = "collections.abc.Mapping[str, float]";
-};
-struct JointDefaultTag {
-  static constexpr char text[] = "float | numpy.typing.ArrayLike | None";
-};
-using JointMapping = Typed<JointMappingTag>;
-using JointDefault = Typed<JointDefaultTag>;
+constexpr char kJointMappingText[] = "collections.abc.Mapping[str, float]";
+using JointMapping = Typed<kJointMappingText>;
+constexpr char kJointDefaultText[] = "float | numpy.typing.ArrayLike | None";
+using JointDefault = Typed<kJointDefaultText>;
 
 constexpr size_t kListedNames = 20;  // an error message lists this many names, then says how many more
 

@@ -35,8 +35,8 @@ class ArrayLike : public py::object {
 };
 
 // A parameter of several accepted forms, taken as any object and converted by the bindings'
-// helpers (errors naming it), shown in the stubs as Tag::text says.
-template <class Tag>
+// helpers (errors naming it), shown in the stubs as the string Text says (a constant of its own).
+template <const auto& Text>
 class Typed : public py::object {
  public:
   using py::object::object;
@@ -50,9 +50,9 @@ template <>
 struct handle_type_name<robokin::bind::ArrayLike> {
   static constexpr auto name = const_name("numpy.typing.ArrayLike");
 };
-template <class Tag>
-struct handle_type_name<robokin::bind::Typed<Tag>> {
-  static constexpr auto name = const_name(Tag::text);
+template <const auto& Text>
+struct handle_type_name<robokin::bind::Typed<Text>> {
+  static constexpr auto name = const_name(Text);
 };
 }  // namespace pybind11::detail
 

@@ -17,14 +17,10 @@
 namespace robokin::bind {
 namespace {
 
-struct UrdfSourceTag {
-  static constexpr char text[] = "str | bytes | os.PathLike";
-};
-struct LinkNameTag {
-  static constexpr char text[] = "str | None";
-};
-using UrdfSource = Typed<UrdfSourceTag>;
-using LinkName = Typed<LinkNameTag>;
+constexpr char kUrdfSourceText[] = "str | bytes | os.PathLike";
+using UrdfSource = Typed<kUrdfSourceText>;
+constexpr char kLinkNameText[] = "str | None";
+using LinkName = Typed<kLinkNameText>;
 
 std::string type_name_of(py::handle obj) { return py::str(py::type::handle_of(obj).attr("__name__")); }
 
