@@ -11,9 +11,6 @@
 
 namespace robokin::bind {
 
-// The chain's UR geometry; ValueError (naming what differs) when it has not the UR layout.
-URArm ur_arm_arg(const Chain& chain);
-
 // (N, 4, 4) rigid frames; ValueError naming `name` for a wrong shape, a non-finite value or a frame
 // that is not a rigid transform.
 std::vector<Rigid> rigid_frames(ArrayLike targets, const char* name);

@@ -8,28 +8,16 @@
 #include "robokin/ik_3r.hpp"
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 namespace robokin::bind {
-namespace {
-
-Arm3R arm_arg(const Chain& chain) {
-  try {
-    return arm_3r(chain);
-  } catch (const std::invalid_argument& e) {
-    fail(e.what());
-  }
-}
-
-}  // namespace
 
 void bind_ik_3r(py::module_& m) {
   m.def(
       "ik_3r",
       [](ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
-        const Arm3R arm = arm_arg(chain);
+        const Arm3R arm = arm_3r(chain);
         return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3));
       },
       py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
@@ -37,14 +25,14 @@ void bind_ik_3r(py::module_& m) {
       "det_3r",
       [](const Chain& chain, double q2, double q3) {
         if (!std::isfinite(q2) || !std::isfinite(q3)) fail("q: must be finite");
-        return det_3r(arm_arg(chain), q2, q3);
+        return det_3r(arm_3r(chain), q2, q3);
       },
       py::arg("chain"), py::arg("q2"), py::arg("q3"));
   m.def(
       "cuspidal_3r",
       [](const Chain& chain, int resolution) {
         if (resolution < 16 || resolution > 4096) fail("resolution: expected an integer in [16, 4096]");
-        const Arm3R arm = arm_arg(chain);
+        const Arm3R arm = arm_3r(chain);
         const CuspidalResult r = released([&] { return cuspidal_3r(arm, resolution); });
         py::array_t<double> cusps = new_array({static_cast<py::ssize_t>(r.cusps.size()), 4});
         double* c = cusps.mutable_data();

@@ -91,22 +91,14 @@ struct SphericalWrist {
 
 // ---- The UR family (robokin.closed.ur) ----
 
-URArm ur_arm_arg(const Chain& chain) {
-  try {
-    return ur_arm(chain);
-  } catch (const std::invalid_argument& e) {
-    fail(e.what());
-  }
-}
-
 // limits: "default" (the chain's), None, or a pair.
 static ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_ur(ur_arm_arg(chain), chain, T, limits_or_default(chain, limits, 6));
+  return ik_ur(ur_arm(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
 static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
-  const URArm arm = ur_arm_arg(chain);
+  const URArm arm = ur_arm(chain);
   const JointLimits lim = limits_or_default(chain, limits, 6);
   return ur_batch_with(targets_obj, chain, arm, lim);
 }
@@ -133,7 +125,7 @@ py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& 
 namespace {
 
 py::tuple ur_geometry(const Chain& chain) {
-  const URArm g = ur_arm_arg(chain);
+  const URArm g = ur_arm(chain);
   py::dict d;
   d["d1"] = g.d1, d["a2"] = g.a2, d["a3"] = g.a3, d["d4"] = g.d4, d["d5"] = g.d5;
   return py::make_tuple(d, to_numpy(g.tool.matrix()));
