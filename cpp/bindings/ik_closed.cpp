@@ -192,28 +192,18 @@ ClosedFormSolutions solutions_from_state(const py::tuple& t) {
 
 // robokin.closed's IKSolutions.
 void bind_solutions(py::module_& m) {
-  py::class_<ClosedFormSolutions>(m, "IKSolutions",
-                                  "Every closed-form solution of a pose: q (k, dof), one posture label per row and\n"
-                                  "whether each row is within the joint limits (none is dropped for its limits).",
-                                  py::dynamic_attr())
-      .def_property_readonly(
-          "q",
-          [](py::handle self) {
-            return kept_attribute(self, "q", [&] { return solutions_q(self.cast<const ClosedFormSolutions&>()); });
-          },
-          "(k, dof) joint vectors, one per solution.")
-      .def_property_readonly(
-          "within_limits",
-          [](py::handle self) {
-            return kept_attribute(self, "within_limits", [&] {
-              const auto& s = self.cast<const ClosedFormSolutions&>();
-              return array_of(s.within_limits.data(), {s.count()});
-            });
-          },
-          "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
-          "False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).")
-      .def("only_within_limits", &only_within_limits,
-           "The solutions within the joint limits only (an IKSolutions, rows in order).")
+  py::class_<ClosedFormSolutions> cls(m, "IKSolutions",
+                                      "Every closed-form solution of a pose: q (k, dof), one posture label per row and\n"
+                                      "whether each row is within the joint limits (none is dropped for its limits).",
+                                      py::dynamic_attr());
+  def_kept(cls, "q", &solutions_q, "(k, dof) joint vectors, one per solution.");
+  def_kept(
+      cls, "within_limits",
+      [](const ClosedFormSolutions& s) { return array_of(s.within_limits.data(), {s.count()}); },
+      "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
+      "False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).");
+  cls.def("only_within_limits", &only_within_limits,
+          "The solutions within the joint limits only (an IKSolutions, rows in order).")
       .def_property_readonly(
           "postures",
           [](const ClosedFormSolutions& s) {

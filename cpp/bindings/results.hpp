@@ -34,6 +34,14 @@ auto kept_attribute(py::handle self, const char* name, Make make) -> decltype(ma
   return value;
 }
 
+// A read-only property of T's class made by get(const T&) at its first read and kept (kept_attribute).
+template <class T, class Get>
+void def_kept(py::class_<T>& cls, const char* name, Get get, const char* doc) {
+  cls.def_property_readonly(name, [name, get](py::handle self) {
+    return kept_attribute(self, name, [&] { return get(self.cast<const T&>()); });
+  }, doc);
+}
+
 template <class T>
 class ResultClass {
  public:
@@ -58,9 +66,7 @@ class ResultClass {
   ResultClass& value_as(const char* name, Get get, Set set, const char* doc) {
     using R = decltype(get(std::declval<const T&>()));
     if constexpr (std::is_base_of_v<py::object, R>) {  // a Python object (an array): made once, kept
-      cls_.def_property_readonly(name, [get, key = std::string(name)](py::handle self) {
-        return kept_attribute(self, key.c_str(), [&] { return get(self.cast<const T&>()); });
-      }, doc);
+      def_kept(cls_, name, get, doc);
     } else {
       cls_.def_property_readonly(name, get, doc);
     }

@@ -145,14 +145,9 @@ void bind_workspace_result(py::module_& m) {
       .value("regular_area", &RRR3Workspace::regular_area, "Area of the reachable, non-singular cells (m^2).")
       .value("area", &RRR3Workspace::region_area, "Area of the largest singularity-free 4-connected region (m^2).")
       .done_with([](py::class_<RRR3Workspace>& cls) {
-        const auto centres = [](const char* axis, auto along) {
-          return [axis, along](py::handle self) {
-            return kept_attribute(self, axis, [&] { return to_numpy(along(self.cast<const RRR3Workspace&>())); });
-          };
-        };
-        cls.def_property_readonly("x", centres("x", [](const RRR3Workspace& w) { return w.x(); }), "Cell centres along x (n,).")
-            .def_property_readonly("y", centres("y", [](const RRR3Workspace& w) { return w.y(); }), "Cell centres along y (n,).")
-            .def_property_readonly("extent", [](const RRR3Workspace& w) { return py::tuple(py::cast(w.extent())); },
+        def_kept(cls, "x", [](const RRR3Workspace& w) { return to_numpy(w.x()); }, "Cell centres along x (n,).");
+        def_kept(cls, "y", [](const RRR3Workspace& w) { return to_numpy(w.y()); }, "Cell centres along y (n,).");
+        cls.def_property_readonly("extent", [](const RRR3Workspace& w) { return py::tuple(py::cast(w.extent())); },
                                    "(x_min, x_max, y_min, y_max) of the grid, for matplotlib's imshow.");
       });
 }
