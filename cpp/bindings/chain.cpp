@@ -38,58 +38,54 @@ std::string joint_letter(py::handle obj, const std::string& name, const char* al
   return s;
 }
 
-py::sequence as_rows(py::handle obj, const char* name) {
+// The records of a chain to build (DH rows, segments): `name` a non-empty sequence of sequences of
+// `size` items (`what` says which), each read by parse(items, "name[i]") -> Record.
+template <class Record, class Parse>
+std::vector<Record> records(py::handle obj, const char* name, size_t size, const char* what, Parse parse) {
   if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj))
     fail(std::string(name) + ": expected a sequence");
-  py::sequence seq = py::reinterpret_borrow<py::sequence>(obj);
+  const py::sequence seq = py::reinterpret_borrow<py::sequence>(obj);
   if (seq.size() == 0) fail(std::string(name) + ": a chain needs at least one joint");
-  return seq;
-}
-
-py::sequence as_tuple_of(py::handle obj, const std::string& name, size_t size, const char* what) {
-  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj) ||
-      py::len(obj) != size)
-    fail(name + ": expected " + what);
-  return py::reinterpret_borrow<py::sequence>(obj);
+  std::vector<Record> out;
+  for (size_t i = 0; i < seq.size(); ++i) {
+    const std::string item = std::string(name) + "[" + std::to_string(i) + "]";
+    const py::object r = seq[i];
+    if (!py::isinstance<py::sequence>(r) || py::isinstance<py::str>(r) || py::len(r) != size)
+      fail(item + ": expected " + what);
+    out.push_back(parse(py::reinterpret_borrow<py::sequence>(r), item));
+  }
+  return out;
 }
 
 Matrix4 optional_tool(py::handle tool) {
   return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
 }
 
-Chain chain_from_dh(py::handle rows_obj, bool modified, OptionalArrayLike tool, LimitsLike limits) {
-  py::sequence rows = as_rows(rows_obj, "rows");
-  std::vector<DHRow> parsed;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const std::string name = "rows[" + std::to_string(i) + "]";
-    py::sequence r = as_tuple_of(rows[i], name, 5, "(a, alpha, d, theta, 'R' or 'P')");
-    DHRow row;
-    row.a = finite_number(r[0], name + " a");
-    row.alpha = finite_number(r[1], name + " alpha");
-    row.d = finite_number(r[2], name + " d");
-    row.theta = finite_number(r[3], name + " theta");
-    row.prismatic = joint_letter(r[4], name, "RP") == "P";
-    parsed.push_back(row);
-  }
+Chain chain_from_dh(py::handle rows, bool modified, OptionalArrayLike tool, LimitsLike limits) {
+  const auto parsed = records<DHRow>(
+      rows, "rows", 5, "(a, alpha, d, theta, 'R' or 'P')", [](const py::sequence& r, const std::string& name) {
+        // Braced initialisers run in order: the row's first bad value is the one named.
+        return DHRow{finite_number(r[0], name + " a"), finite_number(r[1], name + " alpha"),
+                     finite_number(r[2], name + " d"), finite_number(r[3], name + " theta"),
+                     joint_letter(r[4], name, "RP") == "P"};
+      });
   const JointLimits lim = limits_arg(limits, -1);
   return Chain::from_dh(parsed, modified, optional_tool(tool), lim.lower, lim.upper);
 }
 
-Chain chain_from_segments(py::handle segments_obj, OptionalArrayLike tool, LimitsLike limits) {
-  py::sequence segments = as_rows(segments_obj, "segments");
-  std::vector<SegmentSpec> parsed;
-  for (size_t i = 0; i < segments.size(); ++i) {
-    const std::string name = "segments[" + std::to_string(i) + "]";
-    py::sequence s = as_tuple_of(segments[i], name, 3, "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))");
-    SegmentSpec spec;
-    const std::string type = joint_letter(s[0], name, "RPF");
-    spec.type = type == "R" ? JointType::Revolute : type == "P" ? JointType::Prismatic : JointType::Fixed;
-    spec.axis = as_vector(s[1], (name + " axis").c_str(), 3);
-    if (spec.axis.norm() < 1e-12) fail(name + " axis: must not be zero");
-    spec.axis.normalize();
-    spec.tip = as_transform(s[2], (name + " tip").c_str());
-    parsed.push_back(spec);
-  }
+Chain chain_from_segments(py::handle segments, OptionalArrayLike tool, LimitsLike limits) {
+  const auto parsed = records<SegmentSpec>(
+      segments, "segments", 3, "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))",
+      [](const py::sequence& s, const std::string& name) {
+        SegmentSpec spec;
+        const std::string type = joint_letter(s[0], name, "RPF");
+        spec.type = type == "R" ? JointType::Revolute : type == "P" ? JointType::Prismatic : JointType::Fixed;
+        spec.axis = as_vector(s[1], (name + " axis").c_str(), 3);
+        if (spec.axis.norm() < 1e-12) fail(name + " axis: must not be zero");
+        spec.axis.normalize();
+        spec.tip = as_transform(s[2], (name + " tip").c_str());
+        return spec;
+      });
   const JointLimits lim = limits_arg(limits, -1);
   return Chain::from_segments(parsed, optional_tool(tool), lim.lower, lim.upper);
 }
