@@ -7,6 +7,8 @@
 
 #include "internals.hpp"
 
+#include "robokin/chain.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -206,6 +208,16 @@ inline Eigen::Matrix4d rigid_at(const double* m, const char* name) {
   if (!is_rigid(m))
     fail(std::string(name) + ": not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)");
   return Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m);
+}
+
+// Writes T as a row-major 4x4 homogeneous matrix at m.
+inline void write_frame(const Rigid& T, double* m) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m[4 * r + c] = T.R(r, c);
+    m[4 * r + 3] = T.p(r);
+  }
+  m[12] = m[13] = m[14] = 0.0;
+  m[15] = 1.0;
 }
 
 // A finite 4x4 homogeneous rigid transform (orthonormal rotation, last row 0 0 0 1).

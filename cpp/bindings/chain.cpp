@@ -94,15 +94,6 @@ Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
   return as_vector(obj, name, c.dof());
 }
 
-void write_rigid(const Rigid& T, double* m) {
-  for (int r = 0; r < 3; ++r) {
-    for (int k = 0; k < 3; ++k) m[4 * r + k] = T.R(r, k);
-    m[4 * r + 3] = T.p(r);
-  }
-  m[12] = m[13] = m[14] = 0.0;
-  m[15] = 1.0;
-}
-
 // fk's `part`: "frame" (4 x 4 per configuration, the default) or "position" (the tool point, 3 values).
 FkOutput fk_part_of(py::handle obj) {
   if (!PyUnicode_Check(obj.ptr()))
@@ -133,7 +124,7 @@ py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray ou
                                                : output_array(out_obj, 2, frame_shape, q.data, q.size);
     double* m = float64_data(out);
     if (what == FkOutput::Position) m[0] = T.p(0), m[1] = T.p(1), m[2] = T.p(2);
-    else write_rigid(T, m);
+    else write_frame(T, m);
     require_finite_result(m, width);
     return out;
   }

@@ -13,8 +13,6 @@
 namespace robokin::bind {
 namespace {
 
-using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-
 // Frames (4, 4) or (N, 4, 4); with rotations_too, also rotations (3, 3) or (N, 3, 3) (translation 0).
 // Every rotation orthonormal with determinant +1 (within 1e-9), a frame's last row 0 0 0 1.
 // Returns N, or -1 for a single one.
@@ -53,15 +51,6 @@ long read_frames(py::handle obj, const char* name, bool rotations_too, std::vect
 py::array output(long count, std::vector<py::ssize_t> inner) {
   if (count >= 0) inner.insert(inner.begin(), count);
   return new_array(static_cast<int>(inner.size()), inner.data());
-}
-
-void write_frame(const Rigid& T, double* m) {
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m[4 * r + c] = T.R(r, c);
-    m[4 * r + 3] = T.p(r);
-  }
-  m[12] = m[13] = m[14] = 0.0;
-  m[15] = 1.0;
 }
 
 py::array checked(py::array out, const char* name) {
