@@ -12,7 +12,6 @@
 
 #include <array>
 #include <cmath>
-#include <string_view>
 #include <vector>
 
 namespace robokin::bind {

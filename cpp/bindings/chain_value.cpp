@@ -8,8 +8,6 @@
 
 #include <pybind11/stl.h>
 
-#include <kdl/joint.hpp>
-
 #include <string>
 #include <vector>
 

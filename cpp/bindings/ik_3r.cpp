@@ -8,7 +8,6 @@
 #include "robokin/ik_3r.hpp"
 
 #include <cmath>
-#include <string>
 
 namespace robokin::bind {
 

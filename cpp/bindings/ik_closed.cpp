@@ -13,9 +13,7 @@
 #include <mutex>
 #include <set>
 
-#include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <vector>
 
 namespace robokin::bind {

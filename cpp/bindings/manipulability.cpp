@@ -8,7 +8,6 @@
 #include "robokin/manipulability.hpp"
 
 #include <string>
-#include <string_view>
 
 namespace robokin::bind {
 namespace {

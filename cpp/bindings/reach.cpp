@@ -10,7 +10,6 @@
 #include "robokin/reach.hpp"
 
 #include <cmath>
-#include <string>
 #include <vector>
 
 namespace robokin::bind {

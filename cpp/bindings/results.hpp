@@ -9,7 +9,6 @@
 
 #include <pybind11/pybind11.h>
 
-#include <algorithm>
 #include <functional>
 #include <string>
 #include <type_traits>

@@ -7,7 +7,6 @@
 #include "robokin/parallel.hpp"
 #include "robokin/traj.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
