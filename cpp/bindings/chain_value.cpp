@@ -23,12 +23,9 @@ py::tuple floats(const double* v, int count) {
   return t;
 }
 
-py::tuple matrix_rows(const Matrix4& m) {
-  py::tuple t(16);
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) t[4 * r + c] = py::float_(m(r, c));
-  return t;
-}
+using RowMajor4 = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
+
+py::tuple matrix_rows(const Matrix4& m) { return floats(RowMajor4(m).data(), 16); }
 
 // A state entry of `count` floats (exact: Python floats are doubles).
 std::vector<double> floats_of(py::handle obj, size_t count, const char* what) {
@@ -45,11 +42,7 @@ std::vector<double> floats_of(py::handle obj, size_t count, const char* what) {
 }
 
 Matrix4 matrix_of(py::handle obj, const char* what) {
-  const std::vector<double> v = floats_of(obj, 16, what);
-  Matrix4 m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
-  return m;
+  return Eigen::Map<const RowMajor4>(floats_of(obj, 16, what).data());
 }
 
 Vector vector_of(py::handle obj, const char* what) {

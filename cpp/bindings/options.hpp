@@ -195,16 +195,12 @@ class OptionsClass {
                           return state;
                         },
                         [](const py::dict& state) { return from_kwargs(state); }));
-    cls_.def_property_readonly_static("fields", [](py::handle) {
-      const std::vector<std::string> names = field_names<T>();
-      py::tuple out(names.size());
-      for (std::size_t i = 0; i < names.size(); ++i) out[i] = py::str(names[i]);
-      return out;
-    }, "The option names, in order.");
+    cls_.def_property_readonly_static(
+        "fields", [](py::handle) { return py::tuple(py::cast(field_names<T>())); }, "The option names, in order.");
     cls_.def_property_readonly_static("kinds", [](py::handle) {
-      py::tuple out(fields_of<T>().size());
-      for (std::size_t i = 0; i < fields_of<T>().size(); ++i) out[i] = py::str(fields_of<T>()[i].kind);
-      return out;
+      std::vector<std::string> kinds;
+      for (const FieldInfo& f : fields_of<T>()) kinds.push_back(f.kind);
+      return py::tuple(py::cast(kinds));
     }, "What each option takes, in the order of fields: 'int', 'float', 'bool', 'str', 'None or int', ...");
   }
 

@@ -23,8 +23,6 @@ using Elbows = Eigen::Matrix<double, 3, 2>;
 // Python's repr of a float: the shortest text that reads back as the same number.
 std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
 
-py::array_t<double> rows32(const Elbows& m) { return to_numpy(Eigen::MatrixXd(m)); }
-
 py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj) {
   const Mode mode = as_mode(mode_obj);
   const Array poses = rows_arg(poses_obj, "poses", {3}, "N");
@@ -79,16 +77,16 @@ py::dict points(const RRR3& r, ArrayLike pose_obj, ModeLike mode_obj) {
     B.row(i) = r.platform_joint(pose, i).transpose();
   }
   py::dict d;
-  d["O"] = rows32(O);
-  d["A"] = rows32(A);
-  d["B"] = rows32(B);
+  d["O"] = to_numpy(O);
+  d["A"] = to_numpy(A);
+  d["B"] = to_numpy(B);
   return d;
 }
 
 py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, ModeLike mode_obj) {
   Eigen::Matrix3d A, B;
   r.jacobians(as_pose(pose_obj), as_mode(mode_obj), A, B);
-  return py::make_tuple(to_numpy(Eigen::MatrixXd(A)), to_numpy(Eigen::MatrixXd(B)));
+  return py::make_tuple(to_numpy(A), to_numpy(B));
 }
 
 
@@ -155,8 +153,8 @@ void def_geometry(py::class_<RRR3>& cls) {
           [](const RRR3& r) {
             Elbows o;
             for (int i = 0; i < 3; ++i) o.row(i) = r.base_joint(i).transpose();
-            py::array_t<double> out = rows32(o);
-            out.attr("setflags")(py::arg("write") = false);
+            py::array_t<double> out = to_numpy(o);
+            set_read_only(out);
             return out;
           },
           "(3, 2) base joints O_i = R_b (cos t_i, sin t_i), t_i = -90 deg + 120 deg i (read-only).")

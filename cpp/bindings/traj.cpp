@@ -36,11 +36,6 @@ long joint_pair(ArrayLike q0_obj, ArrayLike q1_obj, Vector& q0, Vector& q1) {
   return q0.size();
 }
 
-py::array new_samples(long count, long n) {
-  const py::ssize_t shape[2] = {count, n};
-  return new_array(2, shape);
-}
-
 py::array vector_array(const std::vector<double>& values) {
   return array_of(values.data(), {static_cast<py::ssize_t>(values.size())});
 }
@@ -51,7 +46,7 @@ template <class Law>
 py::tuple sample(const Law& law, py::array t_arr, const char* names) {
   const long count = static_cast<long>(t_arr.size()), n = law.dof();
   if (count * n > kMaxValues) fail(std::string(names) + ": more than " + std::to_string(kMaxValues) + " values to sample");
-  py::array q = new_samples(count, n), qd = new_samples(count, n), qdd = new_samples(count, n);
+  py::array q = new_array({count, n}), qd = new_array({count, n}), qdd = new_array({count, n});
   const double* t = float64_data(t_arr);
   const JointSamples out{float64_data(q), float64_data(qd), float64_data(qdd)};
   released("traj", [&](Progress* progress) {
@@ -136,7 +131,7 @@ py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_n
             xdd = law[3].cast<py::array>();
   const long count = static_cast<long>(t.size());
   const py::ssize_t pshape[3] = {count, 4, 4};
-  py::array poses = new_array(3, pshape), vel = new_samples(count, 6), acc = new_samples(count, 6);
+  py::array poses = new_array(3, pshape), vel = new_array({count, 6}), acc = new_array({count, 6});
   const double *xp = float64_data(x), *xdp = float64_data(xd), *xddp = float64_data(xdd);
   double *pp = float64_data(poses), *vp = float64_data(vel), *ap = float64_data(acc);
   released([&] { parallel_for(count, 4096, [&](long b, long e) { line.evaluate(xp, xdp, xddp, b, e, pp, vp, ap); }); });
