@@ -110,8 +110,7 @@ FkOutput fk_part_of(py::handle obj) {
 py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj) {
   const FkOutput what = fk_part_of(part_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
-  Array holder;
-  const Float64View q = q_view(q_obj, holder);
+  const QView q(q_obj);
   // A batch's joint values are checked by the core as it reads them (Chain::fk_batch).
   const long count = check_q(c, q, "q", false);
   if (count < 0) {
@@ -142,8 +141,7 @@ py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray ou
 
 py::array chain_jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, OutArray out_obj) {
   const Task task = task_of(task_obj, c);
-  Array holder;
-  const Float64View q = q_view(q_obj, holder);
+  const QView q(q_obj);
   const long count = check_q(c, q);
   const int rows = task_rows(task), n = c.dof();
   const int* row_of = task_row_indices(task);

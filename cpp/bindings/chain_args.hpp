@@ -30,14 +30,17 @@ inline void require_finite_result(const double* data, py::ssize_t size, const ch
     fail(std::string(name) + ": the result is not finite (the joint values or the chain's lengths are too large)");
 }
 
-// q as a checked float64 view: the array itself when it already is C-contiguous float64 (the fast
-// path, nothing converted), else a converted copy kept alive in `holder`. Validated once, here.
-inline Float64View q_view(py::handle q_obj, Array& holder) {
-  Float64View v;
-  if (float64_view(q_obj, v)) return v;
-  holder = as_array(q_obj, "q");
-  return view_of(holder);
-}
+// q as a float64 view: the array itself when it already is C-contiguous float64 (the fast path:
+// nothing converted, nothing allocated), else a converted copy that the view keeps alive.
+struct QView : Float64View {
+  py::object holder;  // the converted copy, when one was made (null otherwise: no empty array made)
+  explicit QView(py::handle q_obj) {
+    if (float64_view(q_obj, *this)) return;
+    const Array a = as_array(q_obj, "q");
+    holder = a;
+    static_cast<Float64View&>(*this) = view_of(a);
+  }
+};
 
 // The task named by obj (a string), or for None the chain's natural task (natural_task, task.hpp).
 inline Task task_of(py::handle obj, const Chain& chain) {

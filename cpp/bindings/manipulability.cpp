@@ -27,8 +27,7 @@ Measure measure_of(py::handle obj) {
 py::object chain_manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj) {
   const Measure measure = measure_of(measure_obj);
   const Task task = task_of(task_obj, c);
-  Array holder;
-  const Float64View q = q_view(q_obj, holder);
+  const QView q(q_obj);
   const long count = check_q(c, q);
   if (count < 0) {
     const double v = robokin::manipulability(c, q.data, task, measure);

@@ -66,8 +66,7 @@ void bind_reach(py::module_& m) {
   m.def(
       "joint_limit_cost",
       [](const Chain& chain, ArrayLike q_obj) -> py::object {
-        Array holder;
-        const Float64View q = q_view(q_obj, holder);
+        const QView q(q_obj);
         const long count = check_q(chain, q), n = chain.dof();
         py::array_t<double> out = new_array({count < 0 ? 1 : count});
         for (py::ssize_t k = 0; k < out.size(); ++k) out.mutable_data()[k] = joint_limit_cost(chain, q.data + k * n);
