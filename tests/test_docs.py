@@ -4,6 +4,7 @@ autodoc directive for every public name, so that no public callable is left out 
 pybind11's signatures cleaned of their module paths. (`make docs` builds the site with warnings
 as errors and checks the built pages' anchors: docs/check_reference.py.)"""
 
+import dataclasses
 import importlib
 import inspect
 import pathlib
@@ -71,10 +72,16 @@ def test_the_built_site_checker_finds_a_missing_name(tmp_path):
     assert {"robokin.ik", "robokin.Chain.fk", "robokin.symbolic.fk", "module-robokin.symbolic"} <= expected
 
 
+def _modules():
+    """The package's namespace and its public modules, by name."""
+    yield "robokin", rk
+    for m in _api_pages.public_modules():
+        yield f"robokin.{m}", importlib.import_module(f"robokin.{m}")
+
+
 def _public_callables():
     """Every public function and static method of the package's namespace and public modules."""
-    modules = [rk] + [importlib.import_module(f"robokin.{m}") for m in _api_pages.public_modules()]
-    for module in modules:
+    for _, module in _modules():
         for name in module.__all__:
             obj = getattr(module, name)
             if inspect.isclass(obj):
@@ -102,13 +109,43 @@ def test_help_reads_as_for_python_functions():
     assert rk.Chain.from_dh.__qualname__ == "Chain.from_dh" and rk.urdf_tree.__module__ == "robokin"
 
 
+def _methods():
+    """Every public method of the package's classes (dataclasses' generated __init__ aside: their
+    fields are the class docstring's), as (name, function, its parameters, its text)."""
+    from robokin._signature import _signature
+
+    seen = set()
+    for _, module in _modules():
+        for name in module.__all__:
+            cls = getattr(module, name)
+            if not inspect.isclass(cls) or id(cls) in seen:
+                continue
+            seen.add(id(cls))
+            for attr, value in vars(cls).items():
+                if (attr.startswith("_") and attr != "__init__") or isinstance(value, (property, staticmethod)):
+                    continue
+                if attr == "__init__" and dataclasses.is_dataclass(cls) or not callable(value):
+                    continue
+                doc = value.__doc__ or ""
+                try:
+                    params = list(inspect.signature(value).parameters.values())
+                except (TypeError, ValueError):  # a pybind11 method: its signature is its doc's first line
+                    head, _, doc = doc.partition("\n")
+                    params = list(_signature(head.split(") -> ")[0] + ")" if ") -> " in head else head).parameters.values())
+                if attr == "__init__":
+                    doc += cls.__doc__ or ""
+                yield f"{cls.__name__}.{attr}", params, doc
+
+
 def test_every_parameter_is_named_in_its_docstring():
-    """A public function's docstring says what each of its parameters is: its name appears in the
-    text (the options of a **kwargs are listed from their class by with_options / kwargs_doc)."""
+    """A public function's or method's docstring says what each of its parameters is: its name
+    appears in the text (the options of a **kwargs are listed from their class by with_options /
+    kwargs_doc; a constructor's parameters may be in its class's docstring)."""
+    calls = [(name, list(inspect.signature(fn).parameters.values()), fn.__doc__ or "")
+             for name, fn in _public_callables()]
     missing = []
-    for name, fn in _public_callables():
-        doc = fn.__doc__ or ""
-        for p in inspect.signature(fn).parameters.values():
+    for name, params, doc in calls + list(_methods()):
+        for p in params:
             if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and p.name != "self" and p.name not in doc:
                 missing.append(f"{name}({p.name})")
     assert not missing

@@ -29,14 +29,6 @@ std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
   }
 }
 
-ClosedArm closed_arm_arg(const Chain& chain, const ClosedFamilyOptions& o, const std::optional<HeldJoint>& held) {
-  try {
-    return closed_arm(chain, o, held);
-  } catch (const std::invalid_argument& e) {
-    fail(e.what());
-  }
-}
-
 // A held joint: None, or {index: value} with one int index (0-based, as in q) and a real value; a
 // TypeError for another kind. What the values must be (7 joints, the index in range, the value
 // finite) is the core's check (joint_axes).
@@ -83,7 +75,7 @@ struct ClosedSolver {
     const std::optional<HeldJoint> held = held_arg(locked);
     if (!held) ur = layout(*chain, ur_arm);
     if (!held && !ur) spherical = layout(*chain, spherical_arm);
-    if (!ur && !spherical) arm = closed_arm_arg(*chain, options, held);
+    if (!ur && !spherical) arm = closed_arm(*chain, options, held);  // the core's ValueError says why not
     require_held_within(held, limits);
     limits_state = limits.lower.size() ? py::object(py::make_tuple(to_numpy(limits.lower), to_numpy(limits.upper)))
                                        : py::object(py::none());
@@ -136,12 +128,7 @@ std::unique_ptr<ClosedSolver> solver_from_state(const py::tuple& t) {
 // parallel, tol_distance).
 py::tuple family_of(const Chain& chain, LockedLike locked, const py::kwargs& kwargs) {
   const ClosedFamilyOptions o = options_arg<ClosedFamilyOptions>(kwargs);
-  ClosedFamily f;
-  try {
-    f = closed_family(joint_axes(chain, held_arg(locked)), o);
-  } catch (const std::invalid_argument& e) {
-    fail(e.what());
-  }
+  const ClosedFamily f = closed_family(joint_axes(chain, held_arg(locked)), o);
   return py::make_tuple(f.name, f.kind != FamilyKind::None, f.reason, py::tuple(py::cast(f.meet)),
                         py::tuple(py::cast(f.parallel)), f.tol_distance);
 }
@@ -172,7 +159,7 @@ void bind_solver_class(py::module_& m) {
       .def("solve", &ClosedSolver::solve_py, py::arg("target"),
            "Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.solve.")
       .def("solve_batch", &ClosedSolver::solve_batch, py::arg("targets"),
-           "solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, dof), singular (N,),\n"
+           "solve for targets, (N, 4, 4) frames, on every core, the GIL released -> (q (N, 8, dof), singular (N,),\n"
            "within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES); dof is 7 with a\n"
            "held joint (its value in its place), else 6.")
       .def_property_readonly("chain", [](const ClosedSolver& s) { return s.owner; }, "The chain solved for.")

@@ -46,17 +46,18 @@ void def_chain_fast_calls(py::class_<Chain>& cls) {
       "out: an array of the result's shape to write it into (returned), for repeated calls.\n");
   fast_method<&chain_jacobian>(
       cls, "jacobian", {{"q", ""}, {"task", pose}, {"out", "None"}}, 2, "numpy.ndarray",
-      "Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)\n"
-      "by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.\n"
+      "Geometric Jacobian at q (dof,) at the tool point in the base frame, rows of the task: (6, dof)\n"
+      "by default ('pose': the whole geometric Jacobian), (N, rows, dof) for a batch (N, dof); task\n"
+      "None: the chain's natural_task.\n"
       "out: an array of the result's shape to write it into (returned), for repeated calls.\n");
   fast_method<&chain_manipulability>(
       cls, "manipulability", {{"q", ""}, {"measure", "'yoshikawa'"}, {"task", "None"}}, 3,
       "float | numpy.typing.NDArray[numpy.float64]",
-      "Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their\n"
-      "product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse\n"
-      "condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),\n"
-      "an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's\n"
-      "natural_task (a planar arm's 'pose' rows would always give 0).\n");
+      "Manipulability at q by measure, from the singular values of the task's Jacobian rows:\n"
+      "'yoshikawa' their product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min /\n"
+      "sigma_max (the inverse condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min.\n"
+      "A float for q (dof,), an array (N,) for a batch (N, dof) (GIL released, every core). task\n"
+      "None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).\n");
 }
 
 }  // namespace robokin::bind

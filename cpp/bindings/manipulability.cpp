@@ -61,8 +61,8 @@ py::tuple ellipsoid(const Chain& c, ArrayLike q_obj, const std::string& part) {
 
 void def_chain_manipulability(py::class_<Chain>& cls) {
   cls.def("ellipsoid", &ellipsoid, py::arg("q"), py::arg("part") = "translation",
-      "Velocity ellipsoid of the translational ('translation': rows v) or rotational ('rotation': rows w)\n"
-      "Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed\n"
+      "Velocity ellipsoid of the translational (part 'translation': rows v) or rotational ('rotation':\n"
+      "rows w) Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed\n"
       "frame), lengths (3,) the singular values in decreasing order (0 for missing directions).");
 }
 

@@ -177,10 +177,13 @@ void def_kinematics(py::class_<RRR3>& cls) {
   cls.def("ik", [](const RRR3& r, ArrayLike pose, ModeLike mode) {
         return to_numpy(Eigen::VectorXd(r.ik_or_throw(as_pose(pose), as_mode(mode))));
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
-           "Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.")
-      .def("ik_all", &ik_all, py::arg("pose"), "(8, 3): row k for mode k of RRR3.modes, NaN where unreachable.")
+           "Actuated angles (3,) for pose (x, y, phi) in working mode mode (m_0, m_1, m_2) of +-1;\n"
+           "UnreachableError names the leg that cannot reach.")
+      .def("ik_all", &ik_all, py::arg("pose"), "(8, 3) actuated angles for pose (x, y, phi): row k for mode k of RRR3.modes, NaN where\n"
+           "unreachable.")
       .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
-           "(N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).")
+           "(N, 3) actuated angles for (N, 3) poses in working mode mode, NaN rows where a leg cannot\n"
+           "reach (GIL released).")
       .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), ik_newton_doc.c_str())
       .def("fk", &fk, py::arg("alpha"), py::arg("guess"), fk_doc.c_str())
       .def("fk_all", &fk_all, py::arg("alpha"),
@@ -190,13 +193,15 @@ void def_kinematics(py::class_<RRR3>& cls) {
            "alpha_i when base_radius == platform_radius) the platform also moves on a continuum (phi\n"
            "fixed, E on a circle of radius l2): those poses are not returned, only the isolated modes.")
       .def("points", &points, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
-           "Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
+           "Joint positions at pose in working mode mode, for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.")
       .def("jacobians", &jacobians, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
-           "The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.")
+           "The seed's (A, B) at pose in working mode mode: A v = B alpha_dot with v = (v_x, v_y, w) in\n"
+           "the effector frame.")
       .def("singularity", [](const RRR3& r, ArrayLike pose, ModeLike mode, double tol) {
         return r.singularity(as_pose(pose), as_mode(mode), tol);
       }, py::arg("pose"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode), py::arg("tol") = kSingularTol,
-           "Classification with tol on the normalised determinants.");
+           "The singularity at pose in working mode mode: its kind ('none', 'parallel', 'serial') with\n"
+           "tol on the normalised determinants.");
 }
 
 
@@ -232,7 +237,10 @@ void bind_rrr3(py::module_& m) {
       .fields();
   bind_kinematics_results(m);
   bind_defaults(m);
-  py::class_<RRR3> cls(m, "RRR3", "The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).");
+  py::class_<RRR3> cls(m, "RRR3",
+                       "The planar 3-RRR parallel robot (the 3-RRR project): base joints on a circle of\n"
+                       "base_radius, platform joints on one of platform_radius, legs of links l1 (actuated)\n"
+                       "and l2 (m); the seed's robot by default.");
   def_geometry(cls);
   def_kinematics(cls);
   def_rrr3_planning(m, cls);

@@ -87,8 +87,8 @@ class Chain:
         """
     def ellipsoid(self, q: numpy.typing.ArrayLike, part: str = 'translation') -> tuple:
         """
-        Velocity ellipsoid of the translational ('translation': rows v) or rotational ('rotation': rows w)
-        Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed
+        Velocity ellipsoid of the translational (part 'translation': rows v) or rotational ('rotation':
+        rows w) Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed
         frame), lengths (3,) the singular values in decreasing order (0 for missing directions).
         """
     def fk(self, q: numpy.typing.ArrayLike, part: typing.Literal['frame', 'position'] = 'frame', *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
@@ -105,17 +105,18 @@ class Chain:
         """
     def jacobian(self, q: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = 'pose', *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
         """
-        Geometric Jacobian at the tool point in the base frame, rows of the task: (6, dof)
-        by default ('pose': the whole geometric Jacobian); None: the chain's natural_task.
+        Geometric Jacobian at q (dof,) at the tool point in the base frame, rows of the task: (6, dof)
+        by default ('pose': the whole geometric Jacobian), (N, rows, dof) for a batch (N, dof); task
+        None: the chain's natural_task.
         out: an array of the result's shape to write it into (returned), for repeated calls.
         """
     def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
         """
-        Manipulability at q from the singular values of the task's Jacobian rows: 'yoshikawa' their
-        product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min / sigma_max (the inverse
-        condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min. A float for q (dof,),
-        an array (N,) for a batch (N, dof) (GIL released, every core). task None: the chain's
-        natural_task (a planar arm's 'pose' rows would always give 0).
+        Manipulability at q by measure, from the singular values of the task's Jacobian rows:
+        'yoshikawa' their product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min /
+        sigma_max (the inverse condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min.
+        A float for q (dof,), an array (N,) for a batch (N, dof) (GIL released, every core). task
+        None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).
         """
     def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -475,7 +476,9 @@ class RRR3Singularity:
         """
 class RRR3:
     """
-    The planar 3-RRR parallel robot (the 3-RRR project, geometry of DESIGN.md).
+    The planar 3-RRR parallel robot (the 3-RRR project): base joints on a circle of
+    base_radius, platform joints on one of platform_radius, legs of links l1 (actuated)
+    and l2 (m); the seed's robot by default.
     """
     modes: typing.ClassVar[tuple] = ((1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1), (-1, 1, 1), (-1, 1, -1), (-1, -1, 1), (-1, -1, -1))
     def __eq__(self, arg0: RRR3) -> bool:
@@ -527,15 +530,18 @@ class RRR3:
         """
     def ik(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Actuated angles (3,) for pose (x, y, phi); UnreachableError names the leg that cannot reach.
+        Actuated angles (3,) for pose (x, y, phi) in working mode mode (m_0, m_1, m_2) of +-1;
+        UnreachableError names the leg that cannot reach.
         """
     def ik_all(self, pose: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (8, 3): row k for mode k of RRR3.modes, NaN where unreachable.
+        (8, 3) actuated angles for pose (x, y, phi): row k for mode k of RRR3.modes, NaN where
+        unreachable.
         """
     def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (N, 3) actuated angles for (N, 3) poses, NaN rows where a leg cannot reach (GIL released).
+        (N, 3) actuated angles for (N, 3) poses in working mode mode, NaN rows where a leg cannot
+        reach (GIL released).
         """
     def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, **kwargs) -> RRR3Newton:
         """
@@ -549,7 +555,8 @@ class RRR3:
         """
     def jacobians(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> tuple:
         """
-        The seed's (A, B), A v = B alpha_dot with v = (v_x, v_y, w) in the effector frame.
+        The seed's (A, B) at pose in working mode mode: A v = B alpha_dot with v = (v_x, v_y, w) in
+        the effector frame.
         """
     def plan(self, points: numpy.typing.ArrayLike, **kwargs) -> RRR3Plan:
         """
@@ -596,11 +603,12 @@ class RRR3:
         """
     def points(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> dict:
         """
-        Joint positions for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
+        Joint positions at pose in working mode mode, for drawing: dict of (3, 2) arrays 'O', 'A', 'B'.
         """
     def singularity(self, pose: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), tol: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> RRR3Singularity:
         """
-        Classification with tol on the normalised determinants.
+        The singularity at pose in working mode mode: its kind ('none', 'parallel', 'serial') with
+        tol on the normalised determinants.
         """
     def workspace(self, **kwargs) -> RRR3Workspace:
         """
@@ -1173,7 +1181,7 @@ class ClosedSolver:
         """
     def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
         """
-        solve for (N, 4, 4) frames on every core, the GIL released -> (q (N, 8, dof), singular (N,),
+        solve for targets, (N, 4, 4) frames, on every core, the GIL released -> (q (N, 8, dof), singular (N,),
         within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES); dof is 7 with a
         held joint (its value in its place), else 6.
         """

@@ -22,7 +22,7 @@ __all__ = ["AtomicPath", "keep_stale", "remove_own", "remove_stale"]
 
 
 class AtomicPath:
-    """A temporary file next to ``path`` (same directory and extension, so writers that look at the
+    """A temporary file next to ``path`` (the target; same directory and extension, so writers that look at the
     extension still work) that becomes ``path`` on :meth:`commit` and is removed on :meth:`discard`.
 
     As a context manager it yields the temporary path and commits when the block ends normally,

@@ -193,6 +193,7 @@ class ReachabilityPlan:
         return ok.sum(axis=1) / K, m.reshape(count, K).max(axis=1)
 
     def result(self, index: np.ndarray, manip: np.ndarray) -> ReachabilityMap:
+        """The map of every block's ``index`` and best manipulability ``manip``, joined in C order."""
         return ReachabilityMap(index.reshape(self.shape), manip.reshape(self.shape), self.axes, self.resolution,
                                self.orientations, self.seed, self.task)
 
