@@ -135,8 +135,8 @@ int nearest_solution(const ClosedFormSolutions& solutions, const double* q);
 // ---------------------------------------------------------------------------------------------
 // The Universal Robots family (UR3/5/10/16, e-series): three parallel axes (2, 3, 4), standard DH
 //   (0, pi/2, d1), (a2, 0, 0), (a3, 0, 0), (0, pi/2, d4), (0, -pi/2, d5), (0, 0, d6)
-// read off a Chain: a fixed base before joint 1, theta offsets, joints turning about -z and offsets
-// d2, d3 along the parallel axes are allowed; everything after joint 6 is the tool.
+// read from a chain's joint axes (ur_arm, below): the chain's joint i turns the DH angle
+// scale * q + theta; the fixed frames before joint 1 and after joint 6 are the base and the tool.
 struct URArm {
   double d1 = 0, a2 = 0, a3 = 0, d4 = 0, d5 = 0;
   double theta[6] = {0, 0, 0, 0, 0, 0};  // DH angle = scale * q + theta
