@@ -1,5 +1,6 @@
 """What the closed-form tests share: configurations drawn inside the limits, the distance of joint
-vectors modulo 2 pi, a damped Newton with one joint held (an independent numerical IK), random DH
+vectors modulo 2 pi, a damped Newton with one joint held (an independent numerical IK) and its
+check of a closed form's completeness, random DH
 rows of a given shape, a bisection, and EAIK's robot of a chain (a peer library, when installed)."""
 
 import math
@@ -37,6 +38,24 @@ def newton_held(chain, T, starts, j, iterations=80):
         step = np.linalg.solve(J @ J.transpose(0, 2, 1) + 1e-9 * np.eye(6), e[:, :, None])
         q[:, free] += (J.transpose(0, 2, 1) @ step)[:, :, 0]
     return q, np.abs(chain.fk(q) - T).max(axis=(1, 2))
+
+
+def newton_agrees(arms, rng, poses=3, starts=64):
+    """Numerical IK (newton_held, no joint held) from `starts` random starts on `poses` random poses
+    of each arm: every converged end (1e-11) is one of rk.closed.solve's solutions (1e-6). Returns
+    how many converged, for the caller to check that the comparison compared something."""
+    import robokin as rk
+
+    found = 0
+    for chain in arms:
+        for q in rng.uniform(-P, P, (poses, 6)):
+            T = chain.fk(q)
+            s = rk.closed.solve(T, chain, limits=None)
+            ends, errors = newton_held(chain, T, rng.uniform(-P, P, (starts, 6)), None)
+            for qn in ends[errors < 1e-11]:
+                found += 1
+                assert angle_distance(s.q, qn).min() < 1e-6, (q, qn)
+    return found
 
 
 def newton_steps(name, j):

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import (angle_distance, bisect, eaik_robot, eaik_solutions, newton_held, newton_steps, random_q,
-                            random_rows)
+from closed_helpers import (angle_distance, bisect, eaik_robot, eaik_solutions, newton_agrees, newton_held,
+                            newton_steps, random_q, random_rows)
 
 P = math.pi
 WRIST = "spherical wrist, axes 2, 3 meet after axis 1"
@@ -66,17 +66,8 @@ def test_random_arms(reversed_):
 @pytest.mark.parametrize("reversed_", [False, True])
 def test_newton_finds_no_solution_the_closed_form_misses(reversed_):
     rng = np.random.default_rng(41 + reversed_)
-    found = 0
-    for _ in range(4):
-        chain = random_arm(rng, reversed_)
-        for q in rng.uniform(-P, P, (3, 6)):
-            T = chain.fk(q)
-            s = rk.closed.solve(T, chain, limits=None)
-            ends, errors = newton_held(chain, T, rng.uniform(-P, P, (64, 6)), None)
-            for qn in ends[errors < 1e-11]:
-                found += 1
-                assert angle_distance(s.q, qn).min() < 1e-6, (q, qn)
-    assert found >= 100  # the starts do converge: the check compares something
+    arms = [random_arm(rng, reversed_) for _ in range(4)]
+    assert newton_agrees(arms, rng) >= 100  # the starts do converge: the check compares something
 
 
 def label_parts(chain, q):

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, bisect, eaik_robot, eaik_solutions, newton_held, random_rows
+from closed_helpers import angle_distance, bisect, eaik_robot, eaik_solutions, newton_agrees, random_rows
 
 P = math.pi
 FIRST = "three parallel axes 1, 2, 3 first, axes 5, 6 meet"
@@ -63,17 +63,8 @@ def test_random_arms(reversed_):
 @pytest.mark.parametrize("reversed_", [False, True])
 def test_newton_finds_no_solution_the_closed_form_misses(reversed_):
     rng = np.random.default_rng(61 + reversed_)
-    found = 0
-    for _ in range(4):
-        chain = random_arm(rng, reversed_)
-        for q in rng.uniform(-P, P, (3, 6)):
-            T = chain.fk(q)
-            s = rk.closed.solve(T, chain, limits=None)
-            ends, errors = newton_held(chain, T, rng.uniform(-P, P, (64, 6)), None)
-            for qn in ends[errors < 1e-11]:
-                found += 1
-                assert angle_distance(s.q, qn).min() < 1e-6, (q, qn)
-    assert found >= 100  # the starts do converge: the check compares something
+    arms = [random_arm(rng, reversed_) for _ in range(4)]
+    assert newton_agrees(arms, rng) >= 100  # the starts do converge: the check compares something
 
 
 def parts(chain, q):
