@@ -1,11 +1,15 @@
 """What the closed-form tests share: configurations drawn inside the limits, the distance of joint
 vectors modulo 2 pi, a damped Newton with one joint held (an independent numerical IK) and its
-check of a closed form's completeness, random DH
-rows of a given shape, a bisection, and EAIK's robot of a chain (a peer library, when installed)."""
+check of a closed form's completeness, the check of every solution of random poses, the labels
+against their geometric definitions, a configuration on a singularity found along one joint,
+random DH rows of a given shape, a bisection, and EAIK's robot of a chain (a peer library, when
+installed)."""
 
 import math
 
 import numpy as np
+
+import robokin as rk
 
 P = math.pi
 
@@ -44,8 +48,6 @@ def newton_agrees(arms, rng, poses=3, starts=64):
     """Numerical IK (newton_held, no joint held) from `starts` random starts on `poses` random poses
     of each arm: every converged end (1e-11) is one of rk.closed.solve's solutions (1e-6). Returns
     how many converged, for the caller to check that the comparison compared something."""
-    import robokin as rk
-
     found = 0
     for chain in arms:
         for q in rng.uniform(-P, P, (poses, 6)):
@@ -56,6 +58,66 @@ def newton_agrees(arms, rng, poses=3, starts=64):
                 found += 1
                 assert angle_distance(s.q, qn).min() < 1e-6, (q, qn)
     return found
+
+
+def arm_size(chain, locked=None):
+    """The arm's size as closed_family measures it (its distance tolerance over the default tol)."""
+    return rk.closed.family(chain, locked=locked).tol_distance / 1e-6
+
+
+def check_poses(chain, Q, locked=None):
+    """Every solution reaches its pose (1e-9 x the arm's size; rotation entries 1e-9), the
+    generating q is among them (1e-6), one label per solution. Returns the solutions."""
+    size = arm_size(chain, None if locked is None else {locked: 0.0})
+    out = []
+    for q in Q:
+        T = chain.fk(q)
+        s = rk.closed.solve(T, chain, limits=None, locked=None if locked is None else {locked: q[locked]})
+        F = chain.fk(s.q)
+        assert len(s) >= 1 and np.abs(F[:, :3, 3] - T[:3, 3]).max() <= 1e-9 * size, q
+        assert np.abs(F[:, :3, :3] - T[:3, :3]).max() <= 1e-9, q
+        assert s.singular or angle_distance(s.q, q).min() < 1e-6, (q, s)
+        assert len(set(s.postures)) == len(s)
+        out.append(s)
+    return out
+
+
+def family_solves(arms, name, rng, poses=10):
+    """Each arm is of the family `name` (solvable, no reason) and check_poses holds on `poses`
+    random poses of it; returns the solution counts."""
+    counts = []
+    for chain in arms:
+        f = rk.closed.family(chain)
+        assert f.name == name and f.solvable and f.reason == ""
+        counts += [len(s) for s in check_poses(chain, rng.uniform(-P, P, (poses, 6)))]
+    return counts
+
+
+def labels_agree(arms, rng, label_of, poses=10):
+    """rk.closed.solve's postures on `poses` random poses of each arm are label_of(chain, q) of
+    their solutions (the labels' geometric definitions); returns the set of labels seen."""
+    seen = set()
+    for chain in arms:
+        for q in rng.uniform(-P, P, (poses, 6)):
+            s = rk.closed.solve(chain.fk(q), chain, limits=None)
+            for qk, posture in zip(s.q, s.postures):
+                assert posture == label_of(chain, qk)
+                seen.add(posture)
+    return seen
+
+
+def zero_along(condition, joint, rng):
+    """A random configuration with q[joint] moved onto a zero of condition(q): a sign change among
+    13 values across [-pi, pi], then bisection (a singularity crossed along that joint)."""
+    while True:
+        q = rng.uniform(-P, P, 6)
+        grid = np.linspace(-P, P, 13)
+        f = lambda t: condition(np.r_[q[:joint], t, q[joint + 1:]])  # noqa: E731
+        values = [f(t) for t in grid]
+        for k in range(12):
+            if values[k] * values[k + 1] < 0:
+                q[joint] = bisect(f, grid[k], grid[k + 1])
+                return q
 
 
 def newton_steps(name, j):
@@ -100,8 +162,6 @@ def eaik_robot(chain, locked=None):
     (rk.plots.joint_axes: read from the Jacobian, not from closed_family) with the tool's
     orientation; locked={j: value} holds joint j."""
     import pytest
-
-    import robokin as rk
 
     EAIK = pytest.importorskip("eaik.pybindings.EAIK")
     zero = np.zeros(chain.dof)

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import (angle_distance, bisect, eaik_robot, eaik_solutions, newton_agrees, newton_held,
-                            newton_steps, random_q, random_rows)
+from closed_helpers import (angle_distance, arm_size, check_poses, eaik_robot, eaik_solutions, family_solves,
+                            labels_agree, newton_agrees, newton_held, newton_steps, random_q, random_rows, zero_along)
 
 P = math.pi
 WRIST = "spherical wrist, axes 2, 3 meet after axis 1"
@@ -29,37 +29,10 @@ def random_arm(rng, reversed_=False):
     return rk.Chain.from_dh([tuple(r) for r in random_rows(rng, zero)])
 
 
-def arm_size(chain, locked=None):
-    """The arm's size as closed_family measures it (its distance tolerance over the default tol)."""
-    return rk.closed.family(chain, locked=locked).tol_distance / 1e-6
-
-
-def check_poses(chain, Q, locked=None):
-    """Every solution reaches its pose (1e-9 x the arm's size; rotation entries 1e-9), the
-    generating q is among them (1e-6), one label per solution. Returns the solutions."""
-    size = arm_size(chain, None if locked is None else {locked: 0.0})
-    out = []
-    for q in Q:
-        T = chain.fk(q)
-        s = rk.closed.solve(T, chain, limits=None, locked=None if locked is None else {locked: q[locked]})
-        F = chain.fk(s.q)
-        assert len(s) >= 1 and np.abs(F[:, :3, 3] - T[:3, 3]).max() <= 1e-9 * size, q
-        assert np.abs(F[:, :3, :3] - T[:3, :3]).max() <= 1e-9, q
-        assert s.singular or angle_distance(s.q, q).min() < 1e-6, (q, s)
-        assert len(set(s.postures)) == len(s)
-        out.append(s)
-    return out
-
-
 @pytest.mark.parametrize("reversed_", [False, True])
 def test_random_arms(reversed_):
     rng = np.random.default_rng(31 + reversed_)
-    counts = []
-    for _ in range(30):
-        chain = random_arm(rng, reversed_)
-        f = rk.closed.family(chain)
-        assert f.name == (SHOULDER if reversed_ else WRIST) and f.solvable and f.reason == ""
-        counts += [len(s) for s in check_poses(chain, rng.uniform(-P, P, (10, 6)))]
+    counts = family_solves([random_arm(rng, reversed_) for _ in range(30)], SHOULDER if reversed_ else WRIST, rng)
     assert max(counts) == 8 and np.mean(counts) > 3
 
 
@@ -85,15 +58,7 @@ def label_parts(chain, q):
 
 def test_labels_are_the_geometric_definitions():
     rng = np.random.default_rng(5)
-    seen = set()
-    for _ in range(10):
-        chain = random_arm(rng)
-        for q in rng.uniform(-P, P, (10, 6)):
-            s = rk.closed.solve(chain.fk(q), chain, limits=None)
-            for qk, label in zip(s.q, s.postures):
-                assert label == label_parts(chain, qk)
-                seen.add(label)
-    assert len(seen) == 8
+    assert len(labels_agree([random_arm(rng) for _ in range(10)], rng, label_parts)) == 8
 
 
 def singular_q(chain, rng, which):
@@ -106,15 +71,7 @@ def singular_q(chain, rng, which):
         p1, s, c = F[0][:3, 3], F[2][:3, 3], F[4][:3, 3]
         return a1 @ np.cross(s - p1, c - p1) if which == "shoulder" else a3 @ np.cross(a2, c - s)
 
-    joint = 1 if which == "shoulder" else 2
-    while True:
-        q = rng.uniform(-P, P, 6)
-        grid = np.linspace(-P, P, 13)
-        values = [condition(np.r_[q[:joint], t, q[joint + 1:]]) for t in grid]
-        for k in range(12):
-            if values[k] * values[k + 1] < 0:
-                q[joint] = bisect(lambda t: condition(np.r_[q[:joint], t, q[joint + 1:]]), grid[k], grid[k + 1])
-                return q
+    return zero_along(condition, 1 if which == "shoulder" else 2, rng)
 
 
 @pytest.mark.parametrize("which", ["shoulder", "elbow"])

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 import robokin as rk
-from closed_helpers import angle_distance, bisect, eaik_robot, eaik_solutions, newton_agrees, random_rows
+from closed_helpers import (angle_distance, arm_size, eaik_robot, eaik_solutions, family_solves, labels_agree,
+                            newton_agrees, random_rows, zero_along)
 
 P = math.pi
 FIRST = "three parallel axes 1, 2, 3 first, axes 5, 6 meet"
@@ -27,36 +28,10 @@ def random_arm(rng, reversed_=False):
     return rk.Chain.from_dh([tuple(r) for r in rows])
 
 
-def arm_size(chain):
-    """The arm's size as closed_family measures it (its distance tolerance over the default tol)."""
-    return rk.closed.family(chain).tol_distance / 1e-6
-
-
-def check_poses(chain, Q):
-    """Every solution reaches its pose (1e-9 x the arm's size; rotation entries 1e-9), the
-    generating q is among them (1e-6), one label per solution. Returns the solution counts."""
-    counts = []
-    for q in Q:
-        T = chain.fk(q)
-        s = rk.closed.solve(T, chain, limits=None)
-        F = chain.fk(s.q)
-        assert len(s) >= 1 and np.abs(F[:, :3, 3] - T[:3, 3]).max() <= 1e-9 * arm_size(chain), q
-        assert np.abs(F[:, :3, :3] - T[:3, :3]).max() <= 1e-9, q
-        assert s.singular or angle_distance(s.q, q).min() < 1e-6, (q, s)
-        assert len(set(s.postures)) == len(s)
-        counts.append(len(s))
-    return counts
-
-
 @pytest.mark.parametrize("reversed_", [False, True])
 def test_random_arms(reversed_):
     rng = np.random.default_rng(51 + reversed_)
-    counts = []
-    for _ in range(30):
-        chain = random_arm(rng, reversed_)
-        f = rk.closed.family(chain)
-        assert f.name == (LAST if reversed_ else FIRST) and f.solvable and f.reason == ""
-        counts += check_poses(chain, rng.uniform(-P, P, (10, 6)))
+    counts = family_solves([random_arm(rng, reversed_) for _ in range(30)], LAST if reversed_ else FIRST, rng)
     assert max(counts) == 8 and np.mean(counts) > 3
 
 
@@ -86,15 +61,7 @@ def label(chain, q):
 
 def test_labels_are_the_geometric_definitions():
     rng = np.random.default_rng(5)
-    seen = set()
-    for _ in range(10):
-        chain = random_arm(rng)
-        for q in rng.uniform(-P, P, (10, 6)):
-            s = rk.closed.solve(chain.fk(q), chain, limits=None)
-            for qk, posture in zip(s.q, s.postures):
-                assert posture == label(chain, qk)
-                seen.add(posture)
-    assert len(seen) == 8
+    assert len(labels_agree([random_arm(rng) for _ in range(10)], rng, label)) == 8
 
 
 def singular_q(chain, rng, which):
@@ -103,15 +70,7 @@ def singular_q(chain, rng, which):
     elbow's (the planar arm straight or folded: along q2), the wrist's (a5, a6 and a1 coplanar:
     along q5)."""
     index, joint = {"shoulder": (0, 3), "elbow": (1, 1), "wrist": (2, 4)}[which]
-    while True:
-        q = rng.uniform(-P, P, 6)
-        grid = np.linspace(-P, P, 13)
-        f = lambda t: parts(chain, np.r_[q[:joint], t, q[joint + 1:]])[index]  # noqa: E731
-        values = [f(t) for t in grid]
-        for k in range(12):
-            if values[k] * values[k + 1] < 0:
-                q[joint] = bisect(f, grid[k], grid[k + 1])
-                return q, joint
+    return zero_along(lambda q: parts(chain, q)[index], joint, rng), joint
 
 
 @pytest.mark.parametrize("which", ["shoulder", "elbow", "wrist"])
