@@ -18,17 +18,6 @@
 namespace robokin::bind {
 namespace {
 
-// The chain's geometry in a layout with a closed form of its own (ur_arm's, spherical_arm's), else
-// none.
-template <class Arm>
-std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
-  try {
-    return read(chain);
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
 // A held joint: None, or {index: value} with one int index (0-based, as in q) and a real value; a
 // TypeError for another kind. What the values must be (7 joints, the index in range, the value
 // finite) is the core's check (joint_axes).
@@ -73,8 +62,8 @@ struct ClosedSolver {
       : owner(std::move(c)), chain(&owner.cast<const Chain&>()), options(o),
         limits(limits_or_default(*chain, limits_obj, chain->dof())) {
     const std::optional<HeldJoint> held = held_arg(locked);
-    if (!held) ur = layout(*chain, ur_arm);
-    if (!held && !ur) spherical = layout(*chain, spherical_arm);
+    if (!held) ur = ur_layout(*chain);
+    if (!held && !ur) spherical = spherical_layout(*chain);
     if (!ur && !spherical) arm = closed_arm(*chain, options, held);  // the core's ValueError says why not
     require_held_within(held, limits);
     limits_state = limits.lower.size() ? py::object(py::make_tuple(to_numpy(limits.lower), to_numpy(limits.upper)))

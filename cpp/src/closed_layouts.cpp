@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -141,5 +142,21 @@ SphericalArm spherical_arm(const Chain& chain) {
   sa.tool = dh_frame(x[5], z[5], c).inverse() * g.tool;
   return sa;
 }
+
+namespace {
+
+template <class Arm>
+std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
+  try {
+    return read(chain);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::optional<URArm> ur_layout(const Chain& chain) { return layout(chain, ur_arm); }
+std::optional<SphericalArm> spherical_layout(const Chain& chain) { return layout(chain, spherical_arm); }
 
 }  // namespace robokin

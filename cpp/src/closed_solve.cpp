@@ -338,10 +338,6 @@ void polish(const Chain& chain, const Rigid& T, int held, double* q, Rigid& F) {
   chain.fk(q, F);
 }
 
-bool reaches(const Rigid& F, const Rigid& T, double size) {
-  return (F.p - T.p).norm() <= kClosedTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
-}
-
 }  // namespace
 
 ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options,
@@ -405,13 +401,13 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
   for (int k = 0; k < c.m; ++k)
-    if (!reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
+    if (!closed_reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
       polish(chain, T, held, q + k * n, F[k]);
       fits[k] = fit_limits(q + k * n, n, limits, held);
       chain.fk(q + k * n, F[k]);
     }
   for (int k = 0; k < c.m; ++k) {
-    if (!reaches(F[k], T, size)) continue;
+    if (!closed_reaches(F[k], T, size)) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
     out.add(q + k * n, label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }

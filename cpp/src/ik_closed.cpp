@@ -470,7 +470,7 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
   const double size = arm_size(arm, d6);
   for (int k = 0; k < c.n; ++k) {
     const Rigid F = wrist_arm_fk(arm, d6, cs + 6 * k, sn + 6 * k);
-    if ((F.p - T.p).norm() <= kTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kTolR)
+    if (closed_reaches(F, T, size))
       out.add(c.q[k], arm_label(c.shoulder[k], c.elbow[k], 1 + c.flip[k]), within[k]);
   }
   return out;
@@ -498,7 +498,7 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
   chain.fk_few(q[0], m, F);
   const double size = arm_size(sa.arm, 0.0) + sa.base.p.norm() + sa.tool.p.norm();
   for (int j = 0; j < m; ++j) {
-    if (!((F[j].p - T.p).norm() <= kTolP * size && (F[j].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    if (!closed_reaches(F[j], T, size)) continue;
     const int k = keep[j], wrist = c.wrist_singular[k] ? 3 : 1 + c.flip[k];
     // kURPostures' slot: shoulder left 0 / right 1 (arm_label's 1 / 0; singular in the first),
     // elbow up 0 / down 1 (straight or folded in the first), wrist no flip 0 / flip 1.
@@ -800,7 +800,7 @@ inline __attribute__((always_inline)) void ur_checked(const Chain& chain, const 
   Rigid F[8];
   chain.fk_few(s.cand[0], s.m, F);
   for (int k = 0; k < s.m; ++k) {
-    if (!((F[k].p - T.p).norm() <= kTolP * s.size && (F[k].R - T.R).cwiseAbs().maxCoeff() <= kTolR)) continue;
+    if (!closed_reaches(F[k], T, s.size)) continue;
     if (slot) slot[out.count()] = s.cand_slot[k];
     out.add(s.cand[k], s.posture[k], fits[k]);
   }

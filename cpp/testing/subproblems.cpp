@@ -49,15 +49,8 @@ void bind_subproblem_hooks(py::module_& m) {
   }, py::arg("chain"), py::arg("target"));
   // Which layout's own closed form ClosedSolver takes for the chain: "ur", "spherical" or None.
   m.def("closed_layout", [](const Chain& chain) -> py::object {
-    for (const auto& [name, read] : {std::pair<const char*, void (*)(const Chain&)>{
-                                         "ur", [](const Chain& c) { ur_arm(c); }},
-                                     {"spherical", [](const Chain& c) { spherical_arm(c); }}}) {
-      try {
-        read(chain);
-        return py::str(name);
-      } catch (const std::invalid_argument&) {
-      }
-    }
+    if (ur_layout(chain)) return py::str("ur");
+    if (spherical_layout(chain)) return py::str("spherical");
     return py::none();
   }, py::arg("chain"));
 }

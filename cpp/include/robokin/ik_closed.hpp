@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +24,11 @@ constexpr double kClosedCosEps = 1e-12;
 // kClosedTolP times the arm's size (the sum of its lengths), orientation error (any rotation-matrix
 // entry) at most kClosedTolR.
 constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
+
+// That check: the frame F reaches the target T, for an arm of `size`.
+inline bool closed_reaches(const Rigid& F, const Rigid& T, double size) {
+  return (F.p - T.p).norm() <= kClosedTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
+}
 
 // Throws std::invalid_argument("name: must be finite" or "name: must be positive") for a length
 // of a closed form's arm that is not.
@@ -149,6 +155,11 @@ struct URArm {
 // right angles (to 1e-9 rad and 1e-9 of the arm's size). Throws std::invalid_argument("robot: not
 // an arm of the UR layout (...)") naming what differs otherwise.
 URArm ur_arm(const Chain& chain);
+
+// The chain's layout when it is one with a closed form of its own (ur_arm's, spherical_arm's
+// reading), else none: the choice ClosedSolver makes.
+std::optional<URArm> ur_layout(const Chain& chain);
+std::optional<SphericalArm> spherical_layout(const Chain& chain);
 
 // Slots of the 8 UR solutions: shoulder (0 left, 1 right) * 4 + elbow (0 up, 1 down) * 2 + wrist
 // (0 no flip, 1 flip). "shoulder left": the wrist centre (origin of frame 5) on the -x side of
