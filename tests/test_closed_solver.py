@@ -92,3 +92,42 @@ def test_one_solver_shared_by_eight_threads_answers_as_alone(rng):
     for t in threads:
         t.join()
     assert not errors and got == alone
+
+
+def _same_solver(a, b, poses):
+    assert a.family == b.family and repr(a) == repr(b)
+    for T in poses:
+        assert _answer(a.solve(T)) == _answer(b.solve(T))
+
+
+@pytest.mark.parametrize("name, locked", [("ur5", None), ("puma560", None), ("irb120", None), ("panda", {3: -1.5}),
+                                          ("iiwa14", {2: 0.3})])
+def test_find_gives_the_solver_of_an_arm_with_a_closed_form(rng, name, locked):
+    chain = rk.robots.get(name)
+    found = rk.closed.ClosedSolver.find(chain, locked=locked)
+    assert rk.closed.family(chain, locked=locked).solvable and found.chain is chain
+    q = rng.uniform(-1, 1, (20, chain.dof))
+    if locked:
+        (j, v), = locked.items()
+        q[:, j] = v
+    _same_solver(found, rk.closed.ClosedSolver(chain, locked=locked), chain.fk(q))
+
+
+@pytest.mark.parametrize("name, locked", [("rpr", None), ("planar_3r", None), ("panda", None), ("iiwa14", {3: 0.5})])
+def test_find_gives_none_exactly_where_family_finds_no_closed_form(name, locked):
+    chain = rk.robots.get(name)
+    assert not rk.closed.family(chain, locked=locked).solvable
+    assert rk.closed.ClosedSolver.find(chain, locked=locked) is None
+    with pytest.raises(ValueError, match="no closed form|holding a joint needs"):
+        rk.closed.ClosedSolver(chain, locked=locked)
+
+
+def test_find_refuses_bad_arguments_as_the_constructor_does():
+    with pytest.raises(ValueError, match=r"locked: q\[2\] = 3.5 is outside the joint's limits \[-2.9670597283903604, "):
+        rk.closed.ClosedSolver.find(rk.robots.iiwa14(), locked={2: 3.5})
+    with pytest.raises(ValueError, match="locked: holding a joint needs a chain of 7 joints"):
+        rk.closed.ClosedSolver.find(rk.robots.ur5(), locked={2: 0.5})
+    with pytest.raises(ValueError, match="limits"):
+        rk.closed.ClosedSolver.find(rk.robots.ur5(), "nope")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'tolerance'"):
+        rk.closed.ClosedSolver.find(rk.robots.ur5(), tolerance=1e-3)

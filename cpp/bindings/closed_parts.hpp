@@ -34,7 +34,4 @@ pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const B
   return py::make_tuple(q, singular, within);
 }
 
-// ik_ur_batch through closed_batch_py.
-pybind11::tuple ur_batch_with(ArrayLike targets, const Chain& chain, const URArm& arm, const JointLimits& limits);
-
 }  // namespace robokin::bind

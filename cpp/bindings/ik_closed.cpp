@@ -85,21 +85,13 @@ struct SphericalWrist {
   }
 };
 
-}  // namespace
-
-// ---- The UR family (robokin.closed.ur) ----
-
-// limits: "default" (the chain's), None, or a pair.
-static ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
+// The UR family (robokin.closed.ur); limits: "default" (the chain's), None, or a pair.
+ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_ur(ur_arm(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
-static py::tuple ur_batch(ArrayLike targets_obj, const Chain& chain, ChainLimitsLike limits) {
-  const URArm arm = ur_arm(chain);
-  const JointLimits lim = limits_or_default(chain, limits, 6);
-  return ur_batch_with(targets_obj, chain, arm, lim);
-}
+}  // namespace
 
 std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
   const Array a = rows_arg(targets_obj, name, {4, 4}, "N");
@@ -113,21 +105,7 @@ std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
   return targets;
 }
 
-py::tuple ur_batch_with(ArrayLike targets_obj, const Chain& chain, const URArm& arm, const JointLimits& lim) {
-  return closed_batch_py(targets_obj, "UR closed form", [&](const Rigid* targets, long count, double* q, bool* within,
-                                                            bool* singular, Progress* progress) {
-    ik_ur_batch(arm, chain, targets, count, lim, q, within, singular, progress);
-  });
-}
-
 namespace {
-
-py::tuple ur_geometry(const Chain& chain) {
-  const URArm g = ur_arm(chain);
-  py::dict d;
-  d["d1"] = g.d1, d["a2"] = g.a2, d["a3"] = g.a3, d["d4"] = g.d4, d["d5"] = g.d5;
-  return py::make_tuple(d, to_numpy(g.tool.matrix()));
-}
 
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) { return array_of(s.row(0), {s.count(), s.dof}); }
 
@@ -257,8 +235,6 @@ void bind_ik_closed(py::module_& m) {
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
-  m.def("ik_ur_batch", &ur_batch, py::arg("targets"), py::arg("chain"), py::arg("limits") = "default");
-  m.def("ur_geometry", &ur_geometry, py::arg("chain"));
   {
     py::list names;
     for (const char* p : kURPostures) names.append(py::str(p));

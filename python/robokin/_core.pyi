@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'ik_ur_batch', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'ur_geometry', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1152,6 +1152,18 @@ class ClosedSolver:
     solve. Nothing changes during a call: one solver may be shared by every thread; it pickles
     with its chain, limits and options.
     """
+    @staticmethod
+    def find(chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', locked: dict[int, float] | None = None, **kwargs) -> ClosedSolver | None:
+        """
+        find(chain, limits='default', locked=None, *, tol=1e-06)
+        
+        The chain's ClosedSolver, or None when the arm has no closed form (robokin.closed.family says
+        why): the arm read once, where family(chain).solvable and then ClosedSolver(chain) read it twice.
+        chain, limits, locked: as ClosedSolver's; a bad limits or locked value raises as there.
+        
+        Options (keyword-only, ClosedFamilyOptions):
+            tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
+        """
     def __getstate__(self) -> tuple[int, typing.Any, typing.Any, ClosedFamilyOptions, typing.Any]:
         ...
     def __init__(self, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', locked: dict[int, float] | None = None, **kwargs) -> None:
@@ -1672,8 +1684,6 @@ def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.Supports
     ...
 def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> IKSolutions:
     ...
-def ik_ur_batch(targets: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> tuple:
-    ...
 def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     """
     Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2 of the chain's limits, W = diag(1 /
@@ -1772,8 +1782,6 @@ def traj_via_points(points: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike
     """
     Linear segments with parabolic blends: (t, q, qd, qdd, via_times). Use robokin.traj.via_points.
     """
-def ur_geometry(chain: Chain) -> tuple:
-    ...
 def urdf_tree(path_or_string: str | bytes | os.PathLike) -> UrdfTree:
     """
     The links and joints of a URDF file or string and the default base and tip of Chain.from_urdf.

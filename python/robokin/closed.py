@@ -30,7 +30,10 @@ from . import _core
 from . import robots as _robots
 from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
 from ._options import with_options
+from ._signature import plain
 from ._ur_dh import ur_dh_rows
+
+ClosedSolver.find = staticmethod(plain(ClosedSolver.find, "ClosedSolver.find", ClosedSolver.__module__))
 
 __all__ = [
     "ClosedFamilyOptions",
@@ -299,7 +302,7 @@ def ur_batch(targets, robot, limits="default"):
         is kept in the first slot of the postures that coincide). No row is NaN for its limits.
     """
     chain = _ur_chain(robot)
-    solver = ClosedSolver(chain, limits) if family(chain).solvable else None
+    solver = ClosedSolver.find(chain, limits)
     if solver is None or solver.family != "three parallel axes 2, 3, 4":
         _core.ik_ur(np.eye(4), chain, limits)  # raises the UR table's ValueError, naming what differs
     return solver.solve_batch(targets)

@@ -144,10 +144,11 @@ def _closed_sets(chain: Chain, poses):
             sets.append(s.q)
             labels.append(list(s.postures))
         return sets, labels
-    if not closed.family(chain).solvable:
+    solver = closed.ClosedSolver.find(chain)
+    if solver is None:
         return None
     # A UR table (closed.ur's form) or any arm closed.family recognises (closed.solve's), by slot.
-    q, _, within = closed.ClosedSolver(chain).solve_batch(poses)  # within: a solution, within the limits
+    q, _, within = solver.solve_batch(poses)  # within: a solution, within the limits
     names = list(closed.UR_POSTURES)
     sets, labels = [], []
     for row, keep in zip(q, within):

@@ -30,7 +30,6 @@ from typing import Optional, Tuple
 import numpy as np
 
 from . import _core
-from . import closed as _closed
 from ._checks import chain as check_chain
 from ._checks import joints, number, real_array, whole
 from ._checks import seed as check_seed
@@ -231,7 +230,7 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
         with np.errstate(invalid="ignore"):  # inf - inf where unlimited: not used
             q0 = np.where(np.isfinite(lo) & np.isfinite(hi), (lo + hi) / 2, q0)
     h = number(resolution, "resolution", positive=True)
-    closed = _core.ClosedSolver(chain) if task == "pose" and _closed.family(chain).solvable else None
+    closed = _core.ClosedSolver.find(chain) if task == "pose" else None
     return ReachabilityPlan(chain, axes, h, K, s, task, q0, options, closed)
 
 

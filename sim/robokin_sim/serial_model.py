@@ -170,8 +170,9 @@ def _closed_form(name: str, chain: rk.Chain, q) -> Optional[Callable]:
         return planar
     if name == "rp":
         return lambda T: rk.closed.planar_rp(T[:2, 3], limits=chain)
-    if chain.dof == 6 and rk.closed.family(chain).solvable:
-        return rk.closed.ClosedSolver(chain).solve  # a UR table, a UR URDF, a spherical wrist
+    solver = rk.closed.ClosedSolver.find(chain) if chain.dof == 6 else None
+    if solver is not None:
+        return solver.solve  # a UR table, a UR URDF, a spherical wrist
     if chain.dof == 3 and chain.joint_types == "RRR":
         return lambda T: rk.closed.general_3r(T[:3, 3], chain)
     return None
