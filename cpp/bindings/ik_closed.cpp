@@ -75,16 +75,6 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   return py::make_tuple(q, ok, reachable);
 }
 
-// A spherical-wrist solver with its geometry and limits parsed once (robokin.closed.puma560).
-struct SphericalWrist {
-  ArmGeometry arm;
-  double d6;
-  JointLimits limits;
-  ClosedFormSolutions solve(ArrayLike target) const {
-    return ik_spherical_wrist(arm, d6, Rigid::from_matrix(as_transform(target, "target")), limits);
-  }
-};
-
 // The UR family (robokin.closed.ur); limits: "default" (the chain's), None, or a pair.
 ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
@@ -207,23 +197,10 @@ void bind_solutions(py::module_& m) {
       .def("__repr__", &repr);
 }
 
-// The solvers with their geometry bound (robokin.closed keeps them for repeated calls).
-void bind_solvers(py::module_& m) {
-  py::class_<SphericalWrist>(m, "_SphericalWrist6R", "A 6R spherical-wrist closed form with its geometry bound.")
-      .def(py::init([](double a2, double a3, double d3, double d4, double d1, double d6, LimitsLike limits) {
-             check_length(d6, "d6");
-             return SphericalWrist{arm_arg(d1, a2, a3, d3, d4), d6, limits_arg(limits, 6)};
-           }),
-           py::arg("a2"), py::arg("a3"), py::arg("d3"), py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0,
-           py::arg("limits") = py::none())
-      .def("solve", &SphericalWrist::solve, py::arg("target"));
-}
-
 }  // namespace
 
 void bind_ik_closed(py::module_& m) {
   bind_solutions(m);
-  bind_solvers(m);
   m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
   m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
   m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),

@@ -1107,14 +1107,6 @@ class IKSolutions:
         (k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);
         False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).
         """
-class _SphericalWrist6R:
-    """
-    A 6R spherical-wrist closed form with its geometry bound.
-    """
-    def __init__(self, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> None:
-        ...
-    def solve(self, target: numpy.typing.ArrayLike) -> IKSolutions:
-        ...
 class ClosedFamilyOptions:
     """
     The options of robokin.closed.family, solve and ClosedSolver (keywords).

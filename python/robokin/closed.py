@@ -20,7 +20,6 @@ therefore returned only when the stretched arm really is that close).
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 
@@ -60,6 +59,7 @@ __all__ = [
 #: PUMA 560 standard DH (P. Corke's Robotics Toolbox ``Puma560``, as in :func:`robokin.robots.puma560`).
 PUMA560 = {"d1": _robots.PUMA560_D[0], "a2": _robots.PUMA560_A[1], "a3": _robots.PUMA560_A[2],
            "d3": _robots.PUMA560_D[2], "d4": _robots.PUMA560_D[3], "d6": _robots.PUMA560_D[5]}
+_PUMA560_LENGTHS = tuple(PUMA560[k] for k in ("a2", "a3", "d3", "d4", "d1", "d6"))  # spherical_wrist_6r's order
 
 
 def _limits(limits):
@@ -155,26 +155,18 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
     return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
-@functools.lru_cache(maxsize=2)
-def _puma560_solver(default_limits: bool):
-    """The PUMA's closed-form solver, bound once per choice of limits (the per-call cost is the solve)."""
-    g = PUMA560
-    lim = _robots.PUMA560_LIMITS if default_limits else None
-    return _core._SphericalWrist6R(g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], lim)
-
-
 def puma560(target, limits="default") -> IKSolutions:
     """All (up to 8) solutions of :func:`robokin.robots.puma560` for the tool frame ``target``,
-    each marked within the joint limits or not (``within_limits``).
+    each marked within the joint limits or not (``within_limits``): :func:`spherical_wrist_6r` with
+    the PUMA's lengths.
 
     Args:
         target: Tool frame (4, 4).
         limits: ``"default"`` for the PUMA's joint limits, ``None`` for none, a pair or a Chain.
     """
-    if limits is None or (isinstance(limits, str) and limits == "default"):
-        return _puma560_solver(limits is not None).solve(target)
-    g = PUMA560
-    return _core.ik_spherical_wrist(target, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], _limits(limits))
+    if isinstance(limits, str) and limits == "default":
+        limits = _robots.PUMA560_LIMITS
+    return _core.ik_spherical_wrist(target, *_PUMA560_LENGTHS, _limits(limits))
 
 
 def puma560_path(targets, q0, limits="default"):
@@ -201,10 +193,7 @@ def puma560_path(targets, q0, limits="default"):
     """
     if isinstance(limits, str) and limits == "default":
         limits = _robots.PUMA560_LIMITS
-    g = PUMA560
-    return _core.ik_spherical_wrist_path(
-        targets, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"], q0, _limits(limits)
-    )
+    return _core.ik_spherical_wrist_path(targets, *_PUMA560_LENGTHS, q0, _limits(limits))
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
@@ -220,13 +209,6 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
 _UR_KEYS = ("d1", "a2", "a3", "d4", "d5", "d6")
 
 
-@functools.lru_cache(maxsize=64)
-def _ur_table_chain(key) -> Chain:
-    """The UR arm of a table ``(d1, a2, a3, d4, d5, d6)`` as a Chain, built once per table (looked up
-    by value: a table is a tuple of numbers, not an object whose id could be reused)."""
-    return Chain.from_dh(ur_dh_rows(*key))
-
-
 def _ur_chain(robot) -> Chain:
     """``robot`` as a Chain: a Chain as it is, or the UR arm of a mapping ``d1, a2, a3, d4, d5, d6``."""
     if isinstance(robot, Chain):
@@ -239,7 +221,7 @@ def _ur_chain(robot) -> Chain:
         raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
     if not all(math.isfinite(v) for v in key):
         raise ValueError("robot: the lengths must be finite")
-    return _ur_table_chain(key)
+    return Chain.from_dh(ur_dh_rows(*key))
 
 
 def ur(target, robot, limits="default") -> IKSolutions:

@@ -124,26 +124,8 @@ def _vector(v, n, name) -> np.ndarray:
     return a
 
 
-def _is_puma560(chain: Chain) -> bool:
-    from .robots import puma560
-
-    if chain.dof != 6 or chain.joint_types != "RRRRRR":
-        return False
-    q = np.array([[0.3, -0.7, 1.1, 0.5, -0.9, 2.0], [-1.2, 0.4, -0.3, 2.2, 0.6, -1.5], [0.0] * 6])
-    return bool(np.allclose(chain.fk(q), puma560().fk(q), atol=1e-12, rtol=0))
-
-
 def _closed_sets(chain: Chain, poses):
     """Solutions and labels per pose from a closed form; None when the chain has none."""
-    if _is_puma560(chain):
-        sets, labels = [], []
-        g = closed.PUMA560
-        for T in poses:
-            s = closed.spherical_wrist_6r(T, g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"],
-                                          limits=chain).only_within_limits()
-            sets.append(s.q)
-            labels.append(list(s.postures))
-        return sets, labels
     solver = closed.ClosedSolver.find(chain)
     if solver is None:
         return None
@@ -207,9 +189,9 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     """Follows the tool frames ``poses`` with the fewest reconfigurations, then the least joint motion.
 
     Args:
-        chain: The arm. ``method="closed"`` needs a closed form: the PUMA 560
-            (:func:`robokin.robots.puma560`, any limits) or any arm :func:`robokin.closed.family`
-            recognises (a UR arm from its DH table or URDF, a spherical wrist: :func:`robokin.closed.solve`).
+        chain: The arm. ``method="closed"`` needs a closed form: any arm :func:`robokin.closed.family`
+            recognises (a UR arm from its DH table or URDF, a spherical wrist such as the PUMA 560:
+            :func:`robokin.closed.solve`).
         poses: (K, 4, 4) tool frames, one per waypoint.
         dt: Time between waypoints (s).
         qdot_max: Joint speed limit (rad/s, m/s), a scalar or (n,): a step moving some joint more

@@ -161,8 +161,6 @@ def posture_solver(name: str, chain: rk.Chain, q) -> Optional[Callable]:
 def _closed_form(name: str, chain: rk.Chain, q) -> Optional[Callable]:
     """``solve(T) -> IKSolutions``: every closed-form posture of T (robokin.closed, each marked
     within the limits or not), or None when the arm has no closed form."""
-    if name == "puma560":
-        return rk.closed.puma560
     if name == "planar_3r":
         def planar(T):
             return rk.closed.planar_3r((T[0, 3], T[1, 3], math.atan2(T[1, 0], T[0, 0])), limits=chain)
