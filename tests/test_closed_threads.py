@@ -1,7 +1,7 @@
 """The closed forms shared across threads: several threads call them at once on different arms
 (catalogue chains, URDF-like dict arms, the PUMA, limits and none), each answer equal, bit for bit,
-to the same call made alone. closed.py keeps no solver between calls (a dict's chain is looked up
-by value); no thread may be handed another arm's answer."""
+to the same call made alone. closed.py keeps no solver between calls (a dict's chain is built per
+call); no thread may be handed another arm's answer."""
 
 import sys
 import threading
