@@ -10,7 +10,9 @@ robokin / reference (lower is better):
 - ``robokin.traj.quintic`` evaluated at 1e6 sample times (6 joints: positions, velocities and
   accelerations) against numpy's vectorised polynomial (Horner in s for the three shapes, then
   outer products with q1 - q0), single-threaded (ROBOKIN_NUM_THREADS=1) like numpy; the default
-  thread count shown for information. Goal: no slower than numpy.
+  thread count shown for information. Goal: no slower than numpy. Beside it, for information, the
+  same call writing into the arrays of an earlier result (``out=``, single-threaded): the fresh
+  pages of three new 48 MB arrays are what it saves.
 
 Every reference is checked against robokin before it is timed. Times: best of several repeats
 (median also shown) on a shared machine.
@@ -80,6 +82,7 @@ def bench_traj(rng) -> None:
     for ours, theirs, what in zip((tr.q, tr.qd, tr.qdd), ref, ("q", "qd", "qdd")):
         if not np.allclose(ours, theirs, rtol=0, atol=1e-12):
             raise AssertionError(f"quintic {what}: numpy's polynomial disagrees with robokin")
+    ref_bits = [a.copy() for a in (tr.q, tr.qd, tr.qdd)]
     saved = os.environ.get("ROBOKIN_NUM_THREADS")
     try:
         os.environ["ROBOKIN_NUM_THREADS"] = "1"
@@ -87,6 +90,11 @@ def bench_traj(rng) -> None:
         theirs = once(lambda: numpy_quintic(q0, q1, t), repeat=7)
         line("quintic 1e6 samples, 1 thread", ours, "numpy", theirs, 1.0,
              name="rk.traj.quintic, 1e6 samples x 6 joints, 1 thread, vs numpy's vectorised polynomial")
+        reused = rk.traj.quintic(q0, q1, t, out=tr)  # tr's arrays, their pages already touched
+        if not all(np.array_equal(a, b) for a, b in zip((reused.q, reused.qd, reused.qdd), ref_bits)):
+            raise AssertionError("quintic out=: the samples differ from a new trajectory's")
+        ours_out = once(lambda: rk.traj.quintic(q0, q1, t, out=tr), repeat=7)
+        line("quintic 1e6 samples out=, 1 thread", ours_out, "numpy", theirs, None)
         os.environ.pop("ROBOKIN_NUM_THREADS")
         ours_all = once(lambda: rk.traj.quintic(q0, q1, t), repeat=7)
         line(f"quintic 1e6 samples, {os.cpu_count()} threads", ours_all, "numpy", theirs, None)

@@ -114,25 +114,36 @@ inline Float64View view_of(const Array& a) {
   return v;
 }
 
+// Refuses an output array `a` (named out_name) that shares a byte with the input [in, in + n) (named
+// in_name): the result is written while the input may still be read.
+inline void require_apart(const py::array& a, const double* in, py::ssize_t n, const char* out_name,
+                          const char* in_name) {
+  const char* o = static_cast<const char*>(a.data());
+  const char* i = reinterpret_cast<const char*>(in);
+  if (o < i + n * static_cast<py::ssize_t>(sizeof(double)) && i < o + a.nbytes())
+    fail(std::string(out_name) + ": shares memory with " + in_name);
+}
+
 // The array a batch call writes its result into: a new one when `out` is None, else the caller's
 // (numpy's idiom: the caller reuses memory across calls), which must be a writable, aligned,
 // C-contiguous float64 ndarray of exactly that shape sharing no byte with the input [in, in + n).
-// A value of the wrong kind is a TypeError, a wrong shape or layout a ValueError, naming `out`.
-inline py::array output_array(py::handle out, int ndim, const py::ssize_t* shape, const double* in, py::ssize_t n) {
+// A value of the wrong kind is a TypeError, a wrong shape or layout a ValueError, naming the output
+// (out_name) and, when memory is shared, the input (in_name).
+inline py::array output_array(py::handle out, int ndim, const py::ssize_t* shape, const double* in, py::ssize_t n,
+                              const char* in_name = "q", const char* out_name = "out") {
   if (out.is_none()) return new_array(ndim, shape);
   if (!py::isinstance<py::array>(out))
-    throw py::type_error("out: expected a numpy array or None, got " +
+    throw py::type_error(std::string(out_name) + ": expected a numpy array or None, got " +
                          py::str(py::type::handle_of(out).attr("__name__")).cast<std::string>());
   const py::array a = py::reinterpret_borrow<py::array>(out);
   if (!a.dtype().equal(py::dtype::of<double>()))
-    throw py::type_error("out: expected a float64 array, got " + py::str(a.dtype()).cast<std::string>());
+    throw py::type_error(std::string(out_name) + ": expected a float64 array, got " +
+                         py::str(a.dtype()).cast<std::string>());
   if (a.ndim() != ndim || !std::equal(shape, shape + ndim, a.shape()))
-    fail("out: expected shape " + shape_of(ndim, shape) + ", got " + shape_of(a));
+    fail(std::string(out_name) + ": expected shape " + shape_of(ndim, shape) + ", got " + shape_of(a));
   if (!has_flags(a, kCContiguous | kAligned | kWriteable))
-    fail("out: expected a writable, aligned, C-contiguous array (np.empty gives one)");
-  const char* o = static_cast<const char*>(a.data());
-  const char* i = reinterpret_cast<const char*>(in);
-  if (o < i + n * static_cast<py::ssize_t>(sizeof(double)) && i < o + a.nbytes()) fail("out: shares memory with q");
+    fail(std::string(out_name) + ": expected a writable, aligned, C-contiguous array (np.empty gives one)");
+  require_apart(a, in, n, out_name, in_name);
   return a;
 }
 

@@ -41,26 +41,42 @@ py::array vector_array(const std::vector<double>& values) {
 }
 
 
+// Where a joint law's samples go: the caller's arrays (robokin.traj.quintic's out=; output_array's
+// checks, and apart from the caller's times and from each other) or, for None, new ones.
+struct SampleOut {
+  py::handle q = py::none(), qd = py::none(), qdd = py::none();
+  const double* t = nullptr;  // the caller's times as read (a copy unless a C-contiguous float64 array)
+  py::ssize_t t_size = 0;
+};
+
 // Evaluates a joint law at the times t, in parallel without the GIL; (t, q, qd, qdd).
 template <class Law>
-py::tuple sample(const Law& law, py::array t_arr, const char* names) {
+py::tuple sample(const Law& law, py::array t_arr, const char* names, const SampleOut& into = {}) {
   const long count = static_cast<long>(t_arr.size()), n = law.dof();
   if (count * n > kMaxValues) fail(std::string(names) + ": more than " + std::to_string(kMaxValues) + " values to sample");
-  py::array q = new_array({count, n}), qd = new_array({count, n}), qdd = new_array({count, n});
+  const py::ssize_t shape[2] = {count, n};
+  const py::handle given[3] = {into.q, into.qd, into.qdd};
+  const char* out_names[3] = {"out.q", "out.qd", "out.qdd"};
+  py::array arrays[3];
+  for (int k = 0; k < 3; ++k) {
+    arrays[k] = output_array(given[k], 2, shape, into.t, into.t_size, "t", out_names[k]);
+    for (int j = 0; j < k; ++j)
+      require_apart(arrays[k], float64_data(arrays[j]), count * n, out_names[k], out_names[j]);
+  }
   const double* t = float64_data(t_arr);
-  const JointSamples out{float64_data(q), float64_data(qd), float64_data(qdd)};
+  const JointSamples out{float64_data(arrays[0]), float64_data(arrays[1]), float64_data(arrays[2])};
   released("traj", [&](Progress* progress) {
     parallel_for(count, 8192, [&](long begin, long end) { law.evaluate(t, begin, end, out); }, progress);
   });
-  for (const py::array* a : {&q, &qd, &qdd})
-    if (!all_finite(float64_data(*a), count * n))
+  for (const py::array& a : arrays)
+    if (!all_finite(float64_data(a), count * n))
       fail(std::string(names) + ": the trajectory is not finite (values or times too large)");
-  return py::make_tuple(t_arr, q, qd, qdd);
+  return py::make_tuple(t_arr, arrays[0], arrays[1], arrays[2]);
 }
 
-// Sample times: 1-D, at least 2, finite, strictly increasing, a finite span (a copy).
-py::array checked_times(ArrayLike t_obj) {
-  Array t = as_array(t_obj, "t");
+// Sample times: 1-D, at least 2, finite, strictly increasing, a finite span (a copy: the
+// trajectory's own times).
+py::array checked_times(const Array& t) {
   if (t.ndim() != 1 || t.shape(0) < 2) fail("t: expected a 1-D array of at least 2 times, got shape " + shape_of(t));
   require_finite(t.data(), t.size(), "t");
   for (py::ssize_t k = 1; k < t.size(); ++k)
@@ -70,17 +86,20 @@ py::array checked_times(ArrayLike t_obj) {
 }
 
 py::tuple quintic_at(const Vector& q0, const Vector& q1, const Vector& qd0, const Vector& qd1, py::array t,
-                     const char* names) {
+                     const char* names, const SampleOut& into = {}) {
   const double* tp = float64_data(t);
   const Quintic law(q0, q1, qd0, qd1, tp[0], tp[t.size() - 1]);
-  return sample(law, t, names);
+  return sample(law, t, names, into);
 }
 
-py::tuple quintic(ArrayLike q0_obj, ArrayLike q1_obj, ArrayLike t_obj, ArrayLike qd0_obj, ArrayLike qd1_obj) {
+py::tuple quintic(ArrayLike q0_obj, ArrayLike q1_obj, ArrayLike t_obj, ArrayLike qd0_obj, ArrayLike qd1_obj,
+                  OutArray q_out, OutArray qd_out, OutArray qdd_out) {
   Vector q0, q1;
   const long n = joint_pair(q0_obj, q1_obj, q0, q1);
   const Vector qd0 = optional_vector(qd0_obj, "qd0", n), qd1 = optional_vector(qd1_obj, "qd1", n);
-  return quintic_at(q0, q1, qd0, qd1, checked_times(t_obj), "q0, q1, qd0, qd1, t");
+  const Array t = as_array(t_obj, "t");
+  const SampleOut into{q_out, qd_out, qdd_out, t.data(), t.size()};
+  return quintic_at(q0, q1, qd0, qd1, checked_times(t), "q0, q1, qd0, qd1, t", into);
 }
 
 py::tuple trapezoidal(ArrayLike q0_obj, ArrayLike q1_obj, ArrayLike vmax_obj, ArrayLike amax_obj, double dt) {
@@ -116,7 +135,7 @@ py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_n
     if (t_obj.is_none()) fail("t: the quintic law needs the sample times t");
     if (!vmax_obj.is_none() || !amax_obj.is_none())
       fail("vmax, amax: limits are for the trapezoidal law (law='trapezoidal'); the quintic law takes t");
-    law = quintic_at(zero, end, zero, zero, checked_times(t_obj), "T0, T1, t");
+    law = quintic_at(zero, end, zero, zero, checked_times(as_array(t_obj, "t")), "T0, T1, t");
   } else if (law_name == "trapezoidal") {
     if (!t_obj.is_none()) fail("t: the trapezoidal law samples every dt from 0; give t for the quintic law only");
     if (vmax_obj.is_none() || amax_obj.is_none())
@@ -144,7 +163,10 @@ py::tuple cartesian(ArrayLike T0_obj, ArrayLike T1_obj, const std::string& law_n
 
 void bind_traj(py::module_& m) {
   m.def("traj_quintic", &quintic, py::arg("q0"), py::arg("q1"), py::arg("t"), py::arg("qd0") = py::none(),
-        py::arg("qd1") = py::none(), "Quintic joint trajectory sampled at t: (t, q, qd, qdd). Use robokin.traj.quintic.");
+        py::arg("qd1") = py::none(), py::kw_only(), py::arg("q_out") = py::none(), py::arg("qd_out") = py::none(),
+        py::arg("qdd_out") = py::none(),
+        "Quintic joint trajectory sampled at t: (t, q, qd, qdd), q, qd and qdd written into q_out, qd_out and "
+        "qdd_out when given (out.q, out.qd, out.qdd in messages). Use robokin.traj.quintic.");
   m.def("traj_trapezoidal", &trapezoidal, py::arg("q0"), py::arg("q1"), py::arg("vmax"), py::arg("amax"),
         py::arg("dt"), "Synchronised trapezoidal joint trajectory: (t, q, qd, qdd). Use robokin.traj.trapezoidal.");
   m.def("traj_via_points", &via_points, py::arg("points"), py::arg("vmax"), py::arg("amax"), py::arg("dt"),

@@ -1762,9 +1762,9 @@ def traj_cartesian(T0: numpy.typing.ArrayLike, T1: numpy.typing.ArrayLike, law: 
     """
     Cartesian straight line: (t, poses, velocity, acceleration). Use robokin.traj.cartesian.
     """
-def traj_quintic(q0: numpy.typing.ArrayLike, q1: numpy.typing.ArrayLike, t: numpy.typing.ArrayLike, qd0: numpy.typing.ArrayLike = None, qd1: numpy.typing.ArrayLike = None) -> tuple:
+def traj_quintic(q0: numpy.typing.ArrayLike, q1: numpy.typing.ArrayLike, t: numpy.typing.ArrayLike, qd0: numpy.typing.ArrayLike = None, qd1: numpy.typing.ArrayLike = None, *, q_out: numpy.typing.NDArray[numpy.float64] | None = None, qd_out: numpy.typing.NDArray[numpy.float64] | None = None, qdd_out: numpy.typing.NDArray[numpy.float64] | None = None) -> tuple:
     """
-    Quintic joint trajectory sampled at t: (t, q, qd, qdd). Use robokin.traj.quintic.
+    Quintic joint trajectory sampled at t: (t, q, qd, qdd), q, qd and qdd written into q_out, qd_out and qdd_out when given (out.q, out.qd, out.qdd in messages). Use robokin.traj.quintic.
     """
 def traj_trapezoidal(q0: numpy.typing.ArrayLike, q1: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """

@@ -9,6 +9,9 @@
   quaternion SLERP, under the quintic or the trapezoidal law.
 
 Each returns its samples as arrays: times ``t`` (K,), and positions, velocities and accelerations.
+Only :func:`quintic` takes ``out=`` (arrays to write the samples into): the others choose their
+sample count from ``dt`` (:func:`cartesian` from ``dt`` or ``t`` by its law), so the caller cannot
+size the arrays before the call.
 """
 
 from __future__ import annotations
@@ -91,7 +94,7 @@ def _joints(value, name: str) -> int:
     return a.shape[-1] if a.ndim >= 1 else 0
 
 
-def quintic(q0, q1, t, qd0=None, qd1=None) -> Trajectory:
+def quintic(q0, q1, t, qd0=None, qd1=None, *, out=None) -> Trajectory:
     """Joint-space quintic polynomial from ``q0`` at ``t[0]`` to ``q1`` at ``t[-1]``.
 
     Per joint ``q(s) = sum c_k s^k``, ``s = (t - t[0]) / (t[-1] - t[0])``, with the positions,
@@ -103,11 +106,26 @@ def quintic(q0, q1, t, qd0=None, qd1=None) -> Trajectory:
         q0, q1: Start and end configurations, shape (n,).
         t: Sample times, shape (K,), K >= 2, strictly increasing.
         qd0, qd1: Velocities at the start and end, shape (n,); zero when None.
+        out: None, or a :class:`Trajectory` whose ``q``, ``qd`` and ``qdd`` arrays receive the
+            samples (numpy's idiom: reuse memory across calls; a Trajectory from an earlier call of
+            the same shape, or one made of ``np.empty((K, n))`` arrays): each a writable, aligned,
+            C-contiguous float64 array of shape (K, n), sharing no memory with ``t`` or with the
+            others (a field that is None gets a new array). ``out.t`` is neither read nor written.
 
     Returns:
-        Trajectory with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n).
+        Trajectory with ``t`` (K,), ``q``, ``qd``, ``qdd`` (K, n). With ``out``, a new Trajectory
+        holding a copy of ``t`` (as without ``out``) and ``out``'s ``q``, ``qd``, ``qdd`` arrays
+        themselves, their values the same as without ``out``.
+
+    Raises:
+        TypeError: ``out`` is not a Trajectory, or one of its arrays not a float64 numpy array.
+        ValueError: one of ``out``'s arrays has the wrong shape or layout, or shares memory.
     """
-    return Trajectory(*_core.traj_quintic(q0, q1, t, qd0, qd1))
+    if out is None:
+        return Trajectory(*_core.traj_quintic(q0, q1, t, qd0, qd1))
+    if not isinstance(out, Trajectory):
+        raise TypeError(f"out: expected a robokin.traj.Trajectory or None, got {type(out).__name__}")
+    return Trajectory(*_core.traj_quintic(q0, q1, t, qd0, qd1, q_out=out.q, qd_out=out.qd, qdd_out=out.qdd))
 
 
 def trapezoidal(q0, q1, vmax, amax, dt: float = 0.01) -> Trajectory:
