@@ -72,7 +72,7 @@ class GifWriter:
         frames: The number of frames written so far.
     """
 
-    def __init__(self, file, size, seconds, *, palette=None) -> None:
+    def __init__(self, file, size, seconds, palette=None) -> None:
         self.size = _frame_size(size)
         self.seconds = _seconds(seconds)
         self.frames = 0
