@@ -42,7 +42,7 @@ def test_gif_writer_interrupted(tmp_path, monkeypatch):
     """Frames stream to the temporary file: a frame or the end interrupted leaves nothing."""
     from PIL import GifImagePlugin
 
-    from robokin_sim import recording
+    from robokin.gif import GifWriter
 
     frame = __import__("numpy").zeros((20, 30, 3), dtype="uint8")
     rec = Recorder(str(tmp_path / "a.gif"), every=1)
@@ -55,7 +55,7 @@ def test_gif_writer_interrupted(tmp_path, monkeypatch):
     assert files(tmp_path) == []
     rec = Recorder(str(tmp_path / "a.gif"), every=1)
     rec.add(frame)
-    monkeypatch.setattr(recording.GifStream, "close", _half_then_interrupt)
+    monkeypatch.setattr(GifWriter, "close", _half_then_interrupt)
     with pytest.raises(KeyboardInterrupt):
         rec.close()
     assert files(tmp_path) == []

@@ -14,6 +14,8 @@ from robokin_sim.render_rrr3 import Rrr3Renderer
 from robokin_sim.scene_rrr3 import Rrr3Scene
 
 SIZE = (240, 240)
+PALETTE = Image.new("P", (1, 1))
+PALETTE.putpalette([c for rgb in recording.GIF_PALETTE for c in rgb])
 
 
 def drawn_frames(steps, held):
@@ -26,8 +28,7 @@ def drawn_frames(steps, held):
         scene.step(frozenset(held))
         renderer.draw(surface, scene.state(), Hud(fps=None))
         rgb = pygame.surfarray.array3d(surface).swapaxes(0, 1)
-        paletted = Image.fromarray(np.ascontiguousarray(rgb)).quantize(palette=recording._gif_palette(),
-                                                                      dither=Image.Dither.NONE)
+        paletted = Image.fromarray(np.ascontiguousarray(rgb)).quantize(palette=PALETTE, dither=Image.Dither.NONE)
         out.append(np.asarray(paletted.convert("RGB")))
     return out
 

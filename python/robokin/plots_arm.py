@@ -194,7 +194,8 @@ def animate(chain: Chain, qs, path, fps: float = 30.0, size=(480, 480)) -> str:
         chain: The arm.
         qs: (K, dof) configurations, 1 <= K <= :data:`MAX_FRAMES`.
         path: ``.gif`` or ``.mp4`` file.
-        fps: Frames per second (0.1 to 100; a GIF keeps 10 ms ticks).
+        fps: Frames per second (0.1 to 100; a GIF shows frames on 10 ms ticks, at least 20 ms each:
+            :class:`robokin.gif.GifWriter`).
         size: (width, height) in pixels, each 64 to 2048 (made even for MP4).
 
     Returns:
@@ -202,8 +203,8 @@ def animate(chain: Chain, qs, path, fps: float = 30.0, size=(480, 480)) -> str:
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    from ._gif import GifWriter
     from .files import AtomicPath
+    from .gif import GifWriter
 
     qs, kind, fps, (width, height) = _animate_arguments(chain, qs, path, fps, size)
     scale = max(_arm_size(chain.frames(q)) for q in qs[:: max(1, len(qs) // 50)])
@@ -222,11 +223,9 @@ def animate(chain: Chain, qs, path, fps: float = 30.0, size=(480, 480)) -> str:
 
     with AtomicPath(path) as tmp:
         if kind == ".gif":
-            with open(tmp, "wb") as f:
-                writer = GifWriter(f, (width, height), max(1, round(100.0 / fps)))
+            with GifWriter(tmp, (width, height), 1.0 / fps) as writer:
                 for image in frames():
                     writer.add(image)
-                writer.close()
         else:
             import imageio.v2 as imageio
 

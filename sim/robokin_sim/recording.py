@@ -3,7 +3,8 @@
 Both are written to a temporary file next to the target and renamed into place when complete,
 so an interrupted run never leaves a half-written recording under the requested name. Both stream:
 MP4 frames go to ffmpeg as they come, GIF frames are encoded and appended to the file as they come
-(:class:`GifStream`), so a run's memory does not grow with its length.
+(:class:`robokin.gif.GifWriter` on the fixed palette :data:`GIF_PALETTE`), so a run's memory does
+not grow with its length.
 
 The time base is the simulation's: the loop offers one frame per simulation step (none while
 paused) and ``fps`` is the number of steps per simulated second, so a recording of N steps of
@@ -16,12 +17,21 @@ from __future__ import annotations
 
 import os
 import signal
-from typing import List, Optional
+from typing import Optional
 
 import numpy as np
 from robokin.files import AtomicPath
+from robokin.gif import GifWriter
 
 from .outputs import OutputError, reason_of
+from .theme import COLOURS
+
+#: The recordings' GIF palette, 63 RGB colours at most: the theme's flat colours exactly, then greys
+#: for the antialiased text. With the writer's transparent entry it fills a 64-entry table. Few
+#: colours and no dithering keep the frames small: the edges of the scaled-down drawing snap to the
+#: nearest flat colour.
+GIF_PALETTE = (list(dict.fromkeys(COLOURS))
+               + [(g, g, g) for g in range(0, 256, 17) if (g, g, g) not in COLOURS])[:63]
 
 
 class Recorder:
@@ -46,8 +56,8 @@ class Recorder:
         self._count = 0
         self._shape = None
         self._out = AtomicPath(path)
-        # GIF frames stream to a GifStream, MP4 frames to ffmpeg: at most one frame is held.
-        self._gif: Optional[GifStream] = None
+        # GIF frames stream to a GifWriter, MP4 frames to ffmpeg: at most one frame is held.
+        self._gif: Optional[GifWriter] = None
         self._writer = None
 
     def wants(self) -> bool:
@@ -77,12 +87,10 @@ class Recorder:
         if image.size != self._shape:  # first frame fixes the size; a resized window is rescaled
             image = image.resize(self._shape, Image.Resampling.BOX)
         if self.kind == ".gif":
-            # A fixed palette without dithering keeps flat colours flat, so frames compress well.
-            paletted = image.quantize(palette=_gif_palette(), dither=Image.Dither.NONE)
             try:
                 if self._gif is None:
-                    self._gif = GifStream(self._out.tmp, self._shape, self.every / self.fps)
-                self._gif.add(np.asarray(paletted))
+                    self._gif = GifWriter(self._out.tmp, self._shape, self.every / self.fps, palette=GIF_PALETTE)
+                self._gif.add(np.asarray(image))
             except OSError as exc:  # a full disk, a file too large
                 raise OutputError(self.path, reason_of(exc)) from None
         else:
@@ -158,95 +166,6 @@ class Recorder:
             pass
 
 
-class GifStream:
-    """An animated GIF written frame by frame: each frame of palette indices (H, W) uint8 on
-    :func:`_gif_palette` is encoded and appended to the open file as it comes; only the previous
-    frame's indices are kept (to tell what changed), so memory does not grow with the run. Pixels
-    unchanged since the previous frame become the transparent index inside the changed region's box
-    (frames are not disposed, so the previous picture shows through; a frame identical to the
-    previous one is kept, as one transparent pixel): every frame shows as in the GIF Pillow's
-    ``save_all`` writes from the whole list, with the same display times.
-
-    Args:
-        path: The file to write (created now, truncated).
-        shape: (width, height) of every frame.
-        seconds: How long each frame is shown (display times per :func:`gif_durations`).
-    """
-
-    def __init__(self, path: str, shape, seconds: float) -> None:
-        from PIL import Image
-
-        self.shape = tuple(int(v) for v in shape)
-        self.seconds = float(seconds)
-        self.count = 0  # frames offered (identical ones included), for the display times
-        self._palette = _gif_palette().getpalette()
-        self._previous: Optional[np.ndarray] = None
-        self._Image = Image
-        self._file = open(path, "wb")
-        w, h = self.shape
-        # GIF89a, the logical screen, a 64-colour global table (size code 5), loop forever.
-        self._file.write(b"GIF89a" + _u16(w) + _u16(h) + bytes((0x80 | 5, 0, 0)))
-        self._file.write(bytes(bytearray(self._palette[:3 * (_TRANSPARENT + 1)])))
-        self._file.write(b"!\xff\x0bNETSCAPE2.0\x03\x01" + _u16(0) + b"\x00")
-
-    def add(self, indices: np.ndarray) -> None:
-        """Appends one frame of palette indices, shape (height, width)."""
-        full = np.ascontiguousarray(indices, dtype=np.uint8)
-        if full.shape != (self.shape[1], self.shape[0]):
-            raise ValueError(f"indices: expected shape {(self.shape[1], self.shape[0])}, got {full.shape}")
-        duration = _gif_duration(self.count, self.seconds)
-        self.count += 1
-        previous, self._previous = self._previous, full
-        if previous is None:
-            self._write(full, (0, 0), duration)
-            return
-        changed = full != previous
-        rows, cols = np.flatnonzero(changed.any(axis=1)), np.flatnonzero(changed.any(axis=0))
-        if rows.size == 0:  # identical: one transparent pixel (the frame stays, as Pillow keeps it)
-            rows = cols = np.zeros(1, dtype=np.intp)
-        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
-        delta = full[box].copy()
-        delta[~changed[box]] = _TRANSPARENT
-        self._write(delta, (int(cols[0]), int(rows[0])), duration)
-
-    def close(self) -> None:
-        """Writes the trailer and closes the file."""
-        try:
-            self._file.write(b";")
-        finally:
-            self._file.close()
-
-    def abandon(self) -> None:
-        """Closes the file without finishing it (the caller removes it)."""
-        self._file.close()
-
-    def _write(self, pixels: np.ndarray, offset, duration: int) -> None:
-        """Encodes and writes one frame (its graphic control block, descriptor and LZW data)."""
-        from PIL import GifImagePlugin
-
-        image = self._Image.fromarray(pixels, "P")
-        image.putpalette(self._palette)
-        chunks = GifImagePlugin.getdata(image, offset, duration=duration, disposal=1, transparency=_TRANSPARENT)
-        for chunk in chunks:
-            self._file.write(chunk)
-        # The list belongs to a class getdata makes per call, freed only by the cycle collector:
-        # emptied now, the encoded frames do not pile up until it runs.
-        chunks.clear()
-        self._file.flush()  # the frame is in the file, not in a buffer
-
-
-def _u16(value: int) -> bytes:
-    return int(value).to_bytes(2, "little")
-
-
-def _gif_duration(k: int, seconds: float) -> int:
-    """Display time (ms) of frame k of frames of ``seconds`` each: entry k of :func:`gif_durations`."""
-    tick = 0.01
-    per = max(seconds, 0.02)
-    end, start = int(round((k + 1) * per / tick)), int(round(k * per / tick))
-    return 10 * (end - start)
-
-
 def _ffmpeg_process(writer):
     """The ffmpeg subprocess behind an imageio FFMPEG writer (None if it cannot be found)."""
     gen = getattr(writer, "_write_gen", None)
@@ -280,33 +199,3 @@ def mp4_complete(path: str) -> bool:
             seen.add(kind)
             offset += length
     return offset == size and b"moov" in seen and b"mdat" in seen
-
-
-def gif_durations(count: int, seconds: float) -> List[int]:
-    """Display times (ms, multiples of GIF's 10 ms tick) of ``count`` frames of ``seconds`` each:
-    frame k ends at round(k * seconds) ticks, so the total is right to one tick and never drifts.
-    (GIF viewers show frames shorter than 20 ms slower: frames of at least 20 ms are kept.)"""
-    return [_gif_duration(k, seconds) for k in range(count)]
-
-
-_PALETTE = None
-_TRANSPARENT = 63
-
-
-def _gif_palette():
-    """A 64-colour palette: the theme's flat colours exactly, then greys for the antialiased text;
-    the last entry is the transparent index. Few colours (6-bit codes) and no dithering keep the
-    frames small: the edges of the scaled-down drawing snap to the nearest flat colour."""
-    global _PALETTE
-    if _PALETTE is None:
-        from PIL import Image
-
-        from .theme import COLOURS
-
-        colours = list(dict.fromkeys(COLOURS))
-        colours += [(g, g, g) for g in range(0, 256, 17) if (g, g, g) not in colours]
-        colours = colours[:_TRANSPARENT]
-        colours += [(255, 0, 255)] * (_TRANSPARENT + 1 - len(colours))  # padding, then transparent
-        _PALETTE = Image.new("P", (1, 1))
-        _PALETTE.putpalette([c for rgb in colours for c in rgb])
-    return _PALETTE
