@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import robokin as rk
 
 COVERS = {"ClosedSolver.__init__", "ClosedSolver.solve", "ClosedSolver.solve_batch", "ClosedSolver.chain",
-          "ClosedSolver.limits", "ClosedSolver.family", "ClosedSolver.locked", "closed.family", "closed.solve"}
+          "ClosedSolver.limits", "ClosedSolver.family", "ClosedSolver.locked", "ClosedSolver.find", "closed.family", "closed.solve"}
 
 P = math.pi
 UR5 = rk.robots.ur5()
@@ -114,3 +114,21 @@ def test_locked_any_chain_any_lock(rows, locked, q):
         assert np.all(np.abs(chain.fk(s.q)[:, :3, 3] - T[:3, 3]) <= 1e-9 * size + 1e-12)
     q8 = solver.solve_batch(T[None])[0]
     assert q8.shape == (1, 8, 7) and int(np.sum(~np.isnan(q8[0, :, 0]))) == len(s)
+
+
+@settings(max_examples=80)
+@given(dh_rows, st.one_of(st.just(1e-6), wild_floats), st.one_of(st.none(), st.just("default"), st.just("x"), arrays()))
+def test_find_any_chain(rows, tol, limits):
+    """Any chain: ClosedSolver.find gives a solver exactly where family finds a closed form (the same
+    family), None where it finds none, or a ValueError / TypeError naming tol or limits."""
+    chain = rk.Chain.from_dh(rows)
+    f = check_call(lambda: rk.closed.family(chain, tol=tol), "tol")
+    try:
+        found = rk.closed.ClosedSolver.find(chain, limits, tol=tol)
+    except (ValueError, TypeError) as e:
+        assert "tol" in str(e) or "limits" in str(e), str(e)
+        return
+    assert f is not None  # find took tol: so does family
+    assert (found is not None) == f.solvable
+    if found is not None:
+        assert found.family == f.name and found.chain is chain

@@ -301,6 +301,8 @@ def _family_cases():
                                for k, s in enumerate(CLOSED_SOLVERS)]
     c["ClosedSolver.solve_batch"] = [lambda s=s, k=k: s.solve_batch(s.chain.fk(_q(s.chain, k + 60, 4)))
                                      for k, s in enumerate(CLOSED_SOLVERS)]
+    c["ClosedSolver.find"] = [lambda n=n: rk.closed.ClosedSolver.find(M[n]) for n in FAMILY_ARMS + ["panda", "rpr"]]
+    c["ClosedSolver.find"] += [lambda n=n, lock=lock: rk.closed.ClosedSolver.find(M[n], locked=lock) for n, lock in HELD]
     for attr in ("chain", "family", "limits", "locked"):
         c[f"ClosedSolver.{attr}"] = [lambda s=s, a=attr: getattr(s, a) for s in CLOSED_SOLVERS]
     return c

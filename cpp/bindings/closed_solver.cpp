@@ -110,11 +110,6 @@ void bind_solver_class(py::module_& m) {
       "{index: value} for a 7-joint chain, the joint (0-based, as in q) held at that value (within\n"
       "limits) and the 6 others solved, as robokin.closed.solve: the value decides the family, so\n"
       "a solver holds one value (a sweep makes one per value, or calls robokin.closed.solve).");
-  static const std::string find_doc = kwargs_doc<ClosedFamilyOptions>(
-      "find(chain, limits='default', locked=None, *",
-      "The chain's ClosedSolver, or None when the arm has no closed form (robokin.closed.family says\n"
-      "why): the arm read once, where family(chain).solvable and then ClosedSolver(chain) read it twice.\n"
-      "chain, limits, locked: as ClosedSolver's; a bad limits or locked value raises as there.");
   cls.def(py::init([](const Chain& chain, ChainLimitsLike limits, LockedLike locked, const py::kwargs& kwargs) {
             return bound_solver(py::cast(chain, py::return_value_policy::reference), limits, locked,
                                 options_arg<ClosedFamilyOptions>(kwargs), true);
@@ -126,7 +121,8 @@ void bind_solver_class(py::module_& m) {
                                       options_arg<ClosedFamilyOptions>(kwargs), false);
             return found ? py::cast(std::move(found)) : py::none();
           },
-          py::arg("chain"), py::arg("limits") = "default", py::arg("locked") = py::none(), find_doc.c_str())
+          py::arg("chain"), py::arg("limits") = "default", py::arg("locked") = py::none(),
+          "The solver, or None when the arm has no closed form; options as keywords. Use ClosedSolver.find.")
       .def("solve", &BoundSolver::solve, py::arg("target"),
            "Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.solve.")
       .def("solve_batch", &BoundSolver::solve_batch, py::arg("targets"),

@@ -1145,16 +1145,22 @@ class ClosedSolver:
     with its chain, limits and options.
     """
     @staticmethod
-    def find(chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default', locked: dict[int, float] | None = None, **kwargs) -> ClosedSolver | None:
+    def find(chain: Chain, limits = 'default', locked = None, *, tol: float = 1e-06) -> ClosedSolver | None:
         """
-        find(chain, limits='default', locked=None, *, tol=1e-06)
+        The chain's :class:`ClosedSolver`, or None when the arm has no closed form (:func:`family`
+            says why): the arm read once, where ``family(chain).solvable`` and then ``ClosedSolver(chain)``
+            read it twice.
         
-        The chain's ClosedSolver, or None when the arm has no closed form (robokin.closed.family says
-        why): the arm read once, where family(chain).solvable and then ClosedSolver(chain) read it twice.
-        chain, limits, locked: as ClosedSolver's; a bad limits or locked value raises as there.
+            Args:
+                chain: The arm.
+                limits: As :class:`ClosedSolver`'s (``"default"``, None or ``(lower, upper)``).
+                locked: As :class:`ClosedSolver`'s: None, or ``{index: value}`` for a 7-joint chain. A bad
+                    ``limits`` or ``locked`` raises as :class:`ClosedSolver` does.
         
-        Options (keyword-only, ClosedFamilyOptions):
-            tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
+            Options (keyword-only, the fields of :class:`ClosedFamilyOptions`):
+                tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the
+                    sum of the chain's fixed translations at the zero configuration), are parallel when
+                    their directions differ by less than tol rad; in (0, 0.1].
         """
     def __getstate__(self) -> tuple[int, typing.Any, typing.Any, ClosedFamilyOptions, typing.Any]:
         ...

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 
@@ -29,10 +30,8 @@ from . import _core
 from . import robots as _robots
 from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
 from ._options import with_options
-from ._signature import plain
 from ._ur_dh import ur_dh_rows
 
-ClosedSolver.find = staticmethod(plain(ClosedSolver.find, "ClosedSolver.find", ClosedSolver.__module__))
 
 __all__ = [
     "ClosedFamilyOptions",
@@ -374,6 +373,28 @@ def family(chain: Chain, locked=None, **options) -> Family:
         raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
     name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, locked, **options)
     return Family(name, solvable, reason, tuple(map(tuple, meet)), tuple(map(tuple, parallel)), tol_distance)
+
+
+_core_find = ClosedSolver.find
+
+
+@with_options(ClosedFamilyOptions)
+def _find(chain: Chain, limits="default", locked=None, **options) -> Optional[ClosedSolver]:
+    """The chain's :class:`ClosedSolver`, or None when the arm has no closed form (:func:`family`
+    says why): the arm read once, where ``family(chain).solvable`` and then ``ClosedSolver(chain)``
+    read it twice.
+
+    Args:
+        chain: The arm.
+        limits: As :class:`ClosedSolver`'s (``"default"``, None or ``(lower, upper)``).
+        locked: As :class:`ClosedSolver`'s: None, or ``{index: value}`` for a 7-joint chain. A bad
+            ``limits`` or ``locked`` raises as :class:`ClosedSolver` does.
+    """
+    return _core_find(chain, limits, locked, **options)
+
+
+_find.__name__, _find.__qualname__ = "find", "ClosedSolver.find"
+ClosedSolver.find = staticmethod(_find)
 
 
 @with_options(ClosedFamilyOptions)
