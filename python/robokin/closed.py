@@ -32,7 +32,6 @@ from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolu
 from ._options import with_options
 from ._ur_dh import ur_dh_rows
 
-
 __all__ = [
     "ClosedFamilyOptions",
     "ClosedSolver",
