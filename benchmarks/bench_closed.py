@@ -1,9 +1,10 @@
 """Benchmarks of the closed forms held and built per call, and against EAIK (the same process,
 interleaved).
 
-- ``rk.closed.ur(T, chain)`` (the arm read off the chain at each call) against a held
-  ``rk.closed.ClosedSolver(chain).solve(T)`` on the same UR5 poses: the price of not holding a solver.
-- ``rk.closed.ur(T, table)`` with a dict table (its chain looked up by value) against the same.
+- ``rk.closed.ur(T, chain)`` (the layout read by the chain at its first call, the limits and
+  arguments at each) against a held ``rk.closed.ClosedSolver(chain).solve(T)`` on the same UR5
+  poses: the price of not holding a solver.
+- ``rk.closed.ur(T, table)`` with a dict table (its chain built at each call) against the same.
 Run with an older robokin (before ClosedSolver) it times its private ``_URSolver`` as the held one,
 for the before / after figures of benchmarks/README.md.
 - ``ClosedSolver.solve(T)`` (all solutions) against EAIK's ``IK(T)`` (pip's ``eaik``, the ``bench``

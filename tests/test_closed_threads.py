@@ -1,7 +1,8 @@
 """The closed forms shared across threads: several threads call them at once on different arms
 (catalogue chains, URDF-like dict arms, the PUMA, limits and none), each answer equal, bit for bit,
 to the same call made alone. closed.py keeps no solver between calls (a dict's chain is built per
-call); no thread may be handed another arm's answer."""
+call); a chain reads its closed form's layout at its first call and keeps it (thread-safe); no
+thread may be handed another arm's answer."""
 
 import sys
 import threading
@@ -80,3 +81,34 @@ def test_closed_forms_from_eight_threads_match_the_calls_made_alone(fast_switchi
     for i in range(8):
         wrong = [j for j, (a, b) in enumerate(zip(got[i], alone[i])) if a != b]
         assert not wrong, f"thread {i}: {len(wrong)} of {len(alone[i])} answers differ from the call alone"
+
+
+def test_threads_making_the_first_calls_on_fresh_chains_agree_with_a_chain_of_their_own(fast_switching):
+    """Eight threads start together on the same fresh chains (the layout not yet read), each a
+    solver's first call and then closed.ur; every answer equals that of a chain built for it alone."""
+    rng = np.random.default_rng(11)
+    tables = [ARMS[5], ARMS[6], {"d1": 0.15, "a2": -0.45, "a3": -0.35, "d4": 0.1, "d5": 0.1, "d6": 0.07}]
+    poses = [[_chain_of(t).fk(rng.uniform(-3, 3, 6)) for _ in range(50)] for t in tables]
+    alone = [[_answer(rk.closed.ur(T, _chain_of(t))) for T in P] for t, P in zip(tables, poses)]
+    for _ in range(20):
+        shared = [_chain_of(t) for t in tables]
+        got, errors = [None] * 8, []
+        start = threading.Barrier(8)
+
+        def work(i, shared=shared, got=got, errors=errors, start=start):
+            k = i % len(tables)
+            try:
+                start.wait()
+                solver = rk.closed.ClosedSolver(shared[k]) if i % 2 else None
+                got[i] = [_answer(solver.solve(T) if solver else rk.closed.ur(T, shared[k])) for T in poses[k]]
+            except Exception as exc:  # noqa: BLE001 - reported below, with the thread
+                errors.append((i, repr(exc)))
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(8)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert not errors, errors
+        for i in range(8):
+            assert got[i] == alone[i % len(tables)], f"thread {i}: answers differ from a chain of its own"

@@ -78,7 +78,9 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
 // The UR family (robokin.closed.ur); limits: "default" (the chain's), None, or a pair.
 ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_ur(ur_arm(chain), chain, T, limits_or_default(chain, limits, 6));
+  const std::optional<URArm>& arm = chain.closed_layout().ur;  // read once per chain
+  // Without the UR layout, ur_arm throws the ValueError naming what differs.
+  return ik_ur(arm ? *arm : ur_arm(chain), chain, T, limits_or_default(chain, limits, 6));
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 #include "robokin/limits.hpp"
 #include "robokin/parallel.hpp"
 
-#include "ik_starts.hpp"
+#include "chain_lazy.hpp"
 #include "kernel/fk_lanes.hpp"
 #include "kernel/fk_path.hpp"
 

@@ -188,6 +188,8 @@ void ClosedFamilyOptions::validate() const {
 
 JointAxes joint_axes(const Chain& chain) {
   JointAxes g;
+  const size_t n = static_cast<size_t>(chain.dof());
+  g.axis.reserve(n), g.point.reserve(n), g.prismatic.reserve(n), g.number.reserve(n);
   KDL::Frame F = KDL::Frame::Identity();
   for (const KDL::Segment& seg : chain.kdl().segments) {
     const KDL::Joint& joint = seg.getJoint();

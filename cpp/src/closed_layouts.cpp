@@ -4,6 +4,7 @@
 #include "robokin/closed_family.hpp"
 #include "robokin/ik_closed.hpp"
 
+#include "chain_lazy.hpp"
 #include "lines.hpp"
 
 #include <algorithm>
@@ -49,13 +50,11 @@ Eigen::Vector3d right_angle_meeting(const JointAxes& g, int i, int j, double tol
   return c;
 }
 
-// The chain's axes, every joint revolute, else `refuse`.
-JointAxes revolute_6r(const Chain& chain, Refusal refuse) {
-  if (chain.dof() != 6) refuse("it has " + std::to_string(chain.dof()) + " joints, not 6");
-  JointAxes g = joint_axes(chain);
+// Six joints, every one revolute, else `refuse`.
+void require_revolute_6r(const JointAxes& g, Refusal refuse) {
+  if (g.axis.size() != 6) refuse("it has " + std::to_string(g.axis.size()) + " joints, not 6");
   for (int i = 0; i < 6; ++i)
     if (g.prismatic[i]) refuse("joint " + std::to_string(i + 1) + " is prismatic");
-  return g;
 }
 
 // The frame of DH axes x, z (z x x for y) at origin o.
@@ -66,16 +65,14 @@ Rigid dh_frame(const Eigen::Vector3d& x, const Eigen::Vector3d& z, const Eigen::
   return F;
 }
 
-}  // namespace
-
 // Standard DH frames are placed on the axes: z_{i-1} along axis i (its direction, or against it
 // for joints 3 and 4 when their axes point against axis 2's: scale -1), the origins at the
 // meeting points of axes 1, 2 (frames 0 and 1: d1 = 0), 4, 5 and 5, 6, and on axes 3 and 4 at the
 // feet of the common normals from the previous origin (d2 = d3 = 0); x1 = z0 x z1 (alpha1 = pi/2),
 // x4 = z3 x z4 (pi/2), x5 = z5 x z4 (-pi/2), x2 and x3 along the normals (a2, a3 > 0), x0 = x1.
 // The fixed frames before joint 1 and after joint 6 at q = 0 are the base and the tool.
-URArm ur_arm(const Chain& chain) {
-  const JointAxes g = revolute_6r(chain, not_ur);
+URArm ur_arm_of(const JointAxes& g) {
+  require_revolute_6r(g, not_ur);
   const double tol_d = kTolDistance * std::max(1.0, g.size);
   URArm arm;
   Eigen::Vector3d z[6];
@@ -109,8 +106,8 @@ URArm ur_arm(const Chain& chain) {
 // a2 > 0); the common normal of axes 3 and 4 gives d3 along axis 3 and frame 3's origin on axis 4
 // with x3 = z3 x z2 (alpha3 = -pi/2, a3 signed along it); frames 4 and 5 sit at the wrist centre
 // with x4 = z3 x z4 (pi/2) and x5 = z5 x z4 (-pi/2); x0 = x1.
-SphericalArm spherical_arm(const Chain& chain) {
-  const JointAxes g = revolute_6r(chain, not_spherical);
+SphericalArm spherical_arm_of(const JointAxes& g) {
+  require_revolute_6r(g, not_spherical);
   const double tol_d = kTolDistance * std::max(1.0, g.size);
   SphericalArm sa;
   if (g.axis[2].cross(g.axis[1]).norm() > kTolAngle) not_spherical("axes 2 and 3 are not parallel");
@@ -143,12 +140,11 @@ SphericalArm spherical_arm(const Chain& chain) {
   return sa;
 }
 
-namespace {
-
-template <class Arm>
-std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
+// read(g), or none when the axes do not have its layout.
+template <class Read>
+auto layout(const JointAxes& g, Read read) -> std::optional<decltype(read(g))> {
   try {
-    return read(chain);
+    return read(g);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
@@ -156,7 +152,21 @@ std::optional<Arm> layout(const Chain& chain, Arm (*read)(const Chain&)) {
 
 }  // namespace
 
-std::optional<URArm> ur_layout(const Chain& chain) { return layout(chain, ur_arm); }
-std::optional<SphericalArm> spherical_layout(const Chain& chain) { return layout(chain, spherical_arm); }
+URArm ur_arm(const Chain& chain) { return ur_arm_of(joint_axes(chain)); }
+SphericalArm spherical_arm(const Chain& chain) { return spherical_arm_of(joint_axes(chain)); }
+
+ClosedLayout read_closed_layout(const Chain& chain) {
+  const JointAxes g = joint_axes(chain);
+  ClosedLayout l;
+  l.ur = layout(g, ur_arm_of);
+  if (!l.ur) l.spherical = layout(g, spherical_arm_of);
+  return l;
+}
+
+const ClosedLayout& Chain::closed_layout() const {
+  std::call_once(lazy_->layout_once,
+                 [this] { lazy_->layout = std::make_unique<const ClosedLayout>(read_closed_layout(*this)); });
+  return *lazy_->layout;
+}
 
 }  // namespace robokin

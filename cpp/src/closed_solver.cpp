@@ -38,8 +38,7 @@ ClosedSolver::ClosedSolver(const Chain& chain, JointLimits limits, const ClosedF
                            const std::optional<HeldJoint>& held, bool required)
     : chain_(&chain), limits_(std::move(limits)), options_(options) {
   // The layouts' own forms take the six joints as they are: a held joint goes to the subproblems.
-  if (!held) ur_ = ur_layout(chain);
-  if (!held && !ur_) spherical_ = spherical_layout(chain);
+  if (!held) ur_ = chain.closed_layout().ur, spherical_ = chain.closed_layout().spherical;
   if (!ur_ && !spherical_) arm_ = required ? closed_arm(chain, options, held) : read_closed_arm(chain, options, held);
   if (solvable()) require_held_within(held, limits_);
 }

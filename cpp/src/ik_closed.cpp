@@ -133,13 +133,6 @@ int planar_2r_solve(double a1, double a2, double x, double y, double th[2][2], c
   return count;
 }
 
-Eigen::Matrix3d rot_z(double a) {
-  Eigen::Matrix3d m;
-  const double c = std::cos(a), s = std::sin(a);
-  m << c, -s, 0, s, c, 0, 0, 0, 1;
-  return m;
-}
-
 Eigen::Matrix3d rot_x(double a) {
   Eigen::Matrix3d m;
   const double c = std::cos(a), s = std::sin(a);

@@ -1,6 +1,8 @@
 // Start configurations for IK's restarts (ik_starts.hpp).
 #include "ik_starts.hpp"
 
+#include "chain_lazy.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -109,7 +111,7 @@ void IkStarts::nearest(const Chain& chain, const Target& target, int count, int*
 }
 
 const IkStarts& Chain::ik_starts() const {
-  std::call_once(lazy_->once, [this] { lazy_->starts = std::make_unique<const IkStarts>(*this); });
+  std::call_once(lazy_->starts_once, [this] { lazy_->starts = std::make_unique<const IkStarts>(*this); });
   return *lazy_->starts;
 }
 

@@ -63,10 +63,4 @@ class IkStarts {
   mutable std::unique_ptr<const Stored> stored_;
 };
 
-// The chain's lazily built derived data (Chain::ik_starts): one per chain, shared by its copies.
-struct Chain::Lazy {
-  std::once_flag once;
-  std::unique_ptr<const IkStarts> starts;
-};
-
 }  // namespace robokin

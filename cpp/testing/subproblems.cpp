@@ -49,8 +49,8 @@ void bind_subproblem_hooks(py::module_& m) {
   }, py::arg("chain"), py::arg("target"));
   // Which layout's own closed form ClosedSolver takes for the chain: "ur", "spherical" or None.
   m.def("closed_layout", [](const Chain& chain) -> py::object {
-    if (ur_layout(chain)) return py::str("ur");
-    if (spherical_layout(chain)) return py::str("spherical");
+    if (chain.closed_layout().ur) return py::str("ur");
+    if (chain.closed_layout().spherical) return py::str("spherical");
     return py::none();
   }, py::arg("chain"));
 }

@@ -232,9 +232,10 @@ def ur(target, robot, limits="default") -> IKSolutions:
     ``Chain.from_urdf(path, "base", "tool0")``): axes 1 and 2 meeting at a right angle, 2, 3 and 4
     parallel, 4 and 5, 5 and 6 meeting at right angles. Another arm with three parallel axes 2, 3, 4
     (:func:`family`) is solved as :func:`solve` does, with the same labels; any other chain raises
-    ``ValueError``. Each solution is checked by ``robot.fk``. Each call reads the arm off the chain
-    again: a loop over many poses of one arm holds a :class:`ClosedSolver`
-    (``ClosedSolver(chain, limits).solve(T)``, the same answers), which reads it once.
+    ``ValueError``. Each solution is checked by ``robot.fk``. A chain reads its layout at its
+    first call and keeps it; a dict builds its chain at each call: a loop over many poses of a
+    table holds a :class:`ClosedSolver` (``ClosedSolver(chain, limits).solve(T)``, the same
+    answers).
 
     Args:
         target: Tool frame (4, 4).

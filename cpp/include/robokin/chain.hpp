@@ -74,6 +74,7 @@ struct DHTable {
 enum class FkOutput { Frame, Position };
 
 class IkStarts;  // IK's restart configurations (cpp/src/ik_starts.hpp)
+struct ClosedLayout;  // the layout of a closed form of its own (robokin/ik_closed.hpp)
 
 namespace kernel {
 struct FkPath;  // the evaluation path (cpp/src/kernel/fk_path.hpp)
@@ -145,6 +146,10 @@ class Chain {
   // IK's restart configurations (cpp/src/ik_starts.hpp): built at the first call (thread-safe), then
   // shared by the chain's copies; a chain unpickled builds the same again.
   const IkStarts& ik_starts() const;
+  // The layout of a closed form of its own (UR, spherical wrist; robokin/ik_closed.hpp), read from
+  // the geometry at the first call (thread-safe), then shared by the chain's copies: a closed form
+  // called per pose pays the reading once.
+  const ClosedLayout& closed_layout() const;
 
   // KDL's recursive solvers: the reference, and the frames of every joint segment.
   Matrix4 fk_kdl(const Vector& q) const;

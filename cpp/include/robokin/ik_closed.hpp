@@ -156,10 +156,14 @@ struct URArm {
 // an arm of the UR layout (...)") naming what differs otherwise.
 URArm ur_arm(const Chain& chain);
 
-// The chain's layout when it is one with a closed form of its own (ur_arm's, spherical_arm's
-// reading), else none: the choice ClosedSolver makes.
-std::optional<URArm> ur_layout(const Chain& chain);
-std::optional<SphericalArm> spherical_layout(const Chain& chain);
+// The chain's layout when it is one with a closed form of its own: ur_arm's reading, else
+// spherical_arm's, else neither (the choice ClosedSolver makes). It depends on the geometry alone:
+// Chain::closed_layout reads it once per chain.
+struct ClosedLayout {
+  std::optional<URArm> ur;
+  std::optional<SphericalArm> spherical;
+};
+ClosedLayout read_closed_layout(const Chain& chain);
 
 // Slots of the 8 UR solutions: shoulder (0 left, 1 right) * 4 + elbow (0 up, 1 down) * 2 + wrist
 // (0 no flip, 1 flip). "shoulder left": the wrist centre (origin of frame 5) on the -x side of
