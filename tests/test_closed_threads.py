@@ -57,27 +57,33 @@ def fast_switching():
     sys.setswitchinterval(before)
 
 
-def test_closed_forms_from_eight_threads_match_the_calls_made_alone(fast_switching):
-    rng = np.random.default_rng(7)
-    calls = [_calls(rng, 3000) for _ in range(8)]
-    alone = [[_answer(c()) for c in thread_calls] for thread_calls in calls]
-    got = [None] * 8
-    errors = []
-    start = threading.Barrier(8)
+def _together(work, count=8):
+    """work(i) in ``count`` threads started at once (a barrier) -> their answers, in order; fails
+    with each thread's exception."""
+    got, errors = [None] * count, []
+    start = threading.Barrier(count)
 
-    def work(i):
+    def run(i):
         try:
             start.wait()
-            got[i] = [_answer(c()) for c in calls[i]]
+            got[i] = work(i)
         except Exception as exc:  # noqa: BLE001 - reported below, with the thread
             errors.append((i, repr(exc)))
 
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(8)]
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(count)]
     for t in threads:
         t.start()
     for t in threads:
         t.join()
     assert not errors, errors
+    return got
+
+
+def test_closed_forms_from_eight_threads_match_the_calls_made_alone(fast_switching):
+    rng = np.random.default_rng(7)
+    calls = [_calls(rng, 3000) for _ in range(8)]
+    alone = [[_answer(c()) for c in thread_calls] for thread_calls in calls]
+    got = _together(lambda i: [_answer(c()) for c in calls[i]])
     for i in range(8):
         wrong = [j for j, (a, b) in enumerate(zip(got[i], alone[i])) if a != b]
         assert not wrong, f"thread {i}: {len(wrong)} of {len(alone[i])} answers differ from the call alone"
@@ -92,23 +98,12 @@ def test_threads_making_the_first_calls_on_fresh_chains_agree_with_a_chain_of_th
     alone = [[_answer(rk.closed.ur(T, _chain_of(t))) for T in P] for t, P in zip(tables, poses)]
     for _ in range(20):
         shared = [_chain_of(t) for t in tables]
-        got, errors = [None] * 8, []
-        start = threading.Barrier(8)
 
-        def work(i, shared=shared, got=got, errors=errors, start=start):
+        def work(i, shared=shared):
             k = i % len(tables)
-            try:
-                start.wait()
-                solver = rk.closed.ClosedSolver(shared[k]) if i % 2 else None
-                got[i] = [_answer(solver.solve(T) if solver else rk.closed.ur(T, shared[k])) for T in poses[k]]
-            except Exception as exc:  # noqa: BLE001 - reported below, with the thread
-                errors.append((i, repr(exc)))
+            solver = rk.closed.ClosedSolver(shared[k]) if i % 2 else None
+            return [_answer(solver.solve(T) if solver else rk.closed.ur(T, shared[k])) for T in poses[k]]
 
-        threads = [threading.Thread(target=work, args=(i,)) for i in range(8)]
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
-        assert not errors, errors
+        got = _together(work)
         for i in range(8):
             assert got[i] == alone[i % len(tables)], f"thread {i}: answers differ from a chain of its own"
