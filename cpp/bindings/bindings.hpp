@@ -3,6 +3,9 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+#include <utility>
+
 namespace robokin::bind {
 void bind_errors(pybind11::module_& m);  // first: translators for the core's and KDL's exceptions
 void bind_chain(pybind11::module_& m);  // the Chain class, in parts (chain_parts.hpp)
@@ -19,4 +22,10 @@ void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
 void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
 void bind_postures(pybind11::module_& m);  // track_postures' dynamic programme
+
+// Text for people (repr, str, tables) is written in Python: robokin._printing.function(args...).
+template <class... A>
+std::string printed(const char* function, A&&... args) {
+  return pybind11::module_::import("robokin._printing").attr(function)(std::forward<A>(args)...).template cast<std::string>();
+}
 }  // namespace robokin::bind

@@ -1,5 +1,5 @@
 // Chain pickling and copies (a versioned state tuple rebuilt bit for bit), == on the kinematics,
-// hash, repr, and the table str() shows (added to the class registered by chain.cpp).
+// hash, and repr and the table str() shows (written in Python) (added to the class registered by chain.cpp).
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_parts.hpp"
@@ -113,42 +113,6 @@ Chain chain_from_state(const py::tuple& t) {
   fail("Chain state: unknown layout '" + kind + "'");
 }
 
-std::string number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
-
-// A chain's own names (a URDF chain's): base and tip links, the joints (a long list elided).
-std::string names_repr(const Chain& c) {
-  constexpr size_t kHead = 8, kTail = 2;
-  const std::vector<std::string> links = c.link_names(), joints = c.joint_names();
-  auto quoted = [](const std::string& name) { return py::repr(py::str(name)).cast<std::string>(); };
-  std::string s = ", base=" + quoted(links.front()) + ", tip=" + quoted(links.back()) + ", joint_names=(";
-  for (size_t i = 0; i < joints.size(); ++i) {
-    if (joints.size() > kHead + kTail + 1 && i >= kHead && i + kTail < joints.size()) {
-      if (i == kHead) s += "..., ";
-      continue;
-    }
-    s += quoted(joints[i]) + (i + 1 < joints.size() ? ", " : joints.size() == 1 ? "," : "");
-  }
-  return s + ")";
-}
-
-std::string chain_repr(const Chain& c) {
-  std::string joints;
-  for (int i = 0; i < c.dof(); ++i) joints += c.prismatic(i) ? 'P' : 'R';
-  std::string s = "Chain(dof=" + std::to_string(c.dof()) + ", joints='" + joints + "'";
-  if (c.named()) s += names_repr(c);
-  if (const DHTable* dh = c.dh()) {
-    s += std::string(", ") + (dh->modified ? "modified " : "") + "dh=[";
-    for (size_t i = 0; i < dh->rows.size(); ++i) {
-      const DHRow& r = dh->rows[i];
-      s += std::string(i ? ",\n    " : "\n    ") + "(" + number(r.a) + ", " + number(r.alpha) + ", " + number(r.d) +
-           ", " + number(r.theta) + ", '" + (r.prismatic ? "P" : "R") + "')";
-    }
-    s += "]";
-    if (!dh->tool.isIdentity(0.0)) s += ", tool";
-  }
-  return s + ")";
-}
-
 }  // namespace
 
 void def_chain_value(py::class_<Chain>& cls) {
@@ -164,11 +128,9 @@ void def_chain_value(py::class_<Chain>& cls) {
       "__eq__", [](const Chain& a, const Chain& b) { return a.same_kinematics(b); }, py::is_operator(),
       "Same kinematics: joint types, limits and constant frames equal bit for bit (however built).");
   cls.def("__hash__", [](const Chain& c) { return c.kinematics_hash(); });
-  cls.def("__repr__", &chain_repr);
-  // Text for people is written in Python (robokin._printing), from the state above.
-  const auto table = [](py::handle self) {
-    return py::module_::import("robokin._printing").attr("table")(self).cast<std::string>();
-  };
+  // Text for people is written in Python, from the state above.
+  cls.def("__repr__", [](py::handle self) { return printed("chain_repr", self); });
+  const auto table = [](py::handle self) { return printed("table", self); };
   cls.def("table", table,
           "The kinematic table as text, as print(chain) shows it: a DH chain's rows (a, alpha, d, theta, joint\n"
           "type, lower and upper limits; standard or modified said), any other chain's segments (joint name,\n"

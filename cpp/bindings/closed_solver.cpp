@@ -140,11 +140,7 @@ void bind_solver_class(py::module_& m) {
             return py::make_tuple(kStateVersion, s.owner, s.limits(), s.solver.options(), s.locked());
           },
           &solver_from_state))
-      .def("__repr__", [](const BoundSolver& s) {
-        return "ClosedSolver(" + py::repr(s.owner).cast<std::string>() + ", family='" + s.solver.family() + "'" +
-               (s.limits().is_none() ? ", limits=None" : "") +
-               (s.solver.held() ? ", locked=" + py::repr(s.locked()).cast<std::string>() : "") + ")";
-      });
+      .def("__repr__", [](py::handle self) { return printed("closed_solver_repr", self); });
 }
 
 }  // namespace

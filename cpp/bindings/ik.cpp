@@ -144,21 +144,10 @@ void bind_ik(py::module_& m) {
   OptionsClass<IkOptions>(m, "IKOptions", "The options of a numerical IK solve (robokin.ik's keywords); None: the default rule.")
       .fields();
   ResultClass<IkResult>(m, "IKResult", "What one numerical IK solve found.", false)
-      .value("success", &IkResult::success,
-             "True when FK of q meets tol_p and tol_r (checked after wrapping and clamping).")
-      .value("iterations", &IkResult::iterations, "Iterations over every attempt.")
-      .value("attempts", &IkResult::attempts, "1 + the random restarts used.")
-      .value("error_p", &IkResult::error_p, "Position error at q (m).")
-      .value("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.")
-      .array("q", &IkResult::q, "(dof,) joints: the solution, or the best point found (within the limits).")
+      .fields()
       .done_with([](py::class_<IkResult>& c) { c.def("__bool__", [](const IkResult& r) { return r.success; }); });
   ResultClass<IkBatchResult>(m, "IKBatchResult", "What ik_batch found, one row per target (read-only arrays).", true)
-      .array("q", &IkBatchResult::q, "(N, dof) joints.")
-      .array("success", &IkBatchResult::success, "(N,) verified successes.")
-      .array("iterations", &IkBatchResult::iterations, "(N,) iterations.")
-      .array("attempts", &IkBatchResult::attempts, "(N,) attempts (1 + restarts used).")
-      .array("error_p", &IkBatchResult::error_p, "(N,) position errors (m).")
-      .array("error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).")
+      .fields()
       .done();
   // The defaults as a solve resolves them (restarts and timeout None: until success within the
   // default time budget, IkOptions).
@@ -201,10 +190,7 @@ void bind_ik(py::module_& m) {
             return py::make_tuple(kStateVersion, b.owner, b.options, b.seeded, b.seed, b.calls);
           },
           &solver_from_state))
-      .def("__repr__", [](py::handle self) {
-        const std::string options = py::repr(self.attr("options")).cast<std::string>();
-        return "IKSolver" + options.substr(options.find('('));
-      });
+      .def("__repr__", [](py::handle self) { return printed("ik_solver_repr", self); });
 }
 
 }  // namespace robokin::bind

@@ -13,7 +13,6 @@
 #include <mutex>
 #include <set>
 
-#include <cstdio>
 #include <vector>
 
 namespace robokin::bind {
@@ -111,25 +110,6 @@ ClosedFormSolutions only_within_limits(const ClosedFormSolutions& s) {
   return out;
 }
 
-std::string repr(const ClosedFormSolutions& s) {
-  int outside = 0;
-  for (int k = 0; k < s.count(); ++k) outside += s.within_limits[k] ? 0 : 1;
-  std::string out = "IKSolutions(" + std::to_string(s.count()) + " solution" + (s.count() == 1 ? "" : "s");
-  if (outside) out += ", " + std::to_string(outside) + " outside the limits";
-  if (s.singular) out += ", singular";
-  out += s.count() ? ":" : ")";
-  for (int k = 0; k < s.count(); ++k) {
-    out += "\n  " + std::string(s.postures[k]) + (s.within_limits[k] ? "" : " (outside the limits)") + ": [";
-    for (int i = 0; i < s.dof; ++i) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%s%.6g", i ? ", " : "", s.row(k)[i]);
-      out += buf;
-    }
-    out += "]";
-  }
-  return s.count() ? out + "\n)" : out;
-}
-
 // IKSolutions' pickled state: (version, dof, q (k, dof), postures, singular, within_limits).
 auto solutions_state(const ClosedFormSolutions& s) {
   py::list postures, within;
@@ -196,7 +176,7 @@ void bind_solutions(py::module_& m) {
           },
           py::arg("q"),
           "Index of the solution within the limits nearest to q (Euclidean in joint space); None when none is.")
-      .def("__repr__", &repr);
+      .def("__repr__", [](py::handle self) { return printed("solutions_repr", self); });
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "arrays.hpp"
+#include "bindings.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -126,26 +127,6 @@ std::string kwargs_doc(const std::string& head, const std::string& text) {
   return s + ")\n\n" + text + "\n\n" + options_doc<T>();
 }
 
-// `ClassName(a=1, b=array(...))` from the named attributes of obj; arrays of more than 8 numbers
-// are summarised by shape and dtype.
-inline std::string repr_fields(py::handle obj, const std::vector<std::string>& names) {
-  std::string s = py::str(py::type::of(obj).attr("__name__")).cast<std::string>() + "(";
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    py::object v = obj.attr(names[i].c_str());
-    std::string text;
-    if (py::isinstance<py::array>(v) && py::reinterpret_borrow<py::array>(v).size() > 8) {
-      const py::array a = py::reinterpret_borrow<py::array>(v);
-      std::string shape = "(";
-      for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
-      text = "<array " + shape + (a.ndim() == 1 ? ",)" : ")") + " " + py::str(a.dtype()).cast<std::string>() + ">";
-    } else {
-      text = py::repr(v).cast<std::string>();
-    }
-    s += (i ? ", " : "") + names[i] + "=" + text;
-  }
-  return s + ")";
-}
-
 // A read-only numpy view of a result struct's buffer, kept alive by the result object (no copy).
 template <class V>
 py::array result_view(py::handle owner, const V* data, std::vector<py::ssize_t> shape) {
@@ -180,7 +161,7 @@ class OptionsClass {
   OptionsClass(py::module_& m, const char* name, const char* doc) : cls_(m, name, doc) {
     cls_.def(py::init([](const py::kwargs& kwargs) { return from_kwargs(kwargs); }),
              "Every option as a keyword argument; the ones not given keep their defaults.");
-    cls_.def("__repr__", [](py::handle self) { return repr_fields(self, field_names<T>()); });
+    cls_.def("__repr__", [](py::handle self) { return printed("fields_repr", self, field_names<T>()); });
     if constexpr (HasValidate<T>::value)
       cls_.def("validate", &T::validate, "Raises ValueError naming an option out of range.");
     cls_.def("__eq__", [](py::handle self, py::handle other) {

@@ -45,18 +45,8 @@ TrackResult track(const Chain& chain, ArrayLike points, ArrayLike q0_obj, TaskNa
 void bind_reach(py::module_& m) {
   OptionsClass<ReachOptions>(m, "ReachOptions", "The options of one Reach (the RPR study, Algorithm 1); the seed's values by default.")
       .fields();
-  ResultClass<ReachResult>(m, "ReachResult", "What one Reach call did.", false)
-      .value("converged", &ReachResult::converged, "True when the task error is below tol.")
-      .value("iterations", &ReachResult::iterations, "Iterations run.")
-      .value("error", &ReachResult::error, "Norm of the task error at q.")
-      .array("q", &ReachResult::q, "Joints at the end.")
-      .done();
-  ResultClass<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.", true)
-      .array("q", &TrackResult::q, "(K, dof) joints after each point.")
-      .array("error", &TrackResult::error, "(K,) task error after each point.")
-      .array("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.")
-      .array("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.")
-      .done();
+  ResultClass<ReachResult>(m, "ReachResult", "What one Reach call did.", false).fields().done();
+  ResultClass<TrackResult>(m, "TrackResult", "What tracking a path did, one row per path point.", true).fields().done();
   m.def("reach", &reach, py::arg("chain"), py::arg("target"), py::arg("q"), py::arg("task") = py::none(), py::kw_only(),
         py::arg("nullspace") = py::none(),
         "One Reach call (the RPR study, Algorithm 1); options as keywords (ReachOptions). Use robokin.reach, which also warns.");

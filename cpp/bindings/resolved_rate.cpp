@@ -45,15 +45,7 @@ void bind_resolved_rate(py::module_& m) {
   OptionsClass<RateOptions>(m, "RateOptions", "The options of resolved-rate control (robokin.resolved_rate's keywords).")
       .fields();
   OptionsClass<ServoOptions>(m, "ServoOptions", "The options of the servo loop (robokin.servo's keywords).").fields();
-  ResultClass<ServoResult>(m, "ServoResult", "What the servo loop did, one row per control step.", true)
-      .array("t", &ServoResult::t, "(K,) step times k dt.")
-      .array("q", &ServoResult::q, "(K, dof) joints at each step (before its velocity is applied).")
-      .array("qd", &ServoResult::qd, "(K, dof) joint velocities commanded at each step.")
-      .array("error_p", &ServoResult::error_p, "(K,) position error (m): the norm of the task's translational rows.")
-      .array("error_r", &ServoResult::error_r,
-             "(K,) orientation error (rad): the rotation angle to the target (pose), |phi error| (xyphi), 0 without "
-             "orientation.")
-      .done();
+  ResultClass<ServoResult>(m, "ServoResult", "What the servo loop did, one row per control step.", true).fields().done();
   m.def("resolved_rate", &resolved_rate, py::arg("chain"), py::arg("q"), py::arg("twist"), py::kw_only(),
         py::arg("nullspace") = py::none(),
         "Joint velocities for a task twist; options as keywords (RateOptions). Use robokin.resolved_rate.");

@@ -1,4 +1,5 @@
-// Result structs of the core, bound mechanically: each field once (a scalar, string or bound class
+// Result structs of the core, bound mechanically: each field once, from the struct's own list
+// (`T::fields` in its header: name, member, doc) or one by one (a scalar, string or bound class
 // read-only, an Eigen member as a read-only numpy array, or as Python computes it from the struct),
 // and from that list a generic __repr__, a versioned pickle (kStateVersion, field values in order),
 // a __str__ for people and, for a batch result, __len__.
@@ -108,14 +109,23 @@ class ResultClass {
     return *this;
   }
 
+  // Every field the struct lists in its header (`T::fields`: name, member, doc), in that order: an
+  // Eigen member as array(), any other as value().
+  ResultClass& fields() {
+    T::fields([this](const char* name, auto member, const char* doc) {
+      using V = std::decay_t<decltype(std::declval<const T&>().*member)>;
+      if constexpr (std::is_base_of_v<Eigen::EigenBase<V>, V>) array(name, member, doc);
+      else value(name, member, doc);
+    });
+    return *this;
+  }
+
   // After the fields: __repr__, pickle, and __len__ of a batch.
   void done() {
     const std::vector<std::string> names = names_;
-    cls_.def("__repr__", [names](py::handle self) { return repr_fields(self, names); });
-    // print(result): a field per line, long arrays by shape and range (written in robokin._printing).
-    cls_.def("__str__", [names](py::handle self) {
-      return py::module_::import("robokin._printing").attr("summary")(self, names).cast<std::string>();
-    });
+    cls_.def("__repr__", [names](py::handle self) { return printed("fields_repr", self, names); });
+    // print(result): a field per line, long arrays by shape and range.
+    cls_.def("__str__", [names](py::handle self) { return printed("summary", self, names); });
     cls_.def(py::pickle(
         [names](py::handle self) {
           py::tuple state(names.size() + 1);

@@ -20,9 +20,6 @@ namespace {
 
 using Elbows = Eigen::Matrix<double, 3, 2>;
 
-// Python's repr of a float: the shortest text that reads back as the same number.
-std::string exact_number(double v) { return py::repr(py::float_(v)).cast<std::string>(); }
-
 py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj) {
   const Mode mode = as_mode(mode_obj);
   const Array poses = rows_arg(poses_obj, "poses", {3}, "N");
@@ -93,28 +90,13 @@ py::tuple jacobians(const RRR3& r, ArrayLike pose_obj, ModeLike mode_obj) {
 // The answers of ik_newton, fk and singularity.
 void bind_kinematics_results(py::module_& m) {
   ResultClass<RRR3Newton>(m, "RRR3Newton", "Answer of RRR3.ik_newton; unpacks as (alpha, beta).", false)
-      .array("alpha", &RRR3Newton::alpha, "Actuated angles (3,) (rad).")
-      .array("beta", &RRR3Newton::beta, "Elbow angles (3,) (rad), link 1 to link 2.")
-      .value("converged", &RRR3Newton::converged, "The residual fell below tol.")
-      .value("iterations", &RRR3Newton::iterations, "Newton steps taken.")
-      .value("error", &RRR3Newton::error, "Largest loop-closure residual (m).")
+      .fields()
       .done_with([](py::class_<RRR3Newton>& cls) {
         cls.def("__iter__", [](py::handle self) { return py::iter(py::make_tuple(self.attr("alpha"), self.attr("beta"))); });
       });
-  ResultClass<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.", false)
-      .array("pose", &RRR3Fk::pose, "The pose (x, y, phi) found.")
-      .value("converged", &RRR3Fk::converged, "The residual fell below tol.")
-      .value("iterations", &RRR3Fk::iterations, "Newton steps taken.")
-      .value("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).")
-      .done();
+  ResultClass<RRR3Fk>(m, "RRR3Fk", "Answer of RRR3.fk.", false).fields().done();
   ResultClass<RRR3Singularity>(m, "RRR3Singularity", "Answer of RRR3.singularity.", false)
-      .value("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.")
-      .value("det_a", &RRR3Singularity::det_a, "det A.")
-      .value("det_b", &RRR3Singularity::det_b, "det B.")
-      .value("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.")
-      .value("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.")
-      .value("distance", &RRR3Singularity::distance,
-             "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.")
+      .fields()
       .value_as("leg", [](const RRR3Singularity& s) { return s.leg < 0 ? std::nullopt : std::optional<int>(s.leg); },
                 [](RRR3Singularity& s, py::handle v) { s.leg = v.is_none() ? -1 : v.cast<int>(); },
                 "The stretched or folded leg of a serial singularity, else None.")
@@ -223,10 +205,7 @@ void def_value(py::class_<RRR3>& cls) {
       .def("__hash__", [](const RRR3& r) {
         return py::hash(py::make_tuple(r.base_radius(), r.platform_radius(), r.l1(), r.l2()));
       })
-      .def("__repr__", [](const RRR3& r) {
-        return "RRR3(base_radius=" + exact_number(r.base_radius()) + ", platform_radius=" +
-               exact_number(r.platform_radius()) + ", l1=" + exact_number(r.l1()) + ", l2=" + exact_number(r.l2()) + ")";
-      });
+      .def("__repr__", [](py::handle self) { return printed("rrr3_repr", self); });
 }
 
 

@@ -92,16 +92,7 @@ py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) 
 // The answers of plan, connect and plan_loop.
 void bind_plan_results(py::module_& m) {
   ResultClass<RRR3Plan>(m, "RRR3Plan", "Answer of RRR3.plan and RRR3.connect: the poses to follow and what they give.", false)
-      .array("poses", &RRR3Plan::poses, "(K, 3) poses (x, y, phi).")
-      .array("alpha", &RRR3Plan::alpha, "(K, 3) actuated angles, NaN rows where unreachable (feasible is then False).")
-      .array("det_a_norm", &RRR3Plan::det_a_norm, "det A / platform_radius along the path, NaN where unreachable.")
-      .array("det_b_norm", &RRR3Plan::det_b_norm, "det B / l1^3 along the path, NaN where unreachable.")
-      .array("distance", &RRR3Plan::distance,
-             "Distance to parallel singularities (inverse condition number of A) along the path, NaN where\n"
-             "unreachable.")
-      .value("sign", &RRR3Plan::sign, "The sign of det A kept along the path.")
-      .value("feasible", &RRR3Plan::feasible,
-             "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.")
+      .fields()
       .done();
   ResultClass<RRR3Loop>(m, "RRR3Loop", "Answer of RRR3.plan_loop: the closed plan and the nominal orientation it is about.", false)
       .value("plan", &RRR3Loop::plan, "The closed RRR3Plan about nominal (no poses when none was found).")

@@ -11,7 +11,6 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
-#include <unordered_map>
 #include <vector>
 
 namespace robokin::bind {
@@ -91,35 +90,6 @@ UrdfTree tree(UrdfSource path_or_string) {
   return t;
 }
 
-std::string quoted(const std::string& s) { return py::repr(py::str(s)).cast<std::string>(); }
-
-std::string joint_repr(const UrdfJoint& j) {
-  return "UrdfJoint(" + quoted(j.name) + ", " + quoted(j.type) + ", parent=" + quoted(j.parent) +
-         ", child=" + quoted(j.child) + ")";
-}
-
-// One line for the tree, then one per joint in depth-first order, indented by depth (both bounded:
-// a URDF may hold thousands of joints).
-std::string tree_repr(const UrdfTree& t) {
-  constexpr size_t kLines = 200, kIndent = 16;
-  std::string tips;
-  for (const std::string& tip : t.tips) tips += (tips.empty() ? "" : ", ") + quoted(tip);
-  std::string s = "UrdfTree(name=" + quoted(t.name) + ", root=" + quoted(t.root) + ", base=" + quoted(t.base) +
-                  ", tip=" + (t.tip.empty() ? "None" : quoted(t.tip));
-  if (t.tip.empty() && !t.tips.empty()) s += ", tips=[" + tips + "]";
-  s += ", " + std::to_string(t.links.size()) + " links, " + std::to_string(t.joints.size()) + " joints)";
-  std::unordered_map<std::string, size_t> depth{{t.root, 0}};
-  for (size_t i = 0; i < std::min(t.joints.size(), kLines); ++i) {
-    const UrdfJoint& j = t.joints[i];
-    const size_t d = depth[j.parent] + 1;
-    depth[j.child] = d;
-    s += "\n" + std::string(2 * std::min(d, kIndent), ' ') + j.parent + " -> " + j.child + " (" + j.name + ", " +
-         j.type + ")";
-  }
-  if (t.joints.size() > kLines) s += "\n  ... and " + std::to_string(t.joints.size() - kLines) + " more joints";
-  return s;
-}
-
 }  // namespace
 
 void bind_urdf(py::module_& m) {
@@ -129,7 +99,7 @@ void bind_urdf(py::module_& m) {
                     "'revolute', 'continuous', 'prismatic', 'fixed', 'floating' or 'planar'.")
       .def_readonly("parent", &UrdfJoint::parent, "The parent link's name.")
       .def_readonly("child", &UrdfJoint::child, "The child link's name.")
-      .def("__repr__", &joint_repr);
+      .def("__repr__", [](py::handle self) { return printed("urdf_joint_repr", self); });
   py::class_<UrdfTree>(m, "UrdfTree",
                        "The links and joints of a URDF and the chain Chain.from_urdf builds by default\n"
                        "(robokin.urdf_tree).")
@@ -144,7 +114,7 @@ void bind_urdf(py::module_& m) {
           "The default tip, or None when several branches tie (see tips) or no joint moves.")
       .def_readonly("tips", &UrdfTree::tips, "The end of each longest branch below the root, sorted by name.")
       .def_readonly("movable", &UrdfTree::movable, "Movable joints from the root to each of tips.")
-      .def("__repr__", &tree_repr);
+      .def("__repr__", [](py::handle self) { return printed("urdf_tree_repr", self); });
   m.def("urdf_tree", &tree, py::arg("path_or_string"),
         "The links and joints of a URDF file or string and the default base and tip of Chain.from_urdf.\n\n"
         "path_or_string: as Chain.from_urdf takes it. Returns a UrdfTree: links depth-first from the root,\n"

@@ -675,7 +675,8 @@ class RRR3Plan:
     @property
     def feasible(self) -> bool:
         """
-        Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A.
+        Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A,
+        orientation steps <= max_step (for a closed path the step back to the first pose too).
         """
     @property
     def poses(self) -> numpy.typing.NDArray[numpy.float64]:

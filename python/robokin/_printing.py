@@ -1,5 +1,6 @@
-"""Text for people: a chain's kinematic table (``chain.table()``, ``print(chain)``) and a result's
-summary (``print(result)``). The bindings call these; ``repr`` stays the short, exact form.
+"""Text for people: a chain's kinematic table (``chain.table()``, ``print(chain)``), a result's
+summary (``print(result)``) and the ``repr`` of the core's classes (the short, exact form: numbers
+as Python writes them). The bindings call these.
 
 A chain built from a DH table shows that table (a, alpha, d, theta, the joint's type and limits,
 the convention said); any other chain (a URDF file, joints and frames) shows one row per segment:
@@ -154,3 +155,111 @@ def summary(result, names: Sequence[str]) -> str:
     width = max((len(n) for n in names), default=0)
     lines += [f"  {n.ljust(width)}  {_value_text(getattr(result, n))}" for n in names]
     return "\n".join(lines)
+
+
+# ---- repr: the short, exact form ----------------------------------------------------------------
+
+# A chain's repr lists this many joint names first and this many last (a long list is elided).
+_HEAD_NAMES, _TAIL_NAMES = 8, 2
+# A URDF tree's repr shows this many joints, each indented by its depth up to this many levels.
+_TREE_LINES, _TREE_INDENT = 200, 16
+
+
+def fields_repr(obj, names: Sequence[str]) -> str:
+    """``ClassName(a=1, b=...)`` from the named attributes of obj (options, results); arrays of more
+    than 8 numbers by shape and dtype."""
+    parts = []
+    for name in names:
+        value = getattr(obj, name)
+        if isinstance(value, np.ndarray) and value.size > _SHOWN:
+            shape = "(" + ", ".join(str(s) for s in value.shape) + (",)" if value.ndim == 1 else ")")
+            text = f"<array {shape} {value.dtype}>"
+        else:
+            text = repr(value)
+        parts.append(f"{name}={text}")
+    return f"{type(obj).__name__}({', '.join(parts)})"
+
+
+def _named(state) -> bool:
+    """Whether some name came with the chain (a URDF chain's): its base link, a segment or a joint."""
+    if state[2] != "segments":
+        return False
+    names = [state[6] if len(state) > 6 else ""] + [n for record in state[3] for n in record[:2]]
+    return any(n not in ("", "NoName") for n in names)
+
+
+def chain_repr(chain) -> str:
+    """``Chain(dof=6, joints='RRRRRR', ...)``: a URDF chain's base, tip and joint names; a DH chain's
+    rows as written (and whether a tool follows them)."""
+    state = chain.__getstate__()
+    text = f"Chain(dof={chain.dof}, joints={chain.joint_types!r}"
+    if _named(state):
+        links, joints = chain.link_names, chain.joint_names
+        if len(joints) > _HEAD_NAMES + _TAIL_NAMES + 1:
+            shown = [repr(n) for n in joints[:_HEAD_NAMES]] + ["..."] + [repr(n) for n in joints[-_TAIL_NAMES:]]
+        else:
+            shown = [repr(n) for n in joints]
+        names = ", ".join(shown) + ("," if len(joints) == 1 else "")
+        text += f", base={links[0]!r}, tip={links[-1]!r}, joint_names=({names})"
+    if state[2] == "dh":
+        _, _, _, rows, modified, tool, _, _ = state
+        listed = ",\n    ".join(f"({float(a)!r}, {float(alpha)!r}, {float(d)!r}, {float(theta)!r}, {kind!r})"
+                                for a, alpha, d, theta, kind in rows)
+        text += f", {'modified ' if modified else ''}dh=[\n    {listed}]"
+        if not np.array_equal(np.array(tool, dtype=float).reshape(4, 4), np.eye(4)):
+            text += ", tool"
+    return text + ")"
+
+
+def urdf_joint_repr(joint) -> str:
+    return f"UrdfJoint({joint.name!r}, {joint.type!r}, parent={joint.parent!r}, child={joint.child!r})"
+
+
+def urdf_tree_repr(tree) -> str:
+    """One line for the tree, then one per joint in depth-first order, indented by depth (both
+    bounded: a URDF may hold thousands of joints)."""
+    text = (f"UrdfTree(name={tree.name!r}, root={tree.root!r}, base={tree.base!r}, tip={tree.tip!r}")
+    if tree.tip is None and tree.tips:
+        text += f", tips=[{', '.join(repr(t) for t in tree.tips)}]"
+    text += f", {len(tree.links)} links, {len(tree.joints)} joints)"
+    depth = {tree.root: 0}
+    lines = [text]
+    for j in tree.joints[:_TREE_LINES]:
+        depth[j.child] = depth.get(j.parent, 0) + 1
+        lines.append("  " * min(depth[j.child], _TREE_INDENT) + f"{j.parent} -> {j.child} ({j.name}, {j.type})")
+    if len(tree.joints) > _TREE_LINES:
+        lines.append(f"  ... and {len(tree.joints) - _TREE_LINES} more joints")
+    return "\n".join(lines)
+
+
+def solutions_repr(solutions) -> str:
+    """``IKSolutions(k solutions, ...)`` and one line per solution: its posture and joints."""
+    within = solutions.within_limits
+    count, outside = len(solutions), int(np.count_nonzero(~within))
+    text = f"IKSolutions({count} solution{'' if count == 1 else 's'}"
+    text += f", {outside} outside the limits" if outside else ""
+    text += ", singular" if solutions.singular else ""
+    if not count:
+        return text + ")"
+    lines = [text + ":"]
+    for posture, ok, q in zip(solutions.postures, within, solutions.q):
+        values = ", ".join("%.6g" % v for v in q)
+        lines.append(f"  {posture}{'' if ok else ' (outside the limits)'}: [{values}]")
+    return "\n".join(lines) + "\n)"
+
+
+def rrr3_repr(robot) -> str:
+    return (f"RRR3(base_radius={robot.base_radius!r}, platform_radius={robot.platform_radius!r}, "
+            f"l1={robot.l1!r}, l2={robot.l2!r})")
+
+
+def closed_solver_repr(solver) -> str:
+    text = f"ClosedSolver({solver.chain!r}, family={solver.family!r}"
+    text += ", limits=None" if solver.limits is None else ""
+    text += f", locked={solver.locked!r}" if solver.locked is not None else ""
+    return text + ")"
+
+
+def ik_solver_repr(solver) -> str:
+    """``IKSolver(method=..., ...)``: the solver's options."""
+    return "IKSolver" + fields_repr(solver.options, type(solver.options).fields)[len("IKOptions"):]

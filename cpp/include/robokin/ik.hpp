@@ -117,11 +117,21 @@ struct IkOptions {
 
 struct IkResult {
   Vector q;
-  bool success = false;   // verified: FK of q (wrapped, within limits) meets tol_p and tol_r
-  int iterations = 0;     // over every attempt (saturates at INT_MAX)
-  int attempts = 0;       // 1 + restarts used
-  double error_p = 0.0;   // position error at q
-  double error_r = 0.0;   // orientation error at q (0 when the task has none)
+  bool success = false;
+  int iterations = 0;  // saturates at INT_MAX
+  int attempts = 0;
+  double error_p = 0.0, error_r = 0.0;
+
+  // The fields Python reads, with their docs, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("success", &IkResult::success, "True when FK of q meets tol_p and tol_r (checked after wrapping and clamping).");
+    field("iterations", &IkResult::iterations, "Iterations over every attempt.");
+    field("attempts", &IkResult::attempts, "1 + the random restarts used.");
+    field("error_p", &IkResult::error_p, "Position error at q (m).");
+    field("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.");
+    field("q", &IkResult::q, "(dof,) joints: the solution, or the best point found (within the limits).");
+  }
 };
 
 // sum_j a_j dJ/dq_j for the 6 x n geometric Jacobian J6 of chain at some q (Halley's H a).
@@ -189,6 +199,16 @@ struct IkBatchResult {
   Eigen::Array<bool, Eigen::Dynamic, 1> success;
   Eigen::ArrayXi iterations, attempts;
   Vector error_p, error_r;
+
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("q", &IkBatchResult::q, "(N, dof) joints.");
+    field("success", &IkBatchResult::success, "(N,) verified successes.");
+    field("iterations", &IkBatchResult::iterations, "(N,) iterations.");
+    field("attempts", &IkBatchResult::attempts, "(N,) attempts (1 + restarts used).");
+    field("error_p", &IkBatchResult::error_p, "(N,) position errors (m).");
+    field("error_r", &IkBatchResult::error_r, "(N,) orientation errors (rad).");
+  }
 };
 
 // Solves each target; `q0` holds one start per target (stride dof) or one for all (stride 0).

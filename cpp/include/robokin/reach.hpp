@@ -47,15 +47,32 @@ struct ReachResult {
   Vector q;
   bool converged = false;
   int iterations = 0;
-  double error = 0.0;  // norm of the task error at q
+  double error = 0.0;
+
+  // The fields Python reads, with their docs, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("converged", &ReachResult::converged, "True when the task error is below tol.");
+    field("iterations", &ReachResult::iterations, "Iterations run.");
+    field("error", &ReachResult::error, "Norm of the task error at q.");
+    field("q", &ReachResult::q, "Joints at the end.");
+  }
 };
 
 // What tracking a path did, one row per path point.
 struct TrackResult {
   RowMatrix q;  // count x dof
-  Vector error;                                                           // task error per point
-  Eigen::Array<bool, Eigen::Dynamic, 1> converged;                        // error < tol
-  Eigen::ArrayXi iterations;                                              // Reach iterations per point
+  Vector error;
+  Eigen::Array<bool, Eigen::Dynamic, 1> converged;
+  Eigen::ArrayXi iterations;
+
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("q", &TrackResult::q, "(K, dof) joints after each point.");
+    field("error", &TrackResult::error, "(K,) task error after each point.");
+    field("converged", &TrackResult::converged, "(K,) True where the point was reached within tol.");
+    field("iterations", &TrackResult::iterations, "(K,) Reach iterations per point.");
+  }
 };
 
 // The damping and null-space checks of ReachOptions::validate, shared with resolved-rate control.

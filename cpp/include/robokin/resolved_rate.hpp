@@ -48,11 +48,21 @@ struct ServoOptions : RateOptions {
 
 // What the servo loop did, one row per control step.
 struct ServoResult {
-  Vector t;         // step times k dt
-  RowMatrix q;      // count x dof: the joints at each step, before its velocity is applied
-  RowMatrix qd;     // count x dof: the joint velocities commanded at each step
-  Vector error_p;   // position error: norm of the task's translational rows
-  Vector error_r;   // orientation error: rotation angle (pose), |phi error| (xyphi), 0 without orientation
+  Vector t;
+  RowMatrix q, qd;  // count x dof
+  Vector error_p, error_r;
+
+  // The fields Python reads, with their docs, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("t", &ServoResult::t, "(K,) step times k dt.");
+    field("q", &ServoResult::q, "(K, dof) joints at each step (before its velocity is applied).");
+    field("qd", &ServoResult::qd, "(K, dof) joint velocities commanded at each step.");
+    field("error_p", &ServoResult::error_p, "(K,) position error (m): the norm of the task's translational rows.");
+    field("error_r", &ServoResult::error_r,
+          "(K,) orientation error (rad): the rotation angle to the target (pose), |phi error| (xyphi), 0 without "
+          "orientation.");
+  }
 };
 
 class RateController {

@@ -73,14 +73,32 @@ struct RRR3Newton {  // ik_newton's answer
   Eigen::Vector3d alpha, beta;
   bool converged = false;
   int iterations = 0;
-  double error = 0;  // largest loop-closure residual |O_i + l1 u(a) + l2 u(a + b) - B_i| (m)
+  double error = 0;  // largest |O_i + l1 u(a) + l2 u(a + b) - B_i|
+
+  // The fields Python reads, with their docs, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("alpha", &RRR3Newton::alpha, "Actuated angles (3,) (rad).");
+    field("beta", &RRR3Newton::beta, "Elbow angles (3,) (rad), link 1 to link 2.");
+    field("converged", &RRR3Newton::converged, "The residual fell below tol.");
+    field("iterations", &RRR3Newton::iterations, "Newton steps taken.");
+    field("error", &RRR3Newton::error, "Largest loop-closure residual (m).");
+  }
 };
 
 struct RRR3Fk {  // fk's answer
   Pose pose;
   bool converged = false;
   int iterations = 0;
-  double error = 0;  // largest | |A_i B_i| - l2 | (m)
+  double error = 0;
+
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("pose", &RRR3Fk::pose, "The pose (x, y, phi) found.");
+    field("converged", &RRR3Fk::converged, "The residual fell below tol.");
+    field("iterations", &RRR3Fk::iterations, "Newton steps taken.");
+    field("error", &RRR3Fk::error, "Largest | |A_i B_i| - l2 | (m).");
+  }
 };
 
 // The seed's singularity classification. Determinants are also given normalised so that one
@@ -90,9 +108,22 @@ struct RRR3Fk {  // fk's answer
 struct RRR3Singularity {
   std::string kind = "none";  // "none" | "parallel" | "serial"
   double det_a = 0, det_b = 0, det_a_norm = 0, det_b_norm = 0;
-  double distance = 0;  // inverse condition number of A with its third column divided by R_e, in [0, 1]
-  int leg = -1;         // the stretched or folded leg of a serial singularity
-  std::string lines;    // parallel singularity: "parallel" or "concurrent" lines A_i B_i
+  double distance = 0;  // in [0, 1]
+  int leg = -1;         // the stretched or folded leg of a serial singularity; -1: none
+  std::string lines;    // parallel singularity: "parallel" or "concurrent" lines A_i B_i; "": none
+
+  // The fields Python reads as they are, with their docs, in order (leg and lines, None when
+  // there is none, are bound after them).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("kind", &RRR3Singularity::kind, "'none', 'parallel' or 'serial'.");
+    field("det_a", &RRR3Singularity::det_a, "det A.");
+    field("det_b", &RRR3Singularity::det_b, "det B.");
+    field("det_a_norm", &RRR3Singularity::det_a_norm, "det A / platform_radius.");
+    field("det_b_norm", &RRR3Singularity::det_b_norm, "det B / l1^3.");
+    field("distance", &RRR3Singularity::distance,
+          "Inverse condition number of A (third column / platform_radius): 0 at a parallel singularity.");
+  }
 };
 
 class RRR3 {

@@ -39,12 +39,26 @@ struct RRR3PlanOptions {
 };
 
 struct RRR3Plan {
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> poses, alpha;  // NaN alpha where unreachable
-  Eigen::VectorXd det_a_norm, det_b_norm, distance;  // along the path (NaN where unreachable)
-  int sign = 0;           // the sign of det A kept along the path (0 when none could be chosen)
-  bool feasible = false;  // every pose reachable, clear of serial singularities, distance >= margin,
-                          // det A of one sign and orientation steps <= max_step (for a closed
-                          // path the step from the last pose back to the first too)
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> poses, alpha;
+  Eigen::VectorXd det_a_norm, det_b_norm, distance;
+  int sign = 0;  // 0 when none could be chosen
+  bool feasible = false;
+
+  // The fields Python reads, with their docs, in order (the bindings bind exactly these).
+  template <class Visit>
+  static void fields(Visit&& field) {
+    field("poses", &RRR3Plan::poses, "(K, 3) poses (x, y, phi).");
+    field("alpha", &RRR3Plan::alpha, "(K, 3) actuated angles, NaN rows where unreachable (feasible is then False).");
+    field("det_a_norm", &RRR3Plan::det_a_norm, "det A / platform_radius along the path, NaN where unreachable.");
+    field("det_b_norm", &RRR3Plan::det_b_norm, "det B / l1^3 along the path, NaN where unreachable.");
+    field("distance", &RRR3Plan::distance,
+          "Distance to parallel singularities (inverse condition number of A) along the path, NaN where\n"
+          "unreachable.");
+    field("sign", &RRR3Plan::sign, "The sign of det A kept along the path.");
+    field("feasible", &RRR3Plan::feasible,
+          "Every pose reachable, clear of serial singularities, at distance >= margin, one sign of det A,\n"
+          "orientation steps <= max_step (for a closed path the step back to the first pose too).");
+  }
 };
 
 // The pose sequence for count points (count x 2, row-major). With avoidance the orientation
