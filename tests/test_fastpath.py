@@ -279,7 +279,7 @@ def test_results_unpickled_from_unaligned_state_arrays():
 
 
 # Chain.fk, Chain.jacobian and Chain.manipulability are bound without pybind11's dispatcher
-# (cpp/bindings/internals.hpp, fast_calls.cpp): the argument handling Python users expect, written
+# (cpp/bindings/internals.hpp, the table in chain.cpp): the argument handling Python users expect, written
 # out there; ik's checks of its own arguments are here too.
 UR5 = rk.robots.ur5()
 Q5 = np.zeros(6)

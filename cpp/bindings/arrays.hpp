@@ -247,7 +247,7 @@ inline Eigen::Matrix4d as_transform(py::handle obj, const char* name) {
 }
 
 // The version check of a pickled state tuple (version 1, `size` entries): ValueError naming `what`.
-constexpr int kStateVersion = 1;  // of every pickled state but Chain's (its own, in chain_value.cpp)
+constexpr int kStateVersion = 1;  // of every pickled state but Chain's (its own, in chain.cpp)
 inline void check_state(const py::tuple& t, size_t size, const char* what) {
   if (t.size() != size || !py::isinstance<py::int_>(t[0]) || t[0].cast<int>() != kStateVersion)
     fail(std::string(what) + " state: not a state of this robokin (version 1, " + std::to_string(size) + " entries)");

@@ -1,17 +1,26 @@
-// robokin.Chain: serial chains from DH tables or plain segments; FK, Jacobians, frames.
+// robokin.Chain: serial chains from DH tables or plain segments (from_urdf: urdf.cpp); FK,
+// Jacobians, frames, manipulability; joint and link names; pickling, ==, hash, and the text for
+// people (written in Python). fk, jacobian and manipulability are fast methods (internals.hpp),
+// declared in one table here: the Chain methods whose every call is cheap, so that pybind11's
+// dispatcher would be a large part of it. A method is kept there only while its gain over a
+// pybind11 .def of the same function is 10 % or more (benchmarks/README.md says how it was
+// measured).
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "chain_parts.hpp"
 #include "chain_args.hpp"
 #include "progress.hpp"
 
 #include "robokin/chain.hpp"
+#include "robokin/manipulability.hpp"
 #include "robokin/task.hpp"
 
 #include <pybind11/stl.h>
+#include <pybind11/typing.h>
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace robokin::bind {
@@ -104,9 +113,7 @@ FkOutput fk_part_of(py::handle obj) {
   fail("part: expected 'frame' or 'position', got '" + py::cast<std::string>(obj) + "'");
 }
 
-}  // namespace
-
-// Chain.fk and Chain.jacobian, bound as fast methods (fast_calls.cpp).
+// Chain.fk and Chain.jacobian, bound as fast methods (the table below).
 py::array chain_fk(const Chain& c, ArrayLike q_obj, FkPart part_obj, OutArray out_obj) {
   const FkOutput what = fk_part_of(part_obj);
   const int width = what == FkOutput::Position ? 3 : 16;
@@ -163,8 +170,6 @@ py::array chain_jacobian(const Chain& c, ArrayLike q_obj, TaskName task_obj, Out
   return out;
 }
 
-namespace {
-
 py::array_t<double> frames(const Chain& c, ArrayLike q_obj) {
   const std::vector<Matrix4> f = c.frames(single_q(c, q_obj));
   py::array_t<double> out = new_array({static_cast<py::ssize_t>(f.size()), 4, 4});
@@ -192,8 +197,6 @@ std::string joint_types(const Chain& c) {
   for (int i = 0; i < c.dof(); ++i) s += c.prismatic(i) ? 'P' : 'R';
   return s;
 }
-
-}  // namespace
 
 void def_chain_model(py::class_<Chain>& chain) {
   chain
@@ -243,14 +246,330 @@ void def_chain_model(py::class_<Chain>& chain) {
            py::arg("q"), "Reference: KDL's ChainJntToJacSolver (6 x dof).");
 }
 
+Measure measure_of(py::handle obj) {
+  if (!PyUnicode_Check(obj.ptr()))
+    throw py::type_error("measure: expected a string, one of 'yoshikawa', 'condition', 'min_singular'");
+  Py_ssize_t len = 0;
+  const char* s = PyUnicode_AsUTF8AndSize(obj.ptr(), &len);
+  if (!s) throw py::error_already_set();
+  return parse_measure(std::string(s, static_cast<size_t>(len)));  // std::invalid_argument -> ValueError
+}
+
+// Chain.manipulability, bound as a fast method (the table below).
+py::object chain_manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj) {
+  const Measure measure = measure_of(measure_obj);
+  const Task task = task_of(task_obj, c);
+  const QView q(q_obj);
+  const long count = check_q(c, q);
+  if (count < 0) {
+    const double v = robokin::manipulability(c, q.data, task, measure);
+    require_finite_result(&v, 1);
+    return py::float_(v);
+  }
+  const py::ssize_t shape[1] = {count};
+  py::array out = new_array(1, shape);
+  double* dst = float64_data(out);
+  released("Chain.manipulability",
+           [&](Progress* progress) { manipulability_batch(c, q.data, count, task, measure, dst, progress); });
+  require_finite_result(dst, count);
+  return std::move(out);
+}
+
+py::tuple ellipsoid(const Chain& c, ArrayLike q_obj, const std::string& part) {
+  if (part != "translation" && part != "rotation")
+    fail("part: expected 'translation' or 'rotation', got '" + part + "'");
+  const Vector q = as_vector(q_obj, "q", c.dof());
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d lengths;
+  robokin::ellipsoid(c, q.data(), part == "rotation", axes, lengths);
+  require_finite_result(lengths.data(), 3);
+  require_finite_result(axes.data(), 9);
+  return py::make_tuple(to_numpy(axes), to_numpy(Eigen::VectorXd(lengths)));
+}
+
+void def_chain_manipulability(py::class_<Chain>& cls) {
+  cls.def("ellipsoid", &ellipsoid, py::arg("q"), py::arg("part") = "translation",
+      "Velocity ellipsoid of the translational (part 'translation': rows v) or rotational ('rotation':\n"
+      "rows w) Jacobian at q: (axes, lengths), axes (3, 3) unit columns in the base frame (a right-handed\n"
+      "frame), lengths (3,) the singular values in decreasing order (0 for missing directions).");
+}
+
+constexpr char kJointMappingText[] = "collections.abc.Mapping[str, float]";
+using JointMapping = Typed<kJointMappingText>;
+constexpr char kJointDefaultText[] = "float | numpy.typing.ArrayLike | None";
+using JointDefault = Typed<kJointDefaultText>;
+
+constexpr size_t kListedNames = 20;  // an error message lists this many names, then says how many more
+
+// 'a', 'b' and 'c' (the repr of each item); past kListedNames, "... and N more".
+std::string listed(const std::vector<py::object>& items) {
+  std::string s;
+  const size_t shown = std::min(items.size(), kListedNames);
+  for (size_t i = 0; i < shown; ++i) {
+    const bool last = i + 1 == items.size();
+    s += (i == 0 ? "" : last ? " and " : ", ") + py::repr(items[i]).cast<std::string>();
+  }
+  if (shown < items.size()) s += " and " + std::to_string(items.size() - shown) + " more";
+  return s;
+}
+
+std::vector<py::object> as_objects(const std::vector<std::string>& names) {
+  std::vector<py::object> out;
+  for (const std::string& n : names) out.push_back(py::str(n));
+  return out;
+}
+
+using Names = py::typing::Tuple<py::str, py::ellipsis>;
+
+Names as_tuple(const std::vector<std::string>& names) {
+  Names t(names.size());
+  for (size_t i = 0; i < names.size(); ++i) t[i] = py::str(names[i]);
+  return t;
+}
+
+// q (dof,) filled from `default_obj`: a number for every joint, or a (dof,) array; NaN marks "no
+// default" (None).
+Vector default_q(const Chain& c, py::handle default_obj) {
+  if (default_obj.is_none()) return Vector::Constant(c.dof(), NAN);
+  const Array a = as_array(default_obj, "default");
+  if (a.ndim() == 0) {
+    require_finite(a.data(), 1, "default");
+    return Vector::Constant(c.dof(), *a.data());
+  }
+  return as_vector(default_obj, "default", c.dof());
+}
+
+double joint_value(py::handle value, const std::string& key) {
+  // PyFloat_AsDouble takes what Python's float() takes from a number (ints, numpy scalars,
+  // __float__ / __index__); an int past the largest double overflows.
+  const bool text = py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value);
+  const double v = text ? -1.0 : PyFloat_AsDouble(value.ptr());
+  if (text || (v == -1.0 && PyErr_Occurred())) {
+    const bool overflow = !text && PyErr_ExceptionMatches(PyExc_OverflowError);
+    PyErr_Clear();
+    if (overflow) fail("mapping[" + key + "]: must be finite, got an int too large for a float");
+    throw py::type_error("mapping[" + key + "]: expected a number, got " +
+                         py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+  }
+  if (!std::isfinite(v)) fail("mapping[" + key + "]: must be finite, got " + py::repr(py::float_(v)).cast<std::string>());
+  return v;
+}
+
+py::array_t<double> q_from(const Chain& c, JointMapping mapping, JointDefault default_obj) {
+  if (!py::isinstance(mapping, py::module_::import("collections.abc").attr("Mapping")))
+    throw py::type_error("mapping: expected a mapping {joint name: value}, got " +
+                         py::str(py::type::handle_of(mapping).attr("__name__")).cast<std::string>());
+  const std::vector<std::string> names = c.joint_names();
+  std::unordered_map<std::string, std::vector<int>> index;
+  for (int i = 0; i < c.dof(); ++i) index[names[i]].push_back(i);
+  Vector q = default_q(c, default_obj);
+  std::vector<bool> given(c.dof(), false);
+  std::vector<py::object> unknown;
+  const py::dict items(py::reinterpret_borrow<py::object>(mapping));
+  for (const auto& [key, value] : items) {
+    const auto found = py::isinstance<py::str>(key) ? index.find(key.cast<std::string>()) : index.end();
+    if (found == index.end()) {
+      unknown.push_back(py::reinterpret_borrow<py::object>(key));
+      continue;
+    }
+    const double v = joint_value(value, py::repr(key).cast<std::string>());
+    for (int i : found->second) q(i) = v, given[i] = true;
+  }
+  if (!unknown.empty())
+    fail(std::string("mapping: unknown joint name") + (unknown.size() > 1 ? "s " : " ") + listed(unknown) +
+         "; the chain's joints are " + listed(as_objects(names)));
+  std::vector<py::object> missing;
+  for (int i = 0; i < c.dof(); ++i)
+    if (!given[i] && std::isnan(q(i))) missing.push_back(py::str(names[i]));
+  if (!missing.empty())
+    fail(std::string("mapping: no value for joint") + (missing.size() > 1 ? "s " : " ") + listed(missing) +
+         " (pass default= for the joints left out)");
+  return to_numpy(q);
+}
+
+py::typing::Dict<py::str, py::float_> q_dict(const Chain& c, ArrayLike q_obj) {
+  const Vector q = as_vector(q_obj, "q", c.dof());
+  const std::vector<std::string> names = c.joint_names();
+  py::typing::Dict<py::str, py::float_> out;
+  for (int i = 0; i < c.dof(); ++i) out[py::str(names[i])] = py::float_(q(i));
+  return out;
+}
+
+void def_chain_names(py::class_<Chain>& cls) {
+  cls.def_property_readonly(
+      "joint_names", [](const Chain& c) { return as_tuple(c.joint_names()); },
+      "The names of the dof joints, in q's order: a URDF chain's from the file (its movable joints\n"
+      "between base and tip); q1 .. qn for a chain from a DH table or plain segments.");
+  cls.def_property_readonly(
+      "link_names", [](const Chain& c) { return as_tuple(c.link_names()); },
+      "The names of the dof + 1 links whose frames frames(q) gives: the base link, the link each of\n"
+      "joints 1 .. dof-1 moves, and the chain's last link (the tip, after any fixed joints: a flange,\n"
+      "tool0). A URDF chain's are the file's; base, link1 .. linkn for a DH or segment chain.");
+  cls.def("q_from", &q_from, py::arg("mapping"), py::arg("default") = py::none(),
+          "q (dof,) from a mapping {joint name: value} (names as joint_names gives them).\n\n"
+          "default: the value of the joints the mapping leaves out: a number, or a (dof,) array read at\n"
+          "  their places; None: every joint must be given. Raises ValueError for a name the chain has\n"
+          "  not (listing its joints), for joints left out without a default (listing them) and for\n"
+          "  values that are not finite; TypeError for a mapping or value of the wrong kind.");
+  cls.def("q_dict", &q_dict, py::arg("q"),
+          "{joint name: value} of q (dof,), in the chain's joint order (the inverse of q_from).");
+}
+
+// Version 2 added the base link's name to the "segments" layout; version 1 states still load.
+constexpr int kChainStateVersion = 2;
+
+py::tuple floats(const double* v, int count) {
+  py::tuple t(count);
+  for (int i = 0; i < count; ++i) t[i] = py::float_(v[i]);
+  return t;
+}
+
+using RowMajor4 = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
+
+py::tuple matrix_rows(const Matrix4& m) { return floats(RowMajor4(m).data(), 16); }
+
+// A state entry of `count` floats (exact: Python floats are doubles).
+std::vector<double> floats_of(py::handle obj, size_t count, const char* what) {
+  std::vector<double> v;
+  try {
+    v = py::cast<std::vector<double>>(obj);
+  } catch (const py::cast_error&) {
+    fail(std::string("Chain state: ") + what + " is not a sequence of numbers");
+  }
+  if (count && v.size() != count)
+    fail(std::string("Chain state: ") + what + " has " + std::to_string(v.size()) + " numbers, expected " +
+         std::to_string(count));
+  return v;
+}
+
+Matrix4 matrix_of(py::handle obj, const char* what) {
+  return Eigen::Map<const RowMajor4>(floats_of(obj, 16, what).data());
+}
+
+Vector vector_of(py::handle obj, const char* what) {
+  const std::vector<double> v = floats_of(obj, 0, what);
+  return Eigen::Map<const Vector>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+// ("robokin.Chain", version, "dh", rows, modified, tool, lower, upper) for a chain built from a DH
+// table, ("robokin.Chain", version, "segments", records, lower, upper, base link name) otherwise
+// (version 1: without the base link's name); a record is (segment name, joint name, KDL joint
+// type, origin (3), axis (3), tip (16, row-major)).
+py::tuple chain_state(const Chain& c) {
+  const py::tuple lower = floats(c.lower().data(), c.dof()), upper = floats(c.upper().data(), c.dof());
+  if (const DHTable* dh = c.dh()) {
+    py::list rows;
+    for (const DHRow& r : dh->rows)
+      rows.append(py::make_tuple(r.a, r.alpha, r.d, r.theta, r.prismatic ? "P" : "R"));
+    return py::make_tuple("robokin.Chain", kChainStateVersion, "dh", py::tuple(rows), dh->modified,
+                          matrix_rows(dh->tool), lower, upper);
+  }
+  py::list records;
+  for (const SegmentRecord& r : c.records())
+    records.append(py::make_tuple(r.name, r.joint_name, r.type, floats(r.origin.data(), 3), floats(r.axis.data(), 3),
+                                  matrix_rows(r.tip)));
+  return py::make_tuple("robokin.Chain", kChainStateVersion, "segments", py::tuple(records), lower, upper,
+                        c.base_name());
+}
+
+Chain chain_from_state(const py::tuple& t) {
+  if (t.size() < 3 || !py::isinstance<py::str>(t[0]) || t[0].cast<std::string>() != "robokin.Chain")
+    fail("Chain state: not a robokin.Chain state");
+  const long version = py::isinstance<py::int_>(t[1]) ? t[1].cast<long>() : -1;
+  if (version < 1 || version > kChainStateVersion)
+    fail("Chain state: version " + py::repr(t[1]).cast<std::string>() + " is not supported (this robokin reads 1 to " +
+         std::to_string(kChainStateVersion) + ")");
+  const std::string kind = py::isinstance<py::str>(t[2]) ? t[2].cast<std::string>() : "";
+  if (kind == "dh" && t.size() == 8) {
+    std::vector<DHRow> rows;
+    for (py::handle row : py::reinterpret_borrow<py::sequence>(t[3])) {
+      const py::sequence r = py::reinterpret_borrow<py::sequence>(row);
+      if (r.size() != 5) fail("Chain state: a DH row is not (a, alpha, d, theta, joint)");
+      const std::vector<double> v = floats_of(py::make_tuple(r[0], r[1], r[2], r[3]), 4, "a DH row");
+      DHRow d{v[0], v[1], v[2], v[3], py::str(r[4]).cast<std::string>() == "P"};
+      rows.push_back(d);
+    }
+    return Chain::from_dh(rows, t[4].cast<bool>(), matrix_of(t[5], "tool"), vector_of(t[6], "lower"),
+                          vector_of(t[7], "upper"));
+  }
+  const size_t segments_size = version == 1 ? 6 : 7;
+  if (kind == "segments" && t.size() == segments_size) {
+    std::vector<SegmentRecord> records;
+    for (py::handle rec : py::reinterpret_borrow<py::sequence>(t[3])) {
+      const py::sequence r = py::reinterpret_borrow<py::sequence>(rec);
+      if (r.size() != 6) fail("Chain state: a segment record is not (name, joint, type, origin, axis, tip)");
+      SegmentRecord s;
+      s.name = py::str(r[0]).cast<std::string>();
+      s.joint_name = py::str(r[1]).cast<std::string>();
+      s.type = r[2].cast<int>();
+      const std::vector<double> o = floats_of(r[3], 3, "a joint origin"), a = floats_of(r[4], 3, "a joint axis");
+      s.origin = Eigen::Vector3d(o[0], o[1], o[2]);
+      s.axis = Eigen::Vector3d(a[0], a[1], a[2]);
+      s.tip = matrix_of(r[5], "a segment tip");
+      records.push_back(s);
+    }
+    const std::string base = version == 1 ? "" : py::str(t[6]).cast<std::string>();
+    return Chain::from_records(records, vector_of(t[4], "lower"), vector_of(t[5], "upper"), base);
+  }
+  fail("Chain state: unknown layout '" + kind + "'");
+}
+
+void def_chain_value(py::class_<Chain>& cls) {
+  cls.def(py::pickle([](const Chain& c) { return chain_state(c); },
+                     [](const py::tuple& t) {
+                       try {
+                         return chain_from_state(t);
+                       } catch (const py::cast_error&) {
+                         fail("Chain state: malformed");
+                       }
+                     }));
+  cls.def(
+      "__eq__", [](const Chain& a, const Chain& b) { return a.same_kinematics(b); }, py::is_operator(),
+      "Same kinematics: joint types, limits and constant frames equal bit for bit (however built).");
+  cls.def("__hash__", [](const Chain& c) { return c.kinematics_hash(); });
+  // Text for people is written in Python, from the state above.
+  cls.def("__repr__", [](py::handle self) { return printed("chain_repr", self); });
+  const auto table = [](py::handle self) { return printed("table", self); };
+  cls.def("table", table,
+          "The kinematic table as text, as print(chain) shows it: a DH chain's rows (a, alpha, d, theta, joint\n"
+          "type, lower and upper limits; standard or modified said), any other chain's segments (joint name,\n"
+          "type, the frame after the joint at q = 0 as xyz and roll, pitch, yaw, the joint's axis in that\n"
+          "frame, limits: a URDF joint's <origin>, <axis> and <limit>). Metres and degrees.");
+  cls.def("__str__", table);
+}
+
+void def_chain_fast_calls(py::class_<Chain>& cls) {
+  const std::string pose = std::string("'") + task_name(Task::Pose) + "'";
+  fast_method<&chain_fk>(
+      cls, "fk", {{"q", ""}, {"part", "'frame'"}, {"out", "None"}}, 2, "numpy.ndarray",
+      "Tool pose (4, 4) for q (dof,); (N, 4, 4) for a batch (N, dof). part='position': the tool\n"
+      "point only, (3,) or (N, 3) (the same values as the frames' last column, written alone).\n"
+      "out: an array of the result's shape to write it into (returned), for repeated calls.\n");
+  fast_method<&chain_jacobian>(
+      cls, "jacobian", {{"q", ""}, {"task", pose}, {"out", "None"}}, 2, "numpy.ndarray",
+      "Geometric Jacobian at q (dof,) at the tool point in the base frame, rows of the task: (6, dof)\n"
+      "by default ('pose': the whole geometric Jacobian), (N, rows, dof) for a batch (N, dof); task\n"
+      "None: the chain's natural_task.\n"
+      "out: an array of the result's shape to write it into (returned), for repeated calls.\n");
+  fast_method<&chain_manipulability>(
+      cls, "manipulability", {{"q", ""}, {"measure", "'yoshikawa'"}, {"task", "None"}}, 3,
+      "float | numpy.typing.NDArray[numpy.float64]",
+      "Manipulability at q by measure, from the singular values of the task's Jacobian rows:\n"
+      "'yoshikawa' their product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min /\n"
+      "sigma_max (the inverse condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min.\n"
+      "A float for q (dof,), an array (N,) for a batch (N, dof) (GIL released, every core). task\n"
+      "None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).\n");
+}
+
+}  // namespace
+
 void bind_chain(py::module_& m) {
   py::class_<Chain> cls(m, "Chain", "A serial kinematic chain (an Orocos KDL chain with joint limits).");
   def_chain_model(cls);
   def_chain_fast_calls(cls);
   def_chain_names(cls);
-  def_chain_from_urdf(cls);
   def_chain_manipulability(cls);
   def_chain_value(cls);
+  def_chain_from_urdf(cls);
 }
-
 }  // namespace robokin::bind

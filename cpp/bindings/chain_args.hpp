@@ -1,4 +1,4 @@
-// Arguments of the Chain methods (chain.cpp, manipulability.cpp) and the closed forms: joint
+// Arguments of the Chain methods (chain.cpp) and the closed forms: joint
 // configurations, one (dof,) or a batch (N, dof), checked once, read in place when already
 // C-contiguous float64; task names; joint limits.
 #pragma once

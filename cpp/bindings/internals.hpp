@@ -1,9 +1,10 @@
 // Everything the bindings take from pybind11's private API (pybind11::detail) and numpy's C API,
-// in one file; the other binding files use only public pybind11. Three things live here:
+// in this file (internals.cpp defines what is not inline); the other binding files use only public
+// pybind11. Three things live here:
 // - the parameter types that signatures and stubs show by name (ArrayLike, Typed<Tag>);
 // - numpy's arrays read and made without pybind11's wrappers (float64_view, new_array, has_flags);
 // - fast methods: the hottest Chain methods called without pybind11's dispatcher (fast_method),
-//   declared in one table (fast_calls.cpp).
+//   declared in one table (chain.cpp); internals.cpp installs them.
 #pragma once
 
 #include <pybind11/numpy.h>

@@ -1,7 +1,6 @@
-// robokin.Chain.from_urdf (a part of the Chain class, chain_parts.hpp) and robokin.urdf_tree.
+// robokin.Chain.from_urdf (added to the class bind_chain makes) and robokin.urdf_tree.
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "chain_parts.hpp"
 
 #include "robokin/urdf.hpp"
 
