@@ -31,6 +31,7 @@ void bind_postures(pybind11::module_& m);  // track_postures' dynamic programme
 // Text for people (repr, str, tables) is written in Python: robokin._printing.function(args...).
 template <class... A>
 std::string printed(const char* function, A&&... args) {
-  return pybind11::module_::import("robokin._printing").attr(function)(std::forward<A>(args)...).template cast<std::string>();
+  const pybind11::object text = pybind11::module_::import("robokin._printing").attr(function)(std::forward<A>(args)...);
+  return text.cast<std::string>();
 }
 }  // namespace robokin::bind
