@@ -253,14 +253,10 @@ inline void check_state(const py::tuple& t, size_t size, const char* what) {
     fail(std::string(what) + " state: not a state of this robokin (version 1, " + std::to_string(size) + " entries)");
 }
 
-// A new array of `shape` holding a copy of the values at data (row-major, as many as shape holds):
-// float64 through new_array, other element types (bool, int, ...) through pybind11.
+// A new array of `shape` holding a copy of the values at data (row-major, as many as shape holds).
 template <class T>
 py::array_t<T> array_of(const T* data, std::initializer_list<py::ssize_t> shape) {
-  auto out = [&] {
-    if constexpr (std::is_same_v<T, double>) return new_array(shape);
-    else return py::array_t<T>(std::vector<py::ssize_t>(shape));
-  }();
+  py::array_t<T> out = new_array<T>(shape);
   std::copy(data, data + out.size(), out.mutable_data());
   return out;
 }

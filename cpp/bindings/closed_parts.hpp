@@ -25,8 +25,7 @@ pybind11::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const B
   const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
   const long count = static_cast<long>(targets.size());
   py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, static_cast<py::ssize_t>(dof)});
-  py::array_t<bool> within({static_cast<py::ssize_t>(count), py::ssize_t{8}});
-  py::array_t<bool> singular(static_cast<py::ssize_t>(count));
+  py::array_t<bool> within = new_array<bool>({count, 8}), singular = new_array<bool>({count});
   double* qd = q.mutable_data();
   bool* wd = within.mutable_data();
   bool* sd = singular.mutable_data();

@@ -64,7 +64,7 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
   const JointLimits lim = limits_arg(limits, 6);
   py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 6});
-  py::array_t<bool> ok(static_cast<py::ssize_t>(count)), reachable(static_cast<py::ssize_t>(count));
+  py::array_t<bool> ok = new_array<bool>({count}), reachable = new_array<bool>({count});
   double* qd = q.mutable_data();
   bool* okd = ok.mutable_data();
   bool* reachd = reachable.mutable_data();

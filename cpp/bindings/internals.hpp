@@ -111,19 +111,22 @@ inline bool float64_view(py::handle obj, Float64View& view) {
   return true;
 }
 
-// A new, uninitialised C-contiguous float64 array: every output the bindings fill comes from here.
-// Made by numpy's C API directly (pybind11's array_t constructor builds shape and stride vectors and
-// a dtype object first).
-inline py::array_t<double> new_array(int ndim, const py::ssize_t* shape) {
+// A new, uninitialised C-contiguous array of T (float64 unless said): every output the bindings fill
+// comes from here. Made by numpy's C API directly (pybind11's array_t constructor builds shape and
+// stride vectors and a dtype object first).
+template <class T = double>
+py::array_t<T> new_array(int ndim, const py::ssize_t* shape) {
   using py::detail::npy_api;
   const npy_api& api = npy_api::get();
-  PyObject* descr = api.PyArray_DescrFromType_(npy_api::NPY_DOUBLE_);  // the reference is stolen below
+  // The reference is stolen below.
+  PyObject* descr = api.PyArray_DescrFromType_(py::detail::npy_format_descriptor<T>::value);
   PyObject* a = api.PyArray_NewFromDescr_(api.PyArray_Type_, descr, ndim, shape, nullptr, nullptr, 0, nullptr);
   if (!a) throw py::error_already_set();
-  return py::reinterpret_steal<py::array_t<double>>(a);
+  return py::reinterpret_steal<py::array_t<T>>(a);
 }
-inline py::array_t<double> new_array(std::initializer_list<py::ssize_t> shape) {
-  return new_array(static_cast<int>(shape.size()), shape.begin());
+template <class T = double>
+py::array_t<T> new_array(std::initializer_list<py::ssize_t> shape) {
+  return new_array<T>(static_cast<int>(shape.size()), shape.begin());
 }
 
 inline double* float64_data(const py::array& a) {
