@@ -122,6 +122,11 @@ def table(chain) -> str:
     return "\n".join(_segment_lines(chain, state[3]))
 
 
+def _shape(a: np.ndarray) -> str:
+    """numpy's way of writing a shape: (3,), (2, 4)."""
+    return "(" + ", ".join(str(s) for s in a.shape) + (",)" if a.ndim == 1 else ")")
+
+
 def _value_text(value) -> str:
     """One field of a result: numbers to 4 significant digits, short arrays in full, long ones by
     shape and range (booleans by how many are true), lists by length, other objects by type."""
@@ -132,7 +137,7 @@ def _value_text(value) -> str:
     if isinstance(value, (float, np.floating)):
         return f"{float(value):.4g}"
     if isinstance(value, np.ndarray):
-        shape = "(" + ", ".join(str(s) for s in value.shape) + (",)" if value.ndim == 1 else ")")
+        shape = _shape(value)
         if value.size <= _SHOWN and value.dtype.kind in "biuf":
             return np.array2string(value, precision=4, separator=", ", suppress_small=True).replace("\n", "")
         if value.dtype.kind == "b":
@@ -172,8 +177,7 @@ def fields_repr(obj, names: Sequence[str]) -> str:
     for name in names:
         value = getattr(obj, name)
         if isinstance(value, np.ndarray) and value.size > _SHOWN:
-            shape = "(" + ", ".join(str(s) for s in value.shape) + (",)" if value.ndim == 1 else ")")
-            text = f"<array {shape} {value.dtype}>"
+            text = f"<array {_shape(value)} {value.dtype}>"
         else:
             text = repr(value)
         parts.append(f"{name}={text}")
@@ -181,7 +185,8 @@ def fields_repr(obj, names: Sequence[str]) -> str:
 
 
 def _named(state) -> bool:
-    """Whether some name came with the chain (a URDF chain's): its base link, a segment or a joint."""
+    """Whether some name came with the chain (a URDF chain's): its base link, a segment or a joint
+    ("NoName" is KDL's name for a part without one)."""
     if state[2] != "segments":
         return False
     names = [state[6] if len(state) > 6 else ""] + [n for record in state[3] for n in record[:2]]
