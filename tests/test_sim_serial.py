@@ -20,7 +20,7 @@ from robokin_sim import theme
 from robokin_sim.camera import CENTRE
 from robokin_sim.render_common import Hud
 from robokin_sim.render_serial import ELLIPSOID_SECONDS, SerialRenderer
-from robokin_sim.scene_serial import JOINT_STEP, MAX_JOINT_STEP, MOVE_STEP, TURN_STEP, SerialScene
+from robokin_sim.scene_serial import JOINT_STEP, MAX_JOINT_STEP, MOVE_STEP, PATH_SIZE, TURN_STEP, SerialScene
 from robokin_sim.serial_model import start_posture
 
 
@@ -292,11 +292,12 @@ def test_the_circle_is_traced_with_the_orientation_kept(tmp_path):
 
 def test_unreachable_path_points_are_reported():
     # Planar 3R (a = 1, 1, 1) at a fixed phi: the tip reaches p when the wrist p - (cos phi, sin phi)
-    # is within a1 + a2 = 2 of the base (the IK course, example 2).
+    # is within a1 + a2 = 2 of the base (the IK course, example 2). Started nearly stretched, every
+    # size of circle through the start leaves that disc.
     chain = rk.robots.planar_3r()
-    scene = SerialScene(chain, name="planar_3r", mode="circle", q0=np.radians([30, 50, 40]))
+    scene = SerialScene(chain, name="planar_3r", mode="circle", q0=np.radians([30, 2, 2]))
     points, missed = scene.path, scene.missed
-    phi = sum(np.radians([30, 50, 40]))
+    phi = sum(np.radians([30, 2, 2]))
     wrist = np.linalg.norm(points[:, :2] - [math.cos(phi), math.sin(phi)], axis=1)
     assert np.any(missed) and np.any(~missed)
     clear = np.abs(wrist - 2.0) > 1e-3
@@ -307,6 +308,19 @@ def test_unreachable_path_points_are_reported():
         scene.step(frozenset())
         states.append(scene.sing)
     assert states.count("unreachable") == np.count_nonzero(missed)
+
+
+def test_a_circle_out_of_reach_is_made_smaller_until_every_point_is_reached():
+    # The Panda and the iiwa14 from their ready poses, the orientation kept: a circle of PATH_SIZE
+    # leaves their reach (74 and 91 of 360 points), one of half that size does not.
+    for name in ("panda", "iiwa14"):
+        scene = SerialScene(rk.robots.get(name), name=name, mode="circle")
+        p = scene.path
+        radius = np.linalg.norm(p - p.mean(axis=0), axis=1)
+        assert not scene.missed.any() and "all reached" in scene.message, name
+        assert np.allclose(radius, 0.5 * PATH_SIZE * scene.size, rtol=0, atol=1e-9), name
+    ur5 = SerialScene(rk.robots.ur5(), name="ur5", mode="circle")  # reached at full size
+    assert np.allclose(np.linalg.norm(ur5.path - ur5.path.mean(axis=0), axis=1), PATH_SIZE * ur5.size)
 
 
 def test_switching_to_the_line_approaches_it_first():

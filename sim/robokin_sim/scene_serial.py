@@ -20,7 +20,8 @@
 * ``o`` / ``p``: a circle / a straight line through the start pose's tool point, in the plane the
   tool moves in most easily there (vertical, facing the robot, for a 3-D arm; the floor plane for a
   planar arm), solved in one call by the core's path IK (``rk.ik_batch(..., path=True)``) and
-  traced one point per step; points it could not reach are reported (``state`` ``unreachable``, red
+  traced one point per step. A path leaving the arm's reach is made smaller (PATH_SCALES) until
+  every point is reached; points still out of reach are reported (``state`` ``unreachable``, red
   on the path) and the arm holds still there. ``m`` goes back to jogging.
 * ``e`` the velocity ellipsoid, ``f1`` - ``f4`` / ``v`` the camera's views (at zoom 1), the mouse
   orbits and zooms (the camera is view state, kept by the scene so that the window and the
@@ -55,6 +56,10 @@ DAMPING_MIN, DAMPING_MAX = 1e-4, 0.05
 REACH_TOL, REACH_ITER = 1e-11, 30
 #: Path size relative to the arm's size, path points per circle, spacing of the line (relative).
 PATH_SIZE, CIRCLE_POINTS, LINE_STEP = 0.12, 360, 0.004
+#: The path's sizes tried in turn (times PATH_SIZE): one with points out of the arm's reach at the
+#: start's orientation (a 7-joint arm's ready pose) is made smaller until every point is reached;
+#: the smallest is kept otherwise, its unreachable points drawn red.
+PATH_SCALES = (1.0, 0.5, 0.25)
 #: Joint speed (rad/s or m/s) of posture changes and approaches; their shortest duration (s).
 MOVE_SPEED, MIN_MOVE = 1.0, 0.5
 #: Trail points kept.
@@ -318,13 +323,20 @@ class SerialScene(Scene):
         return side, np.array([0.0, 0.0, 1.0])
 
     def _path(self, name: str):
-        """(points (K, 3), IK targets, joints (K, dof), missed (K,)) of path ``name``, solved once."""
-        if name in self._paths:
-            return self._paths[name]
+        """(points (K, 3), IK targets, joints (K, dof), missed (K,)) of path ``name``, solved once: the
+        largest of PATH_SCALES whose every point is reached, else the smallest."""
+        if name not in self._paths:
+            for scale in PATH_SCALES:
+                self._paths[name] = self._solved_path(name, scale * PATH_SIZE * self.size)
+                if not self._paths[name][3].any():
+                    break
+        return self._paths[name]
+
+    def _solved_path(self, name: str, r: float):
+        """Path ``name`` of size r through the start's tool point, solved along (path=True)."""
         start = self.chain.fk(self.q_start)
         p0 = start[:3, 3]
         u, w = self._plane()
-        r = PATH_SIZE * self.size
         if name == "circle":
             flat = rk.paths.circle(CIRCLE_POINTS, radius=r)  # starts at (r, 0)
             points = p0 + np.outer(flat[:, 0] - r, u) + np.outer(flat[:, 1], w)
@@ -347,8 +359,7 @@ class SerialScene(Scene):
         for k in range(len(q)):  # an unreached point holds the joints of the point before
             if missed[k]:
                 q[k] = q[k - 1] if k else self.q_start
-        self._paths[name] = (points, targets, q, missed)
-        return self._paths[name]
+        return points, targets, q, missed
 
     def _start_path(self, name: str) -> None:
         points, _, q, missed = self._path(name)
