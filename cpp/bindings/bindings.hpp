@@ -16,8 +16,7 @@ void bind_chain(pybind11::module_& m);  // the Chain class (from_urdf: def_chain
 void bind_reach(pybind11::module_& m);
 void bind_rpr(pybind11::module_& m);
 void bind_rrr3(pybind11::module_& m);
-void bind_ik_closed(pybind11::module_& m);
-void bind_closed_solver(pybind11::module_& m);  // after bind_ik_closed (IKSolutions)
+void bind_closed(pybind11::module_& m);  // robokin.closed: IKSolutions, the closed forms, ClosedSolver
 void bind_ik(pybind11::module_& m);
 void bind_urdf(pybind11::module_& m);  // urdf_tree and its classes
 void def_chain_from_urdf(pybind11::class_<Chain>& cls);  // Chain.from_urdf, beside the URDF reader (urdf.cpp)

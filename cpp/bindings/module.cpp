@@ -7,8 +7,7 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_reach(m);
   robokin::bind::bind_rpr(m);
   robokin::bind::bind_rrr3(m);
-  robokin::bind::bind_ik_closed(m);
-  robokin::bind::bind_closed_solver(m);
+  robokin::bind::bind_closed(m);
   robokin::bind::bind_ik(m);
   robokin::bind::bind_urdf(m);
   // Trajectories, velocity-level IK, pose helpers.
