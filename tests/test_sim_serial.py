@@ -319,6 +319,11 @@ def test_a_circle_out_of_reach_is_made_smaller_until_every_point_is_reached():
         radius = np.linalg.norm(p - p.mean(axis=0), axis=1)
         assert not scene.missed.any() and "all reached" in scene.message, name
         assert np.allclose(radius, 0.5 * PATH_SIZE * scene.size, rtol=0, atol=1e-9), name
+        # Reached indeed: the path's joints put the tool on every point (KDL's FK, the start's orientation).
+        T0 = scene.chain._fk_kdl(scene.q_start)
+        for point, q in zip(p, scene._path_q):
+            T = scene.chain._fk_kdl(q)
+            assert np.allclose(T[:3, 3], point, atol=1e-8) and np.allclose(T[:3, :3], T0[:3, :3], atol=1e-8), name
     ur5 = SerialScene(rk.robots.ur5(), name="ur5", mode="circle")  # reached at full size
     assert np.allclose(np.linalg.norm(ur5.path - ur5.path.mean(axis=0), axis=1), PATH_SIZE * ur5.size)
 

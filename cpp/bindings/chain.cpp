@@ -528,7 +528,9 @@ void def_chain_value(py::class_<Chain>& cls) {
       "Same kinematics: joint types, limits and constant frames equal bit for bit (however built).");
   cls.def("__hash__", [](const Chain& c) { return c.kinematics_hash(); });
   // Text for people is written in Python, from the state above.
-  cls.def("__repr__", [](py::handle self) { return printed("chain_repr", self); });
+  cls.def("__repr__", [](py::handle self) {
+    return printed("chain_repr", self, self.cast<const Chain&>().named());  // named: a URDF chain's names
+  });
   const auto table = [](py::handle self) { return printed("table", self); };
   cls.def("table", table,
           "The kinematic table as text, as print(chain) shows it: a DH chain's rows (a, alpha, d, theta, joint\n"

@@ -39,23 +39,6 @@ std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
   return targets;
 }
 
-// A 6R closed form's batch on (N, 4, 4) frames, the GIL released: (q (N, 8, dof), singular (N,),
-// within_limits (N, 8)); dof is 7 when a seventh joint is held. batch(targets, count, q,
-// within_limits, singular, progress) runs the core's batch (ik_ur_batch, closed_solve_batch) for
-// its arm; `what` names it in progress reports.
-template <class Batch>
-py::tuple closed_batch_py(ArrayLike targets_obj, const char* what, const Batch& batch, int dof = 6) {
-  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
-  const long count = static_cast<long>(targets.size());
-  py::array_t<double> q = new_array({static_cast<py::ssize_t>(count), 8, static_cast<py::ssize_t>(dof)});
-  py::array_t<bool> within = new_array<bool>({count, 8}), singular = new_array<bool>({count});
-  double* qd = q.mutable_data();
-  bool* wd = within.mutable_data();
-  bool* sd = singular.mutable_data();
-  released(what, [&](Progress* progress) { batch(targets.data(), count, qd, wd, sd, progress); });
-  return py::make_tuple(q, singular, within);
-}
-
 ClosedFormSolutions planar_rp(ArrayLike target, LimitsLike limits) {
   const Vector p = as_vector(target, "target", 2);
   return ik_planar_rp(p(0), p(1), limits_arg(limits, 2, {false, true}));
@@ -94,10 +77,8 @@ ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, doub
 
 py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
                                double d6, ArrayLike q0_obj, LimitsLike limits) {
-  const Array a = rows_arg(targets_obj, "targets", {4, 4});
-  const long count = a.shape(0);
-  std::vector<Rigid> targets;
-  for (long k = 0; k < count; ++k) targets.push_back(Rigid::from_matrix(rigid_at(a.data() + 16 * k, "targets")));
+  const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
+  const long count = static_cast<long>(targets.size());
   const Vector q0 = as_vector(q0_obj, "q0", 6);
   const ArmGeometry g = arm_arg(d1, a2, a3, d3, d4);
   const JointLimits lim = limits_arg(limits, 6);
@@ -241,11 +222,17 @@ struct BoundSolver {
   ClosedFormSolutions solve(ArrayLike target) const {
     return solver.solve(Rigid::from_matrix(as_transform(target, "target")));
   }
+  // (q (N, 8, dof), singular (N,), within_limits (N, 8)); dof is 7 with a held joint, else 6.
   py::tuple solve_batch(ArrayLike targets_obj) const {
-    return closed_batch_py(targets_obj, "closed form", [&](const Rigid* targets, long count, double* q, bool* within,
-                                                           bool* singular, Progress* progress) {
-      solver.solve_batch(targets, count, q, within, singular, progress);
-    }, chain().dof());  // 6, or 7 with one held
+    const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
+    const long count = static_cast<long>(targets.size());
+    py::array_t<double> q = new_array({count, 8, chain().dof()});
+    py::array_t<bool> within = new_array<bool>({count, 8}), singular = new_array<bool>({count});
+    double* qd = q.mutable_data();
+    bool* wd = within.mutable_data();
+    bool* sd = singular.mutable_data();
+    released("closed form", [&](Progress* progress) { solver.solve_batch(targets.data(), count, qd, wd, sd, progress); });
+    return py::make_tuple(q, singular, within);
   }
 };
 

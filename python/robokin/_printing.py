@@ -184,21 +184,12 @@ def fields_repr(obj, names: Sequence[str]) -> str:
     return f"{type(obj).__name__}({', '.join(parts)})"
 
 
-def _named(state) -> bool:
-    """Whether some name came with the chain (a URDF chain's): its base link, a segment or a joint
-    ("NoName" is KDL's name for a part without one)."""
-    if state[2] != "segments":
-        return False
-    names = [state[6] if len(state) > 6 else ""] + [n for record in state[3] for n in record[:2]]
-    return any(n not in ("", "NoName") for n in names)
-
-
-def chain_repr(chain) -> str:
-    """``Chain(dof=6, joints='RRRRRR', ...)``: a URDF chain's base, tip and joint names; a DH chain's
-    rows as written (and whether a tool follows them)."""
+def chain_repr(chain, named: bool) -> str:
+    """``Chain(dof=6, joints='RRRRRR', ...)``: the base, tip and joint names of a chain that came with
+    names (``named``: a URDF chain's); a DH chain's rows as written (and whether a tool follows)."""
     state = chain.__getstate__()
     text = f"Chain(dof={chain.dof}, joints={chain.joint_types!r}"
-    if _named(state):
+    if named:
         links, joints = chain.link_names, chain.joint_names
         if len(joints) > _HEAD_NAMES + _TAIL_NAMES + 1:
             shown = [repr(n) for n in joints[:_HEAD_NAMES]] + ["..."] + [repr(n) for n in joints[-_TAIL_NAMES:]]
@@ -267,4 +258,4 @@ def closed_solver_repr(solver) -> str:
 
 def ik_solver_repr(solver) -> str:
     """``IKSolver(method=..., ...)``: the solver's options."""
-    return "IKSolver" + fields_repr(solver.options, type(solver.options).fields)[len("IKOptions"):]
+    return "IKSolver(" + repr(solver.options).partition("(")[2]

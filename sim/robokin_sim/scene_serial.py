@@ -327,9 +327,10 @@ class SerialScene(Scene):
         largest of PATH_SCALES whose every point is reached, else the smallest."""
         if name not in self._paths:
             for scale in PATH_SCALES:
-                self._paths[name] = self._solved_path(name, scale * PATH_SIZE * self.size)
-                if not self._paths[name][3].any():
+                path = self._solved_path(name, scale * PATH_SIZE * self.size)
+                if not path[3].any():  # every point reached
                     break
+            self._paths[name] = path
         return self._paths[name]
 
     def _solved_path(self, name: str, r: float):
