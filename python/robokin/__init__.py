@@ -74,6 +74,11 @@ from ._core import UrdfJoint, UrdfTree, urdf_tree  # noqa: E402
 # own (robokin._signature says why).
 for _name in ("from_dh", "from_segments", "from_urdf"):
     setattr(Chain, _name, staticmethod(plain(getattr(Chain, _name), "Chain." + _name, Chain.__module__)))
+# Chain's methods written in Python (robokin._chain).
+from . import _chain  # noqa: E402
+
+for _name in ("q_from", "q_dict"):
+    setattr(Chain, _name, getattr(_chain, _name))
 joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
 urdf_tree = plain(urdf_tree, "urdf_tree", __name__)
 
