@@ -6,20 +6,15 @@
 #include <string>
 #include <utility>
 
-namespace robokin {
-class Chain;
-}
-
 namespace robokin::bind {
 void bind_errors(pybind11::module_& m);  // first: translators for the core's and KDL's exceptions
-void bind_chain(pybind11::module_& m);  // the Chain class (from_urdf: def_chain_from_urdf)
+void bind_chain(pybind11::module_& m);  // the Chain class
 void bind_reach(pybind11::module_& m);
 void bind_rpr(pybind11::module_& m);
 void bind_rrr3(pybind11::module_& m);
 void bind_closed(pybind11::module_& m);  // robokin.closed: IKSolutions, the closed forms, ClosedSolver
 void bind_ik(pybind11::module_& m);
-void bind_urdf(pybind11::module_& m);  // urdf_tree and its classes
-void def_chain_from_urdf(pybind11::class_<Chain>& cls);  // Chain.from_urdf, beside the URDF reader (urdf.cpp)
+void bind_urdf(pybind11::module_& m);  // the URDF parser for robokin._urdf, the URDF tree's classes
 // The serial-arm toolkit: trajectories, velocity-level IK, pose helpers.
 void bind_traj(pybind11::module_& m);
 void bind_resolved_rate(pybind11::module_& m);

@@ -1,4 +1,4 @@
-// robokin.Chain: serial chains from DH tables or plain segments (from_urdf: urdf.cpp); FK,
+// robokin.Chain: serial chains from DH tables or plain segments (from_urdf: robokin._urdf); FK,
 // Jacobians, frames, manipulability; joint and link names; pickling, ==, hash. Text for people and
 // q_from / q_dict are written in Python (robokin._printing, robokin._chain). fk, jacobian and
 // manipulability are fast methods (internals.hpp), declared in one table here: the Chain methods
@@ -470,6 +470,5 @@ void bind_chain(py::module_& m) {
   def_chain_names(cls);
   def_chain_manipulability(cls);
   def_chain_value(cls);
-  def_chain_from_urdf(cls);
 }
 }  // namespace robokin::bind

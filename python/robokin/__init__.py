@@ -68,19 +68,20 @@ from .ik import IK_DEFAULTS  # noqa: E402
 __all__ += ["IK_DEFAULTS", "URDFWarning"]
 
 # A URDF's links and joints, and the chain Chain.from_urdf builds by default.
-from ._core import UrdfJoint, UrdfTree, urdf_tree  # noqa: E402
+from ._core import UrdfJoint, UrdfTree  # noqa: E402
+from ._urdf import urdf_tree  # noqa: E402
 
 # help() and inspect.signature for the core's static methods and free functions as for Python's
 # own (robokin._signature says why).
-for _name in ("from_dh", "from_segments", "from_urdf"):
+for _name in ("from_dh", "from_segments"):
     setattr(Chain, _name, staticmethod(plain(getattr(Chain, _name), "Chain." + _name, Chain.__module__)))
-# Chain's methods written in Python (robokin._chain).
-from . import _chain  # noqa: E402
+joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
+# Chain's methods written in Python (robokin._chain, robokin._urdf).
+from . import _chain, _urdf  # noqa: E402
 
 for _name in ("q_from", "q_dict"):
     setattr(Chain, _name, getattr(_chain, _name))
-joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
-urdf_tree = plain(urdf_tree, "urdf_tree", __name__)
+Chain.from_urdf = staticmethod(_urdf.from_urdf)
 
 __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_urdf', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1645,6 +1645,10 @@ class ServoResult:
         """
         (K,) step times k dt.
         """
+def chain_from_urdf(xml: str, base: str | None, tip: str | None) -> tuple[Chain, list[str]]:
+    """
+    (chain, warnings) of a URDF document. Use Chain.from_urdf.
+    """
 def closed_family(chain: Chain, locked: dict[int, float] | None = None, **kwargs) -> tuple:
     """
     closed_family(chain, locked=None, *, tol=1e-06)
@@ -1781,14 +1785,9 @@ def traj_via_points(points: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike
     """
     Linear segments with parabolic blends: (t, q, qd, qdd, via_times). Use robokin.traj.via_points.
     """
-def urdf_tree(path_or_string: str | bytes | os.PathLike) -> UrdfTree:
+def urdf_tree(xml: str) -> tuple[UrdfTree, list[str]]:
     """
-    The links and joints of a URDF file or string and the default base and tip of Chain.from_urdf.
-    
-    path_or_string: as Chain.from_urdf takes it. Returns a UrdfTree: links depth-first from the root,
-    joints (name, type, parent, child) in the same order, root, base (the root), tip (None when the
-    longest branches tie: tips lists their ends). Raises ValueError for a bad document, TypeError for
-    an argument of the wrong kind; robokin.URDFWarning for what urdfdom accepted but warned about.
+    (tree, warnings) of a URDF document. Use robokin.urdf_tree.
     """
 IK_DEFAULTS: types.MappingProxyType
 RRR3_DEFAULTS: types.MappingProxyType
