@@ -105,7 +105,8 @@ def test_help_reads_as_for_python_functions():
         assert "pybind11" not in text.splitlines()[2], (name, text.splitlines()[2])
         signature = inspect.signature(fn)
         assert "numpy" not in str(signature) or "ArrayLike" in str(signature), name
-    assert str(inspect.signature(rk.Chain.from_dh)).startswith("(rows: object, modified: bool = False, tool:")
+    assert str(inspect.signature(rk.Chain.from_dh)).startswith(
+        "(rows: collections.abc.Sequence, modified: bool = False, tool: numpy.typing.ArrayLike | None = None,")
     assert rk.Chain.from_dh.__qualname__ == "Chain.from_dh" and rk.urdf_tree.__module__ == "robokin"
 
 

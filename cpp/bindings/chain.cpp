@@ -1,10 +1,10 @@
-// robokin.Chain: serial chains from DH tables or plain segments (from_urdf: robokin._urdf); FK,
-// Jacobians, frames, manipulability; joint and link names; pickling, ==, hash. Text for people and
-// q_from / q_dict are written in Python (robokin._printing, robokin._chain). fk, jacobian and
-// manipulability are fast methods (internals.hpp), declared in one table here: the Chain methods
-// whose every call is cheap, so that pybind11's dispatcher would be a large part of it. A method
-// is kept there only while its gain over a pybind11 .def of the same function is 10 % or more
-// (benchmarks/README.md says how it was measured).
+// robokin.Chain: serial chains from DH tables or plain segments, FK, Jacobians, frames,
+// manipulability; joint and link names; pickling, ==, hash. Text for people, and the constructors'
+// and q_from's reading of Python's values, are written in Python (robokin._printing, _chain, _urdf).
+// fk, jacobian and manipulability are fast methods (internals.hpp), declared in one table here: the
+// Chain methods whose every call is cheap, so that pybind11's dispatcher would be a large part of
+// it. A method is kept there only while its gain over a pybind11 .def of the same function is 10 %
+// or more (benchmarks/README.md says how it was measured).
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "chain_args.hpp"
@@ -25,76 +25,36 @@
 namespace robokin::bind {
 namespace {
 
-double finite_number(py::handle obj, const std::string& name) {
-  double v;
-  try {
-    v = py::cast<double>(obj);
-  } catch (const py::cast_error&) {
-    fail(name + ": expected a number");
-  }
-  if (!std::isfinite(v)) fail(name + ": must be finite");
-  return v;
-}
-
-std::string joint_letter(py::handle obj, const std::string& name, const char* allowed) {
-  if (!py::isinstance<py::str>(obj)) fail(name + ": joint type must be a string, one of " + allowed);
-  std::string s = py::cast<std::string>(obj);
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  if (s.size() != 1 || std::string(allowed).find(s) == std::string::npos)
-    fail(name + ": joint type must be one of " + allowed + ", got '" + py::cast<std::string>(obj) + "'");
-  return s;
-}
-
-// The records of a chain to build (DH rows, segments): `name` a non-empty sequence of sequences of
-// `size` items (`what` says which), each read by parse(items, "name[i]") -> Record.
-template <class Record, class Parse>
-std::vector<Record> records(py::handle obj, const char* name, size_t size, const char* what, Parse parse) {
-  if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj))
-    fail(std::string(name) + ": expected a sequence");
-  const py::sequence seq = py::reinterpret_borrow<py::sequence>(obj);
-  if (seq.size() == 0) fail(std::string(name) + ": a chain needs at least one joint");
-  std::vector<Record> out;
-  for (size_t i = 0; i < seq.size(); ++i) {
-    const std::string item = std::string(name) + "[" + std::to_string(i) + "]";
-    const py::object r = seq[i];
-    if (!py::isinstance<py::sequence>(r) || py::isinstance<py::str>(r) || py::len(r) != size)
-      fail(item + ": expected " + what);
-    out.push_back(parse(py::reinterpret_borrow<py::sequence>(r), item));
-  }
-  return out;
-}
-
 Matrix4 optional_tool(py::handle tool) {
   return tool.is_none() ? Matrix4::Identity() : Matrix4(as_transform(tool, "tool"));
 }
 
-Chain chain_from_dh(py::handle rows, bool modified, OptionalArrayLike tool, LimitsLike limits) {
-  const auto parsed = records<DHRow>(
-      rows, "rows", 5, "(a, alpha, d, theta, 'R' or 'P')", [](const py::sequence& r, const std::string& name) {
-        // Braced initialisers run in order: the row's first bad value is the one named.
-        return DHRow{finite_number(r[0], name + " a"), finite_number(r[1], name + " alpha"),
-                     finite_number(r[2], name + " d"), finite_number(r[3], name + " theta"),
-                     joint_letter(r[4], name, "RP") == "P"};
-      });
+// Chain.from_dh's and from_segments' core (robokin._chain reads and checks the records: their kinds,
+// shapes and finiteness); the frames (a tip, the tool) and the limits are checked here.
+Chain chain_from_dh(ArrayLike table, const std::string& joints, bool modified, OptionalArrayLike tool,
+                    LimitsLike limits) {
+  const Array t = rows_arg(table, "rows", {4});
+  std::vector<DHRow> rows;
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const double* r = t.data() + 4 * i;
+    rows.push_back(DHRow{r[0], r[1], r[2], r[3], joints[i] == 'P'});
+  }
   const JointLimits lim = limits_arg(limits, -1);
-  return Chain::from_dh(parsed, modified, optional_tool(tool), lim.lower, lim.upper);
+  return Chain::from_dh(rows, modified, optional_tool(tool), lim.lower, lim.upper);
 }
 
-Chain chain_from_segments(py::handle segments, OptionalArrayLike tool, LimitsLike limits) {
-  const auto parsed = records<SegmentSpec>(
-      segments, "segments", 3, "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))",
-      [](const py::sequence& s, const std::string& name) {
-        SegmentSpec spec;
-        const std::string type = joint_letter(s[0], name, "RPF");
-        spec.type = type == "R" ? JointType::Revolute : type == "P" ? JointType::Prismatic : JointType::Fixed;
-        spec.axis = as_vector(s[1], (name + " axis").c_str(), 3);
-        if (spec.axis.norm() < 1e-12) fail(name + " axis: must not be zero");
-        spec.axis.normalize();
-        spec.tip = as_transform(s[2], (name + " tip").c_str());
-        return spec;
-      });
+Chain chain_from_segments(const std::string& types, ArrayLike axes, ArrayLike tips, OptionalArrayLike tool,
+                          LimitsLike limits) {
+  const Array a = rows_arg(axes, "segments", {3}), t = rows_arg(tips, "segments", {4, 4});
+  std::vector<SegmentSpec> specs(types.size());
+  for (size_t i = 0; i < types.size(); ++i) {
+    SegmentSpec& spec = specs[i];
+    spec.type = types[i] == 'R' ? JointType::Revolute : types[i] == 'P' ? JointType::Prismatic : JointType::Fixed;
+    spec.axis = Eigen::Map<const Eigen::Vector3d>(a.data() + 3 * i).normalized();
+    spec.tip = rigid_at(t.data() + 16 * i, ("segments[" + std::to_string(i) + "] tip").c_str());
+  }
   const JointLimits lim = limits_arg(limits, -1);
-  return Chain::from_segments(parsed, optional_tool(tool), lim.lower, lim.upper);
+  return Chain::from_segments(specs, optional_tool(tool), lim.lower, lim.upper);
 }
 
 Vector single_q(const Chain& c, py::handle obj, const char* name = "q") {
@@ -199,27 +159,6 @@ std::string joint_types(const Chain& c) {
 
 void def_chain_model(py::class_<Chain>& chain) {
   chain
-      .def_static("from_dh", &chain_from_dh, py::arg("rows"), py::arg("modified") = false,
-                  py::arg("tool") = py::none(), py::arg("limits") = py::none(),
-                  "Builds a chain from Denavit-Hartenberg rows.\n\n"
-                  "rows: one (a, alpha, d, theta, joint) per joint: a and d in metres, alpha and theta in radians,\n"
-                  "joint 'R' (revolute) or 'P' (prismatic). theta and d are offsets: a revolute joint turns by\n"
-                  "theta + q_i, a prismatic one slides to d + q_i (q = 0 is the table as written).\n"
-                  "modified: False for standard DH, A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); True for Craig's\n"
-                  "modified DH, A_i = Rx(alpha) Tx(a) Rz(theta) Tz(d).\n"
-                  "tool: (4, 4) frame of the tool point in the last joint's frame, applied after the last row\n"
-                  "(fk, frames and the Jacobian are at the tool); None for the identity.\n"
-                  "limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.\n"
-                  "print(chain) shows the table (Chain.table).")
-      .def_static("from_segments", &chain_from_segments, py::arg("segments"), py::arg("tool") = py::none(),
-                  py::arg("limits") = py::none(),
-                  "Builds a chain from KDL-style segments, as KDL::Segment(Joint(axis), tip) does.\n\n"
-                  "segments: one (joint, axis, tip) per segment: joint 'R' (revolute), 'P' (prismatic) or 'F'\n"
-                  "(fixed); axis (3,), not zero, in the segment's starting frame (the joint turns about / slides\n"
-                  "along it through that frame's origin); tip the (4, 4) frame that follows the joint. A segment's\n"
-                  "frame at q is Rot(axis, q) tip (or Trans(axis * q) tip), so fixed segments only add frames.\n"
-                  "tool: (4, 4) frame appended after the last segment; None for the identity.\n"
-                  "limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.")
       .def_property_readonly("dof", &Chain::dof, "Number of joints.")
       .def_property_readonly("joint_types", &joint_types, "One letter per joint: 'R' revolute, 'P' prismatic.")
       .def_property_readonly(
@@ -470,5 +409,10 @@ void bind_chain(py::module_& m) {
   def_chain_names(cls);
   def_chain_manipulability(cls);
   def_chain_value(cls);
+  m.def("chain_from_dh", &chain_from_dh, py::arg("table"), py::arg("joints"), py::arg("modified"), py::arg("tool"),
+        py::arg("limits"), "A chain from DH rows (table (n, 4), joints 'R' / 'P' each). Use Chain.from_dh.");
+  m.def("chain_from_segments", &chain_from_segments, py::arg("types"), py::arg("axes"), py::arg("tips"),
+        py::arg("tool"), py::arg("limits"),
+        "A chain from segments (types 'R' / 'P' / 'F' each, axes (n, 3), tips (n, 4, 4)). Use Chain.from_segments.");
 }
 }  // namespace robokin::bind

@@ -71,17 +71,17 @@ __all__ += ["IK_DEFAULTS", "URDFWarning"]
 from ._core import UrdfJoint, UrdfTree  # noqa: E402
 from ._urdf import urdf_tree  # noqa: E402
 
-# help() and inspect.signature for the core's static methods and free functions as for Python's
-# own (robokin._signature says why).
-for _name in ("from_dh", "from_segments"):
-    setattr(Chain, _name, staticmethod(plain(getattr(Chain, _name), "Chain." + _name, Chain.__module__)))
+# help() and inspect.signature for the core's free functions as for Python's own (robokin._signature
+# says why).
 joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
 # Chain's methods written in Python (robokin._chain, robokin._urdf).
 from . import _chain, _urdf  # noqa: E402
 
+for _name in ("from_dh", "from_segments"):
+    setattr(Chain, _name, staticmethod(getattr(_chain, _name)))
+Chain.from_urdf = staticmethod(_urdf.from_urdf)
 for _name in ("q_from", "q_dict"):
     setattr(Chain, _name, getattr(_chain, _name))
-Chain.from_urdf = staticmethod(_urdf.from_urdf)
 
 __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 

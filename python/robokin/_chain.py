@@ -1,5 +1,7 @@
 """The Chain methods written in Python (ergonomics around the core's model; robokin/__init__.py
-attaches them to Chain): a configuration from and to a mapping {joint name: value}."""
+attaches them to Chain): chains from DH rows and KDL-style segments (their records read and
+checked here, the frames and limits by the core), a configuration from and to a mapping
+{joint name: value}."""
 
 from __future__ import annotations
 
@@ -9,8 +11,9 @@ import inspect
 import numpy as np
 import numpy.typing
 
-from . import _checks
+from . import _checks, _core
 from ._core import Chain
+from ._signature import unquoted
 
 LISTED_NAMES = 20  # an error message lists this many names, then says how many more
 
@@ -24,22 +27,104 @@ def _listed(items: list) -> str:
     return ", ".join(shown) + (f" and {more} more" if more > 0 else "")
 
 
-def _joint_value(value, key: str) -> float:
-    """A joint's value as Python's float() takes a number (ints, numpy scalars, __float__ or
-    __index__), finite; text is not a number here."""
+def _real(value, name: str) -> float:
+    """A number as Python's float() takes one (ints, numpy scalars, __float__ or __index__; not
+    text), finite."""
     number = not isinstance(value, (str, bytes, bytearray)) and (
         hasattr(value, "__float__") or hasattr(value, "__index__"))
     try:
         v = float(value) if number else None
     except OverflowError:
-        raise ValueError(f"mapping[{key}]: must be finite, got an int too large for a float") from None
-    except TypeError:
+        raise ValueError(f"{name}: must be finite, got an int too large for a float") from None
+    except (TypeError, ValueError):
         v = None
     if v is None:
-        raise TypeError(f"mapping[{key}]: expected a number, got {type(value).__name__}")
+        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
     if not np.isfinite(v):
-        raise ValueError(f"mapping[{key}]: must be finite, got {v!r}")
+        raise ValueError(f"{name}: must be finite, got {v!r}")
     return v
+
+
+def _sequence(value) -> bool:
+    return not isinstance(value, (str, bytes)) and (
+        isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0))
+
+
+def _records(value, name: str, size: int, what: str) -> list:
+    """The records of a chain to build (DH rows, segments): a non-empty sequence of sequences of
+    ``size`` items (``what`` says which)."""
+    if not _sequence(value):
+        raise TypeError(f"{name}: expected a sequence, got {type(value).__name__}")
+    if len(value) == 0:
+        raise ValueError(f"{name}: a chain needs at least one joint")
+    for i, record in enumerate(value):
+        if not _sequence(record) or len(record) != size:
+            raise ValueError(f"{name}[{i}]: expected {what}")
+    return list(value)
+
+
+def _joint_type(value, name: str, allowed: str) -> str:
+    """One of the letters ``allowed``, in either case."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: joint type must be a string, one of {allowed}")
+    if len(value) != 1 or value.upper() not in allowed:
+        raise ValueError(f"{name}: joint type must be one of {allowed}, got '{value}'")
+    return value.upper()
+
+
+def _array(value, name: str, shape: tuple) -> np.ndarray:
+    """A finite float array of ``shape``."""
+    a = _checks.real_array(value, name)
+    if a.shape != shape:
+        raise ValueError(f"{name}: expected shape {shape}, got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: contains NaN or inf")
+    return a
+
+
+def from_dh(rows: collections.abc.Sequence, modified: bool = False, tool: numpy.typing.ArrayLike | None = None,
+            limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
+    """Builds a chain from Denavit-Hartenberg rows.
+
+    rows: one (a, alpha, d, theta, joint) per joint: a and d in metres, alpha and theta in radians,
+    joint 'R' (revolute) or 'P' (prismatic). theta and d are offsets: a revolute joint turns by
+    theta + q_i, a prismatic one slides to d + q_i (q = 0 is the table as written).
+    modified: False for standard DH, A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha); True for Craig's
+    modified DH, A_i = Rx(alpha) Tx(a) Rz(theta) Tz(d).
+    tool: (4, 4) frame of the tool point in the last joint's frame, applied after the last row
+    (fk, frames and the Jacobian are at the tool); None for the identity.
+    limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.
+    print(chain) shows the table (Chain.table).
+    """
+    table, joints = [], ""
+    for i, row in enumerate(_records(rows, "rows", 5, "(a, alpha, d, theta, 'R' or 'P')")):
+        table.append([_real(row[k], f"rows[{i}] {field}") for k, field in enumerate(("a", "alpha", "d", "theta"))])
+        joints += _joint_type(row[4], f"rows[{i}]", "RP")
+    return _core.chain_from_dh(np.array(table), joints, modified, tool, limits)
+
+
+def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLike | None = None,
+                  limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
+    """Builds a chain from KDL-style segments, as KDL::Segment(Joint(axis), tip) does.
+
+    segments: one (joint, axis, tip) per segment: joint 'R' (revolute), 'P' (prismatic) or 'F'
+    (fixed); axis (3,), not zero, in the segment's starting frame (the joint turns about / slides
+    along it through that frame's origin); tip the (4, 4) frame that follows the joint. A segment's
+    frame at q is Rot(axis, q) tip (or Trans(axis * q) tip), so fixed segments only add frames.
+    tool: (4, 4) frame appended after the last segment; None for the identity.
+    limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.
+    """
+    types, axes, tips = "", [], []
+    for i, (joint, axis, tip) in enumerate(_records(segments, "segments", 3,
+                                                    "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))")):
+        types += _joint_type(joint, f"segments[{i}]", "RPF")
+        axis = _array(axis, f"segments[{i}] axis", (3,))
+        norm = np.hypot.reduce(axis)  # no overflow for huge entries
+        if norm < 1e-12:
+            raise ValueError(f"segments[{i}] axis: must not be zero")
+        axes.append(axis / norm)
+        tips.append(_array(tip, f"segments[{i}] tip", (4, 4)))
+    return _core.chain_from_segments(types, np.array(axes), np.array(tips), tool, limits)
 
 
 def _default_q(chain: Chain, default) -> np.ndarray:
@@ -74,7 +159,7 @@ def q_from(self: Chain, mapping: collections.abc.Mapping[str, float],
         if found is None:
             unknown.append(key)
             continue
-        q[found] = _joint_value(value, repr(key))
+        q[found] = _real(value, f"mapping[{key!r}]")
         given[found] = True
     if unknown:
         raise ValueError(f"mapping: unknown joint name{'s' if len(unknown) > 1 else ''} {_listed(unknown)}; "
@@ -93,6 +178,7 @@ def q_dict(self: Chain, q: numpy.typing.ArrayLike) -> dict[str, float]:
 
 
 # Named and documented as the core's methods are (help(), the stubs and the reference read them).
-for _method in (q_from, q_dict):
-    _method.__qualname__ = "Chain." + _method.__name__
+for _method in (from_dh, from_segments, q_from, q_dict):
+    _method.__qualname__, _method.__module__ = "Chain." + _method.__name__, Chain.__module__
     _method.__doc__ = inspect.cleandoc(_method.__doc__)
+    unquoted(_method)

@@ -9,13 +9,13 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_urdf', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
     """
     @staticmethod
-    def from_dh(rows: typing.Any, modified: bool = False, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
+    def from_dh(rows: collections.abc.Sequence, modified: bool = False, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
         Builds a chain from Denavit-Hartenberg rows.
         
@@ -30,7 +30,7 @@ class Chain:
         print(chain) shows the table (Chain.table).
         """
     @staticmethod
-    def from_segments(segments: typing.Any, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
+    def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLike | None = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
         """
         Builds a chain from KDL-style segments, as KDL::Segment(Joint(axis), tip) does.
         
@@ -1645,6 +1645,14 @@ class ServoResult:
         """
         (K,) step times k dt.
         """
+def chain_from_dh(table: numpy.typing.ArrayLike, joints: str, modified: bool, tool: numpy.typing.ArrayLike | None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> Chain:
+    """
+    A chain from DH rows (table (n, 4), joints 'R' / 'P' each). Use Chain.from_dh.
+    """
+def chain_from_segments(types: str, axes: numpy.typing.ArrayLike, tips: numpy.typing.ArrayLike, tool: numpy.typing.ArrayLike | None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> Chain:
+    """
+    A chain from segments (types 'R' / 'P' / 'F' each, axes (n, 3), tips (n, 4, 4)). Use Chain.from_segments.
+    """
 def chain_from_urdf(xml: str, base: str | None, tip: str | None) -> tuple[Chain, list[str]]:
     """
     (chain, warnings) of a URDF document. Use Chain.from_urdf.

@@ -1,10 +1,11 @@
-"""help() for the core's free functions and static methods, as for Python's own.
+"""help() for the core's free functions as for Python's own, and Python's own written as the core's.
 
 pybind11 makes each a built-in function whose ``__self__`` is its function record, so pydoc heads
-its help ``from_dh(...) method of pybind11_detail_function_record_... instance`` and
+its help ``joint_limit_cost(...) method of pybind11_detail_function_record_... instance`` and
 ``inspect.signature`` fails on it. :func:`plain` gives a function that forwards to it, with the
 signature of pybind11's first docstring line as ``__signature__`` and the rest of the docstring as
 its own: help(), ``inspect.signature``, the stubs and the documentation read it as written.
+:func:`unquoted` shows a Python function's postponed annotations the same way (not as quoted text).
 """
 
 from __future__ import annotations
@@ -77,3 +78,13 @@ def plain(core: Callable, qualname: str, module: str) -> Callable:
     call.__signature__ = _signature(head.strip())
     call.__doc__ = inspect.cleandoc(doc)
     return call
+
+
+def unquoted(func: Callable) -> Callable:
+    """func, its postponed annotations (text, PEP 563) shown as written: help() and the stubs then
+    read a Python function's signature as they read the core's."""
+    sig = inspect.signature(func)
+    text = (lambda a: _Text(a) if isinstance(a, str) else a)
+    func.__signature__ = sig.replace(parameters=[p.replace(annotation=text(p.annotation)) for p in sig.parameters.values()],
+                                     return_annotation=text(sig.return_annotation))
+    return func

@@ -10,6 +10,7 @@ import warnings
 
 from . import _core
 from ._core import Chain, UrdfTree
+from ._signature import unquoted
 from .errors import URDFWarning
 
 
@@ -90,3 +91,4 @@ from_urdf.__qualname__, from_urdf.__module__ = "Chain.from_urdf", Chain.__module
 urdf_tree.__module__ = "robokin"
 for _function in (from_urdf, urdf_tree):
     _function.__doc__ = inspect.cleandoc(_function.__doc__)
+    unquoted(_function)
