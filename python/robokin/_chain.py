@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import collections.abc
 import inspect
+import math
 
 import numpy as np
 import numpy.typing
@@ -30,23 +31,22 @@ def _listed(items: list) -> str:
 def _real(value, name: str) -> float:
     """A number as Python's float() takes one (ints, numpy scalars, __float__ or __index__; not
     text), finite."""
-    number = not isinstance(value, (str, bytes, bytearray)) and (
-        hasattr(value, "__float__") or hasattr(value, "__index__"))
-    try:
-        v = float(value) if number else None
-    except OverflowError:
-        raise ValueError(f"{name}: must be finite, got an int too large for a float") from None
-    except (TypeError, ValueError):
-        v = None
-    if v is None:
-        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
-    if not np.isfinite(v):
-        raise ValueError(f"{name}: must be finite, got {v!r}")
-    return v
+    if type(value) is not float:  # the checks below cost more than the rest of a DH row
+        if isinstance(value, (str, bytes, bytearray)) or not (hasattr(value, "__float__") or hasattr(value, "__index__")):
+            raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+        try:
+            value = float(value)
+        except OverflowError:
+            raise ValueError(f"{name}: must be finite, got an int too large for a float") from None
+        except (TypeError, ValueError):
+            raise TypeError(f"{name}: expected a number, got {type(value).__name__}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name}: must be finite, got {value!r}")
+    return value
 
 
 def _sequence(value) -> bool:
-    return not isinstance(value, (str, bytes)) and (
+    return type(value) in (list, tuple) or not isinstance(value, (str, bytes)) and (
         isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0))
 
 
@@ -72,13 +72,11 @@ def _joint_type(value, name: str, allowed: str) -> str:
     return value.upper()
 
 
-def _array(value, name: str, shape: tuple) -> np.ndarray:
-    """A finite float array of ``shape``."""
+def _shaped(value, name: str, shape: tuple) -> np.ndarray:
+    """A float array of ``shape`` (its values checked by the caller)."""
     a = _checks.real_array(value, name)
     if a.shape != shape:
         raise ValueError(f"{name}: expected shape {shape}, got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: contains NaN or inf")
     return a
 
 
@@ -118,22 +116,32 @@ def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLi
     for i, (joint, axis, tip) in enumerate(_records(segments, "segments", 3,
                                                     "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))")):
         types += _joint_type(joint, f"segments[{i}]", "RPF")
-        axis = _array(axis, f"segments[{i}] axis", (3,))
-        norm = np.hypot.reduce(axis)  # no overflow for huge entries
-        if norm < 1e-12:
-            raise ValueError(f"segments[{i}] axis: must not be zero")
-        axes.append(axis / norm)
-        tips.append(_array(tip, f"segments[{i}] tip", (4, 4)))
-    return _core.chain_from_segments(types, np.array(axes), np.array(tips), tool, limits)
+        axes.append(_shaped(axis, f"segments[{i}] axis", (3,)))
+        tips.append(_shaped(tip, f"segments[{i}] tip", (4, 4)))
+    # The values of all segments at once (numpy calls per segment would cost ~10 us each).
+    axes, tips = np.array(axes), np.array(tips)
+    peak = np.abs(axes).max(axis=1)
+    finite_axes, finite_tips = np.isfinite(peak), np.isfinite(tips).all(axis=(1, 2))
+    scale = np.where(finite_axes & (peak > 0), peak, 1.0)[:, None]  # scaled first, norms cannot overflow
+    axes = axes / scale
+    bad = ~(finite_axes & finite_tips & (np.linalg.norm(axes, axis=1) * scale[:, 0] >= 1e-12))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"segments[{i}] " + ("axis: contains NaN or inf" if not finite_axes[i] else
+                                              "tip: contains NaN or inf" if not finite_tips[i] else
+                                              "axis: must not be zero"))
+    return _core.chain_from_segments(types, axes, tips, tool, limits)
 
 
-def _default_q(chain: Chain, default) -> np.ndarray:
+def _default_q(chain: Chain, default) -> list:
     """q (dof,) filled from default: a number for every joint, or a (dof,) array; NaN marks "no
     default" (None)."""
     if default is None:
-        return np.full(chain.dof, np.nan)
+        return [math.nan] * chain.dof
+    if type(default) is float and math.isfinite(default):
+        return [default] * chain.dof
     a = _checks.real_array(default, "default")
-    return _checks.joints(chain, np.full(chain.dof, a) if a.ndim == 0 else a, "default")
+    return _checks.joints(chain, np.full(chain.dof, a) if a.ndim == 0 else a, "default").tolist()
 
 
 def q_from(self: Chain, mapping: collections.abc.Mapping[str, float],
@@ -152,29 +160,32 @@ def q_from(self: Chain, mapping: collections.abc.Mapping[str, float],
     for i, name in enumerate(names):
         places.setdefault(name, []).append(i)
     q = _default_q(self, default)
-    given = np.zeros(self.dof, bool)
+    given = [False] * self.dof
     unknown = []
     for key, value in mapping.items():
         found = places.get(key) if isinstance(key, str) else None
         if found is None:
             unknown.append(key)
             continue
-        q[found] = _real(value, f"mapping[{key!r}]")
-        given[found] = True
+        v = _real(value, f"mapping[{key!r}]")
+        for i in found:
+            q[i], given[i] = v, True
     if unknown:
         raise ValueError(f"mapping: unknown joint name{'s' if len(unknown) > 1 else ''} {_listed(unknown)}; "
                          f"the chain's joints are {_listed(list(names))}")
-    missing = [names[i] for i in range(self.dof) if not given[i] and np.isnan(q[i])]
+    missing = [names[i] for i in range(self.dof) if not given[i] and math.isnan(q[i])]
     if missing:
         raise ValueError(f"mapping: no value for joint{'s' if len(missing) > 1 else ''} {_listed(missing)} "
                          "(pass default= for the joints left out)")
-    return q
+    return np.array(q)
 
 
 def q_dict(self: Chain, q: numpy.typing.ArrayLike) -> dict[str, float]:
     """{joint name: value} of q (dof,), in the chain's joint order (the inverse of q_from)."""
-    values = _checks.joints(self, q, "q")
-    return {name: float(v) for name, v in zip(self.joint_names, values)}
+    values = q.tolist() if type(q) is np.ndarray and q.dtype == np.float64 and q.shape == (self.dof,) else None
+    if values is None or not all(map(math.isfinite, values)):
+        values = _checks.joints(self, q, "q").tolist()  # raises naming q where the quick read did not do
+    return dict(zip(self.joint_names, values))
 
 
 # Named and documented as the core's methods are (help(), the stubs and the reference read them).
