@@ -274,6 +274,17 @@ def test_bad_chain_definitions():
         rk.Chain.from_dh([(1, 0, 0, 0, "R")], tool=2 * np.eye(4))
     with pytest.raises(ValueError, match=r"segments\[0\] axis: must not be zero"):
         rk.Chain.from_segments([("R", (0, 0, 0), np.eye(4))])
+    # A value of the wrong kind is a TypeError, one out of range a ValueError; the first bad one is named.
+    with pytest.raises(TypeError, match=r"^rows\[1\] alpha: expected a number, got str$"):
+        rk.Chain.from_dh([(1, 0, 0, 0, "R"), (1, "0", 0, 0, "R"), (np.nan, 0, 0, 0, "R")])
+    with pytest.raises(TypeError, match=r"^rows\[0\]: joint type must be a string, one of RP$"):
+        rk.Chain.from_dh([(1, 0, 0, 0, 1)])
+    with pytest.raises(TypeError, match=r"^rows: expected a sequence, got int$"):
+        rk.Chain.from_dh(3)
+    with pytest.raises(ValueError, match=r"^segments\[1\] tip: contains NaN or inf$"):
+        rk.Chain.from_segments([("R", (0, 0, 1), np.eye(4)), ("R", (0, 0, 1), np.full((4, 4), np.nan))])
+    with pytest.raises(ValueError, match=r"^segments\[0\] tip: not a rigid transform"):
+        rk.Chain.from_segments([("R", (0, 0, 1), 2 * np.eye(4))])
     with pytest.raises(ValueError, match="chain needs at least one joint"):
         rk.Chain.from_segments([("F", (0, 0, 1), np.eye(4))])
     with pytest.raises(ValueError, match="in_frame: expected 0..3"):
@@ -284,6 +295,17 @@ def test_limits_must_admit_a_value():
     for lower, upper in (([np.inf], [np.inf]), ([-np.inf], [-np.inf])):
         with pytest.raises(ValueError, match="limits: joint 0 has no admissible value"):
             rk.Chain.from_dh([(1, 0, 0, 0, "R")], limits=(lower, upper))
+
+
+def test_segment_axes_of_any_length_are_the_same_axis():
+    """A segment's axis is a direction: any length gives the unit axis's chain (1e300 included, whose
+    norm would overflow unscaled)."""
+    def chain(scale):
+        return rk.Chain.from_segments([("R", scale * np.array([0, 0.6, 0.8]), np.eye(4)),
+                                       ("P", scale * np.array([1.0, 0, 0]), np.eye(4))])
+    unit = chain(1.0)
+    for scale in (1e-9, 3.0, 1e300):
+        np.testing.assert_allclose(chain(scale).fk([0.7, 0.2]), unit.fk([0.7, 0.2]), rtol=0, atol=1e-15)
 
 
 def test_what_the_docstrings_say_of_segments_frames_and_point_in_frame():

@@ -101,8 +101,9 @@ def test_equal_limits_are_unlimited_with_a_warning(quiet):
     """URDF's lower and upper default to 0: a <limit> without them gives lower == upper == 0, which
     robokin reads as 'no limits given' (documented), and says so."""
     xml = robot(joint("j1", "a", "b", extra='<limit effort="1" velocity="1"/>'), joint("j2", "b", "c"))
-    with pytest.warns(rk.URDFWarning, match=r"joint 'j1' has lower == upper limit \(0\): taken as unlimited"):
+    with pytest.warns(rk.URDFWarning, match=r"joint 'j1' has lower == upper limit \(0\): taken as unlimited") as caught:
         chain = rk.Chain.from_urdf(xml, "a", "c")
+    assert caught[0].filename == __file__  # the caller's line, not robokin's
     assert chain.limits[0][0] == -math.inf and chain.limits[1][0] == math.inf
     assert chain.limits[0][1] == -1 and chain.limits[1][1] == 1
     with warnings.catch_warnings():
