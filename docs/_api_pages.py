@@ -29,6 +29,7 @@ _SPELLING = [
     (r"collections\.abc\.", ""),
     (r"typing\.", ""),
     (r"os\.PathLike", "PathLike"),
+    (r"TypeAliasForwardRef\('([^']*)'\)", r"\1"),  # an alias of conf.autodoc_type_aliases, in a union
 ]
 
 

@@ -37,6 +37,9 @@ nb_mime_priority_overrides = [("html", "text/latex", None)]
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"
+# The package's own postponed annotations as written (not numpy's ArrayLike expanded into its union).
+autodoc_type_aliases = {"numpy.typing.ArrayLike": "numpy.typing.ArrayLike",
+                        "numpy.typing.NDArray": "numpy.typing.NDArray"}
 autodoc_default_options = {"members": True}
 napoleon_google_docstring = True
 napoleon_numpy_docstring = True
