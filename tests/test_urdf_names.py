@@ -252,6 +252,13 @@ def test_a_path_that_starts_with_a_bracket_is_read_as_a_path_only_through_pathli
         rk.Chain.from_urdf(str(path))  # a str starting with '<' is a document
 
 
+def test_a_document_that_is_not_unicode_text_is_a_value_error():
+    message = r"^path_or_string: not a valid URDF document \(text that is not Unicode\)$"
+    for call in (rk.Chain.from_urdf, rk.urdf_tree):
+        with pytest.raises(ValueError, match=message):
+            call(SMALL.replace("j2", "j\ud800"))  # a lone surrogate
+
+
 @pytest.mark.parametrize("arg", [42, None, ["a.urdf"], 1.5, bytearray(b"<robot/>")])
 def test_wrong_kinds_are_type_errors_naming_the_argument(arg):
     with pytest.raises(TypeError) as err:

@@ -39,17 +39,17 @@ void bind_urdf(py::module_& m) {
   // What was accepted but changed comes back as text: robokin._urdf warns with it at the caller's line.
   m.def(
       "chain_from_urdf",
-      [](const std::string& xml, std::optional<std::string> base, std::optional<std::string> tip) {
+      [](const py::bytes& xml, std::optional<std::string> base, std::optional<std::string> tip) {
         std::vector<std::string> warnings;
-        Chain chain = chain_from_urdf(xml, base, tip, &warnings);
+        Chain chain = chain_from_urdf(std::string(xml), base, tip, &warnings);
         return py::make_tuple(std::move(chain), warnings);
       },
       py::arg("xml"), py::arg("base"), py::arg("tip"), "(chain, warnings) of a URDF document. Use Chain.from_urdf.");
   m.def(
       "urdf_tree",
-      [](const std::string& xml) {
+      [](const py::bytes& xml) {
         std::vector<std::string> warnings;
-        UrdfTree tree = urdf_tree(xml, &warnings);
+        UrdfTree tree = urdf_tree(std::string(xml), &warnings);
         return py::make_tuple(std::move(tree), warnings);
       },
       py::arg("xml"), "(tree, warnings) of a URDF document. Use robokin.urdf_tree.");

@@ -77,11 +77,9 @@ joint_limit_cost = plain(joint_limit_cost, "joint_limit_cost", __name__)
 # Chain's methods written in Python (robokin._chain, robokin._urdf).
 from . import _chain, _urdf  # noqa: E402
 
-for _name in ("from_dh", "from_segments"):
-    setattr(Chain, _name, staticmethod(getattr(_chain, _name)))
+Chain.from_dh, Chain.from_segments = staticmethod(_chain.from_dh), staticmethod(_chain.from_segments)
 Chain.from_urdf = staticmethod(_urdf.from_urdf)
-for _name in ("q_from", "q_dict"):
-    setattr(Chain, _name, getattr(_chain, _name))
+Chain.q_from, Chain.q_dict = _chain.q_from, _chain.q_dict
 
 __all__ += ["UrdfJoint", "UrdfTree", "urdf_tree"]
 

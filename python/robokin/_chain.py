@@ -6,7 +6,6 @@ checked here, the frames and limits by the core), a configuration from and to a 
 from __future__ import annotations
 
 import collections.abc
-import inspect
 import math
 
 import numpy as np
@@ -14,7 +13,7 @@ import numpy.typing
 
 from . import _checks, _core
 from ._core import Chain
-from ._signature import unquoted
+from ._signature import written
 
 LISTED_NAMES = 20  # an error message lists this many names, then says how many more
 
@@ -46,8 +45,9 @@ def _real(value, name: str) -> float:
 
 
 def _sequence(value) -> bool:
-    return type(value) in (list, tuple) or not isinstance(value, (str, bytes)) and (
-        isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0))
+    """A sequence of items (a list, a tuple, a numpy array of rank 1 or more, ...), not text."""
+    return type(value) in (list, tuple) or (not isinstance(value, (str, bytes)) and (
+        isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0)))
 
 
 def _records(value, name: str, size: int, what: str) -> list:
@@ -118,7 +118,7 @@ def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLi
         types += _joint_type(joint, f"segments[{i}]", "RPF")
         axes.append(_shaped(axis, f"segments[{i}] axis", (3,)))
         tips.append(_shaped(tip, f"segments[{i}] tip", (4, 4)))
-    # The values of all segments at once (numpy calls per segment would cost ~10 us each).
+    # The values of all segments at once: numpy calls per segment would cost more than the chain.
     axes, tips = np.array(axes), np.array(tips)
     peak = np.abs(axes).max(axis=1)
     finite_axes, finite_tips = np.isfinite(peak), np.isfinite(tips).all(axis=(1, 2))
@@ -184,12 +184,10 @@ def q_dict(self: Chain, q: numpy.typing.ArrayLike) -> dict[str, float]:
     """{joint name: value} of q (dof,), in the chain's joint order (the inverse of q_from)."""
     values = q.tolist() if type(q) is np.ndarray and q.dtype == np.float64 and q.shape == (self.dof,) else None
     if values is None or not all(map(math.isfinite, values)):
-        values = _checks.joints(self, q, "q").tolist()  # raises naming q where the quick read did not do
+        values = _checks.joints(self, q, "q").tolist()  # any other q read, or refused naming it, as everywhere
     return dict(zip(self.joint_names, values))
 
 
 # Named and documented as the core's methods are (help(), the stubs and the reference read them).
 for _method in (from_dh, from_segments, q_from, q_dict):
-    _method.__qualname__, _method.__module__ = "Chain." + _method.__name__, Chain.__module__
-    _method.__doc__ = inspect.cleandoc(_method.__doc__)
-    unquoted(_method)
+    written(_method, "Chain." + _method.__name__, Chain.__module__)

@@ -1653,7 +1653,7 @@ def chain_from_segments(types: str, axes: numpy.typing.ArrayLike, tips: numpy.ty
     """
     A chain from segments (types 'R' / 'P' / 'F' each, axes (n, 3), tips (n, 4, 4)). Use Chain.from_segments.
     """
-def chain_from_urdf(xml: str, base: str | None, tip: str | None) -> tuple[Chain, list[str]]:
+def chain_from_urdf(xml: bytes, base: str | None, tip: str | None) -> tuple[Chain, list[str]]:
     """
     (chain, warnings) of a URDF document. Use Chain.from_urdf.
     """
@@ -1793,7 +1793,7 @@ def traj_via_points(points: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike
     """
     Linear segments with parabolic blends: (t, q, qd, qdd, via_times). Use robokin.traj.via_points.
     """
-def urdf_tree(xml: str) -> tuple[UrdfTree, list[str]]:
+def urdf_tree(xml: bytes) -> tuple[UrdfTree, list[str]]:
     """
     (tree, warnings) of a URDF document. Use robokin.urdf_tree.
     """

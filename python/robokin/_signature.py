@@ -5,7 +5,7 @@ its help ``joint_limit_cost(...) method of pybind11_detail_function_record_... i
 ``inspect.signature`` fails on it. :func:`plain` gives a function that forwards to it, with the
 signature of pybind11's first docstring line as ``__signature__`` and the rest of the docstring as
 its own: help(), ``inspect.signature``, the stubs and the documentation read it as written.
-:func:`unquoted` shows a Python function's postponed annotations the same way (not as quoted text).
+:func:`written` presents a Python function the same way (its postponed annotations unquoted).
 """
 
 from __future__ import annotations
@@ -80,11 +80,16 @@ def plain(core: Callable, qualname: str, module: str) -> Callable:
     return call
 
 
-def unquoted(func: Callable) -> Callable:
-    """func, its postponed annotations (text, PEP 563) shown as written: help() and the stubs then
-    read a Python function's signature as they read the core's."""
+def written(func: Callable, qualname: str, module: str) -> Callable:
+    """A Python function presented as the core's are: named ``module.qualname``, its docstring
+    cleaned, its postponed annotations (text, PEP 563) shown as written, unquoted."""
+    def unquoted(annotation):
+        return _Text(annotation) if isinstance(annotation, str) else annotation
+
     sig = inspect.signature(func)
-    text = (lambda a: _Text(a) if isinstance(a, str) else a)
-    func.__signature__ = sig.replace(parameters=[p.replace(annotation=text(p.annotation)) for p in sig.parameters.values()],
-                                     return_annotation=text(sig.return_annotation))
+    func.__signature__ = sig.replace(parameters=[p.replace(annotation=unquoted(p.annotation))
+                                                 for p in sig.parameters.values()],
+                                     return_annotation=unquoted(sig.return_annotation))
+    func.__qualname__, func.__module__ = qualname, module
+    func.__doc__ = inspect.cleandoc(func.__doc__)
     return func

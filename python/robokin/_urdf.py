@@ -4,27 +4,30 @@ accepted but changed is warned about at the caller's line."""
 
 from __future__ import annotations
 
-import inspect
 import os
 import warnings
 
 from . import _core
 from ._core import Chain, UrdfTree
-from ._signature import unquoted
+from ._signature import written
 from .errors import URDFWarning
 
 
-def _document(path_or_string: str | bytes | os.PathLike) -> str | bytes:
-    """The XML text of path_or_string: a str or bytes whose first non-blank character is '<' is the
-    document itself (bytes handed to the parser as they are); any other str or bytes, and every
-    os.PathLike, names a file (bytes decoded with os.fsdecode, as Python's own file functions do)."""
+def _document(path_or_string: str | bytes | os.PathLike) -> bytes:
+    """The XML document of path_or_string, as bytes: a str or bytes whose first non-blank character
+    is '<' is the document itself (a str encoded as UTF-8, bytes handed to the parser as they are);
+    any other str or bytes, and every os.PathLike, names a file (bytes decoded with os.fsdecode, as
+    Python's own file functions do)."""
     if not isinstance(path_or_string, (str, bytes, os.PathLike)):
         raise TypeError("path_or_string: expected a URDF document or a path to one (str, bytes or os.PathLike), "
                         f"got {type(path_or_string).__name__}")
     if isinstance(path_or_string, (str, bytes)):
         text = path_or_string.lstrip(" \t\r\n" if isinstance(path_or_string, str) else b" \t\r\n")
         if text[:1] in ("<", b"<"):
-            return path_or_string
+            try:
+                return path_or_string.encode() if isinstance(path_or_string, str) else path_or_string
+            except UnicodeEncodeError:  # a lone surrogate
+                raise ValueError("path_or_string: not a valid URDF document (text that is not Unicode)") from None
     path = os.fsdecode(path_or_string)
     if not path.strip(" \t\r\n"):
         raise ValueError("path_or_string: the URDF document is empty (an empty string)")
@@ -38,6 +41,7 @@ def _document(path_or_string: str | bytes | os.PathLike) -> str | bytes:
 
 
 def _link(name, argument: str) -> str | None:
+    """A link's name, or None."""
     if name is not None and not isinstance(name, str):
         raise TypeError(f"{argument}: expected a link name (str) or None, got {type(name).__name__}")
     return name
@@ -87,8 +91,5 @@ def urdf_tree(path_or_string: str | bytes | os.PathLike) -> UrdfTree:
 
 
 # Named and documented as the core's functions are (help(), the stubs and the reference read them).
-from_urdf.__qualname__, from_urdf.__module__ = "Chain.from_urdf", Chain.__module__
-urdf_tree.__module__ = "robokin"
-for _function in (from_urdf, urdf_tree):
-    _function.__doc__ = inspect.cleandoc(_function.__doc__)
-    unquoted(_function)
+written(from_urdf, "Chain.from_urdf", Chain.__module__)
+written(urdf_tree, "urdf_tree", "robokin")
