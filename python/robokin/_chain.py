@@ -80,6 +80,16 @@ def _shaped(value, name: str, shape: tuple) -> np.ndarray:
     return a
 
 
+def _stacked(records: list, k: int, shape: tuple) -> np.ndarray | None:
+    """Item k of every record as one float array (n, *shape), or None when one of them is not real
+    numbers of that shape (the caller then finds it with _shaped, and names it)."""
+    try:
+        a = np.array([record[k] for record in records])
+    except (TypeError, ValueError):  # ragged
+        return None
+    return a.astype(float) if a.dtype.kind in "biuf" and a.shape == (len(records),) + shape else None
+
+
 def from_dh(rows: collections.abc.Sequence, modified: bool = False, tool: numpy.typing.ArrayLike | None = None,
             limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> Chain:
     """Builds a chain from Denavit-Hartenberg rows.
@@ -112,14 +122,15 @@ def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLi
     tool: (4, 4) frame appended after the last segment; None for the identity.
     limits: (lower, upper), each dof numbers (rad or m, -inf / inf for none), or None: unlimited.
     """
-    types, axes, tips = "", [], []
-    for i, (joint, axis, tip) in enumerate(_records(segments, "segments", 3,
-                                                    "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))")):
+    records = _records(segments, "segments", 3, "(joint type 'R'|'P'|'F', axis (3,), tip (4, 4))")
+    axes, tips = _stacked(records, 1, (3,)), _stacked(records, 2, (4, 4))
+    types = ""
+    for i, (joint, axis, tip) in enumerate(records):
         types += _joint_type(joint, f"segments[{i}]", "RPF")
-        axes.append(_shaped(axis, f"segments[{i}] axis", (3,)))
-        tips.append(_shaped(tip, f"segments[{i}] tip", (4, 4)))
+        if axes is None or tips is None:  # one of them is not an array of its shape: named in order
+            _shaped(axis, f"segments[{i}] axis", (3,))
+            _shaped(tip, f"segments[{i}] tip", (4, 4))
     # The values of all segments at once: numpy calls per segment would cost more than the chain.
-    axes, tips = np.array(axes), np.array(tips)
     peak = np.abs(axes).max(axis=1)
     finite_axes, finite_tips = np.isfinite(peak), np.isfinite(tips).all(axis=(1, 2))
     scale = np.where(finite_axes & (peak > 0), peak, 1.0)[:, None]  # scaled first, norms cannot overflow
