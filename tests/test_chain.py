@@ -304,8 +304,29 @@ def test_segment_axes_of_any_length_are_the_same_axis():
         return rk.Chain.from_segments([("R", scale * np.array([0, 0.6, 0.8]), np.eye(4)),
                                        ("P", scale * np.array([1.0, 0, 0]), np.eye(4))])
     unit = chain(1.0)
+    # Rodrigues' rotation about k by 0.7, then the slide of 0.2 along x in the turned frame.
+    k, th = np.array([0, 0.6, 0.8]), 0.7
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    R = np.eye(3) + np.sin(th) * K + (1 - np.cos(th)) * K @ K
+    np.testing.assert_allclose(unit.fk([th, 0.2])[:3, :3], R, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(unit.fk([th, 0.2])[:3, 3], R @ [0.2, 0, 0], rtol=0, atol=1e-15)
     for scale in (1e-9, 3.0, 1e300):
         np.testing.assert_allclose(chain(scale).fk([0.7, 0.2]), unit.fk([0.7, 0.2]), rtol=0, atol=1e-15)
+
+
+def test_the_cores_chain_constructors_refuse_letters_that_do_not_fit_their_arrays():
+    """robokin._chain checks what the user gives; the core's own constructors are reachable from Python
+    too, and read no further than their arrays."""
+    from robokin import _core
+
+    with pytest.raises(ValueError, match=r"^joints: expected one of RP per row \(2\)$"):
+        _core.chain_from_dh(np.zeros((2, 4)), "RRRRR", False, None, None)
+    with pytest.raises(ValueError, match=r"^joints: expected one of RP per row \(1\)$"):
+        _core.chain_from_dh(np.zeros((1, 4)), "X", False, None, None)
+    with pytest.raises(ValueError, match=r"^types: expected one of RPF per row \(1\)$"):
+        _core.chain_from_segments("RR", [[0, 0, 1]], [np.eye(4)], None, None)
+    with pytest.raises(ValueError, match=r"^segments\[0\] axis: must not be zero$"):
+        _core.chain_from_segments("R", [[0, 0, 0]], [np.eye(4)], None, None)
 
 
 def test_what_the_docstrings_say_of_segments_frames_and_point_in_frame():

@@ -31,9 +31,17 @@ Matrix4 optional_tool(py::handle tool) {
 
 // Chain.from_dh's and from_segments' core (robokin._chain reads and checks the records: their kinds,
 // shapes and finiteness); the frames (a tip, the tool) and the limits are checked here.
+// One letter of `allowed` per row of a `rows`-row table (checked here as well: these calls are
+// reachable from Python with arrays of any size).
+void require_letters(const std::string& letters, const char* allowed, py::ssize_t rows, const char* name) {
+  if (static_cast<py::ssize_t>(letters.size()) != rows || letters.find_first_not_of(allowed) != std::string::npos)
+    fail(std::string(name) + ": expected one of " + allowed + " per row (" + std::to_string(rows) + ")");
+}
+
 Chain chain_from_dh(ArrayLike table, const std::string& joints, bool modified, OptionalArrayLike tool,
                     LimitsLike limits) {
   const Array t = rows_arg(table, "rows", {4});
+  require_letters(joints, "RP", t.shape(0), "joints");
   std::vector<DHRow> rows;
   for (size_t i = 0; i < joints.size(); ++i) {
     const double* r = t.data() + 4 * i;
@@ -46,11 +54,15 @@ Chain chain_from_dh(ArrayLike table, const std::string& joints, bool modified, O
 Chain chain_from_segments(const std::string& types, ArrayLike axes, ArrayLike tips, OptionalArrayLike tool,
                           LimitsLike limits) {
   const Array a = rows_arg(axes, "segments", {3}), t = rows_arg(tips, "segments", {4, 4});
+  require_letters(types, "RPF", a.shape(0), "types");
+  require_letters(types, "RPF", t.shape(0), "types");
   std::vector<SegmentSpec> specs(types.size());
   for (size_t i = 0; i < types.size(); ++i) {
     SegmentSpec& spec = specs[i];
     spec.type = types[i] == 'R' ? JointType::Revolute : types[i] == 'P' ? JointType::Prismatic : JointType::Fixed;
     spec.axis = Eigen::Map<const Eigen::Vector3d>(a.data() + 3 * i).normalized();
+    if (!(spec.axis.norm() > 0.5))  // zero (or too large to normalise): robokin._chain scales it first
+      fail("segments[" + std::to_string(i) + "] axis: must not be zero");
     spec.tip = rigid_at(t.data() + 16 * i, ("segments[" + std::to_string(i) + "] tip").c_str());
   }
   const JointLimits lim = limits_arg(limits, -1);

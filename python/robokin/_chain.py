@@ -27,38 +27,15 @@ def _listed(items: list) -> str:
     return ", ".join(shown) + (f" and {more} more" if more > 0 else "")
 
 
-def _real(value, name: str) -> float:
-    """A number as Python's float() takes one (ints, numpy scalars, __float__ or __index__; not
-    text), finite."""
-    if type(value) is not float:  # the checks below cost more than the rest of a DH row
-        if isinstance(value, (str, bytes, bytearray)) or not (hasattr(value, "__float__") or hasattr(value, "__index__")):
-            raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
-        try:
-            value = float(value)
-        except OverflowError:
-            raise ValueError(f"{name}: must be finite, got an int too large for a float") from None
-        except (TypeError, ValueError):
-            raise TypeError(f"{name}: expected a number, got {type(value).__name__}") from None
-    if not math.isfinite(value):
-        raise ValueError(f"{name}: must be finite, got {value!r}")
-    return value
-
-
-def _sequence(value) -> bool:
-    """A sequence of items (a list, a tuple, a numpy array of rank 1 or more, ...), not text."""
-    return type(value) in (list, tuple) or (not isinstance(value, (str, bytes)) and (
-        isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0)))
-
-
 def _records(value, name: str, size: int, what: str) -> list:
     """The records of a chain to build (DH rows, segments): a non-empty sequence of sequences of
     ``size`` items (``what`` says which)."""
-    if not _sequence(value):
+    if not _checks.is_sequence(value):
         raise TypeError(f"{name}: expected a sequence, got {type(value).__name__}")
     if len(value) == 0:
         raise ValueError(f"{name}: a chain needs at least one joint")
     for i, record in enumerate(value):
-        if not _sequence(record) or len(record) != size:
+        if not _checks.is_sequence(record) or len(record) != size:
             raise ValueError(f"{name}[{i}]: expected {what}")
     return list(value)
 
@@ -70,14 +47,6 @@ def _joint_type(value, name: str, allowed: str) -> str:
     if len(value) != 1 or value.upper() not in allowed:
         raise ValueError(f"{name}: joint type must be one of {allowed}, got '{value}'")
     return value.upper()
-
-
-def _shaped(value, name: str, shape: tuple) -> np.ndarray:
-    """A float array of ``shape`` (its values checked by the caller)."""
-    a = _checks.real_array(value, name)
-    if a.shape != shape:
-        raise ValueError(f"{name}: expected shape {shape}, got {a.shape}")
-    return a
 
 
 def _stacked(records: list, k: int, shape: tuple) -> np.ndarray | None:
@@ -106,7 +75,8 @@ def from_dh(rows: collections.abc.Sequence, modified: bool = False, tool: numpy.
     """
     table, joints = [], ""
     for i, row in enumerate(_records(rows, "rows", 5, "(a, alpha, d, theta, 'R' or 'P')")):
-        table.append([_real(row[k], f"rows[{i}] {field}") for k, field in enumerate(("a", "alpha", "d", "theta"))])
+        table.append([_checks.finite_float(row[k], f"rows[{i}] {field}")
+                      for k, field in enumerate(("a", "alpha", "d", "theta"))])
         joints += _joint_type(row[4], f"rows[{i}]", "RP")
     return _core.chain_from_dh(np.array(table), joints, modified, tool, limits)
 
@@ -128,8 +98,8 @@ def from_segments(segments: collections.abc.Sequence, tool: numpy.typing.ArrayLi
     for i, (joint, axis, tip) in enumerate(records):
         types += _joint_type(joint, f"segments[{i}]", "RPF")
         if axes is None or tips is None:  # one of them is not an array of its shape: named in order
-            _shaped(axis, f"segments[{i}] axis", (3,))
-            _shaped(tip, f"segments[{i}] tip", (4, 4))
+            _checks.shaped(axis, f"segments[{i}] axis", (3,))
+            _checks.shaped(tip, f"segments[{i}] tip", (4, 4))
     # The values of all segments at once: numpy calls per segment would cost more than the chain.
     peak = np.abs(axes).max(axis=1)
     finite_axes, finite_tips = np.isfinite(peak), np.isfinite(tips).all(axis=(1, 2))
@@ -178,7 +148,7 @@ def q_from(self: Chain, mapping: collections.abc.Mapping[str, float],
         if found is None:
             unknown.append(key)
             continue
-        v = _real(value, f"mapping[{key!r}]")
+        v = _checks.finite_float(value, f"mapping[{key!r}]")
         for i in found:
             q[i], given[i] = v, True
     if unknown:

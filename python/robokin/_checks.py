@@ -1,10 +1,11 @@
-"""Argument checks of what Python computes itself (robots, paths, plots, the 3-RRR design study):
-each error names the argument; a value of the wrong kind is a TypeError, a value out of range a
-ValueError. (Arguments of the core's calls are converted in the bindings, cpp/bindings/arrays.hpp,
-and the core validates its own options.)"""
+"""Argument checks of what Python reads itself (robots, paths, plots, the 3-RRR design study, the
+Chain constructors' rows and q_from's mapping): each error names the argument; a value of the wrong
+kind is a TypeError, a value out of range a ValueError. (Arrays passed on to the core are converted
+in the bindings, cpp/bindings/arrays.hpp, and the core validates its own options.)"""
 
 from __future__ import annotations
 
+import collections.abc
 import math
 import numbers
 
@@ -40,6 +41,30 @@ def chain(value, name: str = "chain"):
     return value
 
 
+def finite_float(value, name: str) -> float:
+    """A number as Python's float() takes one (ints and bools, numpy scalars, objects with
+    __float__ or __index__; not text), finite: what the core's double arguments take, with its
+    messages. (number() is the stricter check of Python's own arguments: no bools.)"""
+    if type(value) is not float:  # the checks below cost more than a DH row's other work
+        if isinstance(value, (str, bytes, bytearray)) or not (hasattr(value, "__float__") or hasattr(value, "__index__")):
+            raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+        try:
+            value = float(value)
+        except OverflowError:
+            raise ValueError(f"{name}: must be finite, got an int too large for a float") from None
+        except (TypeError, ValueError):
+            raise TypeError(f"{name}: expected a number, got {type(value).__name__}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name}: must be finite, got {value!r}")
+    return value
+
+
+def is_sequence(value) -> bool:
+    """A sequence of items (a list, a tuple, a numpy array of rank 1 or more, ...), not text."""
+    return type(value) in (list, tuple) or (not isinstance(value, (str, bytes)) and (
+        isinstance(value, collections.abc.Sequence) or (isinstance(value, np.ndarray) and value.ndim > 0)))
+
+
 def whole(value, name: str, lo: int, hi: int, what: str = "") -> int:
     """An integer (a Python or numpy int; not a bool) in ``[lo, hi]`` as an int; ``what`` says in
     the message what it counts.
@@ -72,11 +97,17 @@ def real_array(value, name: str) -> np.ndarray:
         raise TypeError(f"{name}: expected real numbers, got {value!r} ({exc})") from None
 
 
+def shaped(value, name: str, shape: tuple) -> np.ndarray:
+    """``value`` as a float array of ``shape`` (its values not checked)."""
+    a = real_array(value, name)
+    if a.shape != shape:
+        raise ValueError(f"{name}: expected shape {shape}, got {a.shape}")
+    return a
+
+
 def joints(chain_, value, name: str = "q") -> np.ndarray:
     """One configuration of ``chain_``: ``(dof,)`` finite real numbers."""
-    a = real_array(value, name)
-    if a.shape != (chain_.dof,):
-        raise ValueError(f"{name}: expected shape ({chain_.dof},), got {a.shape}")
+    a = shaped(value, name, (chain_.dof,))
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name}: contains NaN or inf")
     return a
