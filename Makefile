@@ -46,8 +46,10 @@ demo-rpr: setup
 demo-postures: setup
 	$(VPY) -m robokin.demo_postures
 
+# Every test, spread over every core (pytest-xdist); `make test PYTEST_ARGS=` runs them in one process.
+PYTEST_ARGS ?= -n auto --dist worksteal
 test: setup
-	$(VPY) -m pytest -q
+	$(VPY) -m pytest -q $(PYTEST_ARGS)
 
 # The property tests only, with ten times as many examples as `make test`, freshly random each run.
 fuzz: setup
@@ -66,7 +68,7 @@ $(ASAN_VENV)/.installed: $(ASAN_VENV)/.base $(SOURCES) scripts/install-system-de
 test-asan: $(ASAN_VENV)/.installed
 	LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libstdc++.so)" \
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	HYPOTHESIS_PROFILE=asan $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider
+	HYPOTHESIS_PROFILE=asan $(ASAN_VENV)/bin/python -m pytest -q -p no:cacheprovider $(PYTEST_ARGS)
 
 # Planted bugs (tests/mutants/mutants.toml), one at a time, each against the tests that cover it:
 # every one must be caught. Long (an incremental build per C++ mutant): not part of `make test`;

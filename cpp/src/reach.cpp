@@ -161,8 +161,11 @@ TrackResult Reacher::track(const Target* targets, long count, const Vector& q0, 
   r.iterations.resize(count);
   q_ = q0;
   chain_.fk_jacobian(q_.data(), T_, J6_.data());
+  // Progress (and Ctrl-C) every 6,400 iterations at most: every 256 points at the default max_iter,
+  // every point from max_iter 6,400 on.
+  const long every = std::max(1, 6400 / opt_.max_iter);
   for (long k = 0; k < count; ++k) {
-    if (k % 256 == 0 || opt_.max_iter > 1000) report(progress, k, count);  // a point may be slow
+    if (k % every == 0) report(progress, k, count);
     double error = 0.0;
     r.iterations(k) = run(targets[k], error);
     r.error(k) = error;
