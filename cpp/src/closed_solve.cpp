@@ -1,9 +1,9 @@
 // The closed form of the arms closed_family recognises, from the Paden-Kahan subproblems.
 #include "robokin/closed_solve.hpp"
-#include "robokin/angles.hpp"
 #include "robokin/parallel.hpp"
 
 #include "closed_batch.hpp"
+#include "kernel/fast_math.hpp"
 #include "robokin/subproblems.hpp"
 
 #include <Eigen/Geometry>
@@ -38,16 +38,24 @@ const char* label(int shoulder, int elbow, int wrist) {
   return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
 }
 
-// The candidates of one solve, checked together at the end.
+// The candidates of one solve, checked together at the end: each joint's turn, its angle taken
+// with every other's in one pass of arc tangents (angles()).
 struct Candidates {
-  double q[8][6];
+  Turn q[8][6];
   int shoulder[8], elbow[8], wrist[8];
   int m = 0;
   bool singular = false;
-  void add(const double* joints, int s, int e, int w) {
+  void add(const Turn* joints, int s, int e, int w) {
     if (m == 8) return;
-    for (int i = 0; i < 6; ++i) q[m][i] = wrap_angle(joints[i]);
+    for (int i = 0; i < 6; ++i) q[m][i] = joints[i];
     shoulder[m] = s, elbow[m] = e, wrist[m++] = w;
+  }
+  // The candidates' angles, rows of 6 into out.
+  void angles(double* out) const {
+    double y[48], x[48];
+    for (int k = 0; k < m; ++k)
+      for (int i = 0; i < 6; ++i) y[6 * k + i] = q[k][i].s, x[6 * k + i] = q[k][i].c;
+    vmath::atan2(y, x, out, 6 * m);
   }
 };
 
@@ -71,7 +79,7 @@ int wrist_label(const V3& a4, const V3& a5, const V3& a6, bool singular) {
 // 2 .. 6), with its label.
 SubproblemAngles shoulders(const JointAxes& g, const V3& c, const V3& center) {
   SubproblemAngles t = subproblem4(g.axis[1], g.axis[0], c - g.point[0], g.axis[1].dot(center - g.point[0]));
-  for (int i = 0; i < t.count; ++i) t.theta[i] = -t.theta[i];
+  for (int i = 0; i < t.count; ++i) t.turn[i] = -t.turn[i];
   return t;
 }
 
@@ -81,49 +89,68 @@ int shoulder_label(const JointAxes& g, const M3& R1, const V3& c, bool singular)
   return x1.dot(c - g.point[0]) > 0 ? 1 : 0;
 }
 
-// The spherical wrist of q1 .. q3: (q4, q5) by subproblem 2 on axis 6, q6 by subproblem 1.
-void wrist(const JointAxes& g, const M3& R03, const M3& R06, double* q, int s, int e, Candidates& out) {
-  const M3 Rw = R03.transpose() * R06;  // R4 R5 R6
+// What a spherical wrist turns towards at the target G: the tool's axis 6 and a unit vector x normal
+// to it (fixed in the last link), as the base sees them (G.R h6, G.R x); y = h6 x x.
+struct WristGoal {
+  V3 x, y, h6, x6;
+};
+
+WristGoal wrist_goal(const JointAxes& g, const Rigid& G) {
+  WristGoal w;
+  w.x = g.axis[5].unitOrthogonal(), w.y = g.axis[5].cross(w.x);
+  w.h6 = G.R * g.axis[5], w.x6 = G.R * w.x;
+  return w;
+}
+
+// The spherical wrist of q1 .. q3 (R03 their rotation): (q4, q5) by subproblem 2 on axis 6, q6 by
+// subproblem 1 on x.
+void wrist(const JointAxes& g, const WristGoal& goal, const M3& R03, Turn* q, int s, int e, Candidates& out) {
   const V3 &h4 = g.axis[3], &h5 = g.axis[4], &h6 = g.axis[5];
+  const V3 w6 = R03.transpose() * goal.h6, wx = R03.transpose() * goal.x6;  // R4 R5 R6 h6, R4 R5 R6 x
   SubproblemAngles t4, t5;
-  const bool aligned = h4.cross(Rw * h6).norm() < 1e-9;  // axes 4 and 6 aligned: q4 + q6 only
+  const bool aligned = h4.cross(w6).norm() < 1e-9;  // axes 4 and 6 aligned: q4 + q6 only
   if (aligned) {
-    t4.count = 1, t4.theta[0] = 0.0;
-    t5 = subproblem1(h5, h6, Rw * h6);
+    t4.count = 1;
+    t5 = subproblem1(h5, h6, w6);
     out.singular = true;
   } else {
-    subproblem2(h4, h5, h6, Rw * h6, t4, t5);
+    subproblem2(h4, h5, h6, w6, t4, t5);
   }
   for (int i = 0; i < t4.count; ++i) {
-    q[3] = t4.theta[i], q[4] = t5.theta[aligned ? 0 : i];
-    const M3 R4 = axis_rotation(h4, q[3]), R45 = R4 * axis_rotation(h5, q[4]);
-    const V3 x = h6.unitOrthogonal();
-    q[5] = subproblem1(h6, x, R45.transpose() * Rw * x).theta[0];
-    out.add(q, s, e, wrist_label(R03 * h4, R03 * R4 * h5, R03 * R45 * h6, aligned));
+    q[3] = t4.turn[i], q[4] = t5.turn[aligned ? 0 : i];
+    // q6 turns x onto R6 x = (R4 R5)^T wx, in the plane (x, y) normal to h6: subproblem 1 on
+    // orthonormal data.
+    const V3 v = rotate(h5, -q[4], rotate(h4, -q[3], wx));
+    const double cx = goal.x.dot(v), cy = goal.y.dot(v), n = std::sqrt(cx * cx + cy * cy);
+    q[5] = n > 0 ? Turn{cx / n, cy / n} : Turn{};
+    // The label's triple product (a4 x a6) . a5, with a4 = R03 h4, a5 = R03 R4 h5, a6 = R03 R4 R5 h6,
+    // is the same seen after joint 4 (R03 R4 a rotation, fixing h4).
+    out.add(q, s, e, wrist_label(h4, h5, rotate(h5, q[4], h6), aligned));
   }
 }
 
 // Spherical wrist, axes 2, 3 parallel: the wrist centre c by q1 (4), q3 (3), q2 (1).
 void solve_spherical(const JointAxes& g, const V3& center, const Rigid& G, Candidates& out) {
   const V3 c = G.R * center + G.p;
+  const WristGoal goal = wrist_goal(g, G);
   const V3 &p1 = g.point[0], &p2 = g.point[1], &p3 = g.point[2];
   const SubproblemAngles t1 = shoulders(g, c, center);
   out.singular = out.singular || t1.singular;
   for (int i = 0; i < t1.count; ++i) {
-    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    Turn q[6] = {t1.turn[i]};
     const M3 R1 = axis_rotation(g.axis[0], q[0]);
     const int s = shoulder_label(g, R1, c, t1.singular);
     const V3 v = R1.transpose() * (c - p1) - (p2 - p1);
     const SubproblemAngles t3 = subproblem3(g.axis[2], center - p3, p2 - p3, v.norm());
     out.singular = out.singular || t3.singular;
     for (int j = 0; j < t3.count; ++j) {
-      q[2] = t3.theta[j];
+      q[2] = t3.turn[j];
       const M3 R3 = axis_rotation(g.axis[2], q[2]);
-      q[1] = subproblem1(g.axis[1], (p3 - p2) + R3 * (center - p3), v).theta[0];
+      q[1] = subproblem1(g.axis[1], (p3 - p2) + R3 * (center - p3), v).turn[0];
       const M3 R12 = R1 * axis_rotation(g.axis[1], q[1]);
       const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2);
       const int e = elbow_label(s2, e3, c, R1 * g.axis[1], g.axis[0], t3.singular);
-      wrist(g, R12 * R3, G.R, q, s, e, out);
+      wrist(g, goal, R12 * R3, q, s, e, out);
     }
   }
 }
@@ -132,22 +159,24 @@ void solve_spherical(const JointAxes& g, const V3& center, const Rigid& G, Candi
 // q2 (2) turn it onto c. The elbow's label: the turn about axis 3 from s to c.
 void solve_meet(const JointAxes& g, const V3& center, const V3& s, const Rigid& G, Candidates& out) {
   const V3 c = G.R * center + G.p;
+  const WristGoal goal = wrist_goal(g, G);
   const V3 &h3 = g.axis[2], &p3 = g.point[2];
   const SubproblemAngles t3 = subproblem3(h3, center - p3, s - p3, (c - s).norm());
   out.singular = out.singular || t3.singular;
   for (int j = 0; j < t3.count; ++j) {
-    double q[6] = {0, 0, t3.theta[j], 0, 0, 0};
+    Turn q[6];
+    q[2] = t3.turn[j];
     const M3 R3 = axis_rotation(h3, q[2]);
     SubproblemAngles t1, t2;
     subproblem2(g.axis[0], g.axis[1], (p3 - s) + R3 * (center - p3), c - s, t1, t2);
     out.singular = out.singular || t1.singular || t2.singular;
     for (int i = 0; i < t1.count; ++i) {
-      q[0] = t1.theta[i], q[1] = t2.theta[i];
+      q[0] = t1.turn[i], q[1] = t2.turn[i];
       const M3 R1 = axis_rotation(g.axis[0], q[0]), R12 = R1 * axis_rotation(g.axis[1], q[1]);
       const V3 a3 = R12 * h3, p3w = s + R12 * (p3 - s);
       const V3 e = p3w + (s - p3w).dot(a3) * a3;
       const int elbow = t3.singular ? ((e - s).dot(c - e) >= 0 ? 2 : 3) : (a3.dot((s - e).cross(c - e)) > 0 ? 0 : 1);
-      wrist(g, R12 * R3, G.R, q, shoulder_label(g, R1, c, t1.singular), elbow, out);
+      wrist(g, goal, R12 * R3, q, shoulder_label(g, R1, c, t1.singular), elbow, out);
     }
   }
 }
@@ -159,11 +188,12 @@ void solve_meet(const JointAxes& g, const V3& center, const V3& s, const Rigid& 
 // or not).
 void solve_meet_after(const JointAxes& g, const V3& center, const V3& s, const Rigid& G, Candidates& out) {
   const V3 c = G.R * center + G.p;
+  const WristGoal goal = wrist_goal(g, G);
   const V3 &h1 = g.axis[0], &p1 = g.point[0], &h2 = g.axis[1], &h3 = g.axis[2];
   const SubproblemAngles t1 = subproblem3(h1, s - p1, c - p1, (center - s).norm());
   out.singular = out.singular || t1.singular;
   for (int i = 0; i < t1.count; ++i) {
-    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    Turn q[6] = {t1.turn[i]};
     const M3 R1 = axis_rotation(h1, q[0]);
     const V3 s1 = p1 + R1 * (s - p1), w = c - s1;
     const int shoulder = t1.singular ? 2 : (h1.dot((s1 - p1).cross(c - p1)) > 0 ? 0 : 1);
@@ -172,20 +202,20 @@ void solve_meet_after(const JointAxes& g, const V3& center, const V3& s, const R
     const bool elbow_singular = t2.singular || t3.singular;
     out.singular = out.singular || elbow_singular;
     for (int j = 0; j < t2.count; ++j) {
-      q[1] = t2.theta[j], q[2] = t3.theta[j];
+      q[1] = t2.turn[j], q[2] = t3.turn[j];
       const M3 R12 = R1 * axis_rotation(h2, q[1]), R3 = axis_rotation(h3, q[2]);
       const V3 a2 = R1 * h2, a3 = R12 * h3;
       const int elbow = elbow_singular ? (a2.cross(a3).dot(a3.cross(w)) > 0 ? 2 : 3)
                                        : (a3.dot(a2.cross(w)) > 0 ? 0 : 1);
-      wrist(g, R12 * R3, G.R, q, shoulder, elbow, out);
+      wrist(g, goal, R12 * R3, q, shoulder, elbow, out);
     }
   }
 }
 
-// The motion of joint i of g turned by angle (a rotation about its axis through its point).
-Rigid joint_motion(const JointAxes& g, int i, double angle) {
+// The motion of joint i of g turned by t (a rotation about its axis through its point).
+Rigid joint_motion(const JointAxes& g, int i, const Turn& t) {
   Rigid E;
-  E.R = axis_rotation(g.axis[i], angle);
+  E.R = axis_rotation(g.axis[i], t);
   E.p = g.point[i] - E.R * g.point[i];
   return E;
 }
@@ -204,30 +234,30 @@ void solve_parallel_first(const JointAxes& g, const V3& center, const Rigid& G, 
   const SubproblemAngles t4 = subproblem4(h, h4, center - g.point[3], h.dot(c - g.point[3]));
   out.singular = out.singular || t4.singular;
   for (int i = 0; i < t4.count; ++i) {
-    double q[6] = {0, 0, 0, t4.theta[i], 0, 0};
+    Turn q[6];
+    q[3] = t4.turn[i];
     SubproblemAngles t5, t6;
-    subproblem2(h5, h6, G.R.transpose() * h, axis_rotation(h4, q[3]).transpose() * h, t5, t6);
+    subproblem2(h5, h6, G.R.transpose() * h, rotate(h4, -q[3], h), t5, t6);
     const bool wrist_singular = t5.singular || t6.singular;
     out.singular = out.singular || wrist_singular;
     for (int k = 0; k < t5.count; ++k) {
-      q[4] = t5.theta[k], q[5] = t6.theta[k];
+      q[4] = t5.turn[k], q[5] = t6.turn[k];
       const Rigid E4 = joint_motion(g, 3, q[3]), E45 = E4 * joint_motion(g, 4, q[4]);
       const Rigid M = G * (E45 * joint_motion(g, 5, q[5])).inverse();  // E1 E2 E3
       const V3 w = M.R * p3 + M.p;
       const SubproblemAngles t1 = subproblem3(h, p2 - p1, w - p1, (p3 - p2).norm());
       out.singular = out.singular || t1.singular;
       const V3 x = h.unitOrthogonal();
-      const double q123 = subproblem1(h, x, M.R * x).theta[0];
+      const Turn q123 = subproblem1(h, x, M.R * x).turn[0];
       const Rigid M4 = M * E4, M5 = M * E45;
       const V3 a4 = M.R * h4, o4 = M.R * g.point[3] + M.p;
       const int shoulder = t4.singular ? 2 : (a4.dot(h.cross(c - o4)) > 0 ? 0 : 1);
       const int wrist = wrist_singular ? 2 : ((M4.R * h5).cross(M5.R * h6).dot(h) >= 0 ? 0 : 1);
       for (int j = 0; j < t1.count; ++j) {
-        q[0] = t1.theta[j];
-        const M3 R1 = axis_rotation(h, q[0]);
-        q[1] = subproblem1(g.axis[1], p3 - p2, R1.transpose() * (w - p1) + (p1 - p2)).theta[0];
-        q[2] = s3 * (q123 - q[0] - s2 * q[1]);
-        const V3 o2 = p1 + R1 * (p2 - p1), arm = o2 - p1, fore = w - o2;
+        q[0] = t1.turn[j];
+        q[1] = subproblem1(g.axis[1], p3 - p2, rotate(h, -q[0], w - p1) + (p1 - p2)).turn[0];
+        q[2] = (q123 - q[0] - q[1].times(s2)).times(s3);
+        const V3 o2 = p1 + rotate(h, q[0], p2 - p1), arm = o2 - p1, fore = w - o2;
         const int elbow = t1.singular ? (arm.dot(fore) > 0 ? 2 : 3) : (h.dot(arm.cross(fore)) > 0 ? 0 : 1);
         out.add(q, shoulder, elbow, wrist);
       }
@@ -239,14 +269,14 @@ void solve_parallel_first(const JointAxes& g, const V3& center, const Rigid& G, 
 // R06, A the wrist point seen from axis 2 (A = R1^T (c - p1) - (p2 - p1)). At the wrist's
 // singularity (axis 6 parallel to axis 2: only q234 +- q6 is fixed; `singular` set) the
 // representative puts the elbow at a right angle, or as near as the continuum allows.
-double parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const M3& R5, const V3& A, bool& singular,
-                      double& q6) {
+Turn parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const M3& R5, const V3& A, bool& singular,
+                    Turn& q6) {
   const V3 &h2 = g.axis[1], &h6 = g.axis[5];
   const SubproblemAngles t6 = subproblem1(h6, R5.transpose() * h2, R16.transpose() * h2);
   if (!(singular || t6.singular)) {
-    q6 = -t6.theta[0];
+    q6 = -t6.turn[0];
     const V3 y = h2.unitOrthogonal();
-    return subproblem1(h2, y, R16 * (R5 * axis_rotation(h6, q6)).transpose() * y).theta[0];
+    return subproblem1(h2, y, R16 * (R5 * axis_rotation(h6, q6)).transpose() * y).turn[0];
   }
   singular = true;
   const auto flat = [&](const V3& x) { return V3(x - x.dot(h2) * h2); };
@@ -255,9 +285,9 @@ double parallel_wrist(const JointAxes& g, const V3& center, const M3& R16, const
   const double reach = a.norm() * b.norm() * (1.0 - 1e-12);
   const double d = std::clamp(0.5 * (a.squaredNorm() + b.squaredNorm() - l2 - l3), -reach, reach);
   const SubproblemAngles t = subproblem4(a, h2, b, d);
-  const double q234 = t.count ? t.theta[0] : 0.0;
+  const Turn q234 = t.count ? t.turn[0] : Turn{};
   const V3 x = h6.unitOrthogonal();
-  q6 = subproblem1(h6, x, R5.transpose() * axis_rotation(h2, -q234) * R16 * x).theta[0];
+  q6 = subproblem1(h6, x, R5.transpose() * rotate(h2, -q234, R16 * x)).turn[0];
   return q234;
 }
 
@@ -267,43 +297,42 @@ void solve_parallel(const JointAxes& g, const V3& center, const Rigid& G, Candid
   const V3 c = G.R * center + G.p;
   const V3 &h2 = g.axis[1], &h5 = g.axis[4], &h6 = g.axis[5];
   const V3 &p1 = g.point[0], &p2 = g.point[1], &p3 = g.point[2], &p4 = g.point[3];
+  // Axes 3 and 4 may point against axis 2 (parallel lines): R(h3, q3) = R(h2, s3 q3).
+  const double s3 = g.axis[2].dot(h2) > 0 ? 1.0 : -1.0, s4 = g.axis[3].dot(h2) > 0 ? 1.0 : -1.0;
   const SubproblemAngles t1 = shoulders(g, c, center);
   out.singular = out.singular || t1.singular;
   for (int i = 0; i < t1.count; ++i) {
-    double q[6] = {t1.theta[i], 0, 0, 0, 0, 0};
+    Turn q[6] = {t1.turn[i]};
     const M3 R1 = axis_rotation(g.axis[0], q[0]), R16 = R1.transpose() * G.R;
     const int s = shoulder_label(g, R1, c, t1.singular);
     const SubproblemAngles t5 = subproblem4(h2, h5, h6, h2.dot(R16 * h6));
     for (int k = 0; k < t5.count; ++k) {
-      q[4] = t5.theta[k];
+      q[4] = t5.turn[k];
       const M3 R5 = axis_rotation(h5, q[4]);
       const V3 A = R1.transpose() * (c - p1) - (p2 - p1);
       bool wrist_singular = t5.singular && t5.count == 1;  // q5 exactly at the singularity
-      double q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
-      V3 v = A - axis_rotation(h2, q234) * (center - p4);
+      Turn q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
+      V3 v = A - rotate(h2, q234, center - p4);
       SubproblemAngles t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
       if (t3.count == 0 && t5.singular && !wrist_singular) {
         // Within the margin of the wrist's singularity q234 is split from q6 by rounding alone and
         // may leave the elbow out of reach: the representative instead (polished in closed_solve).
         wrist_singular = true;
         q234 = parallel_wrist(g, center, R16, R5, A, wrist_singular, q[5]);
-        v = A - axis_rotation(h2, q234) * (center - p4);
+        v = A - rotate(h2, q234, center - p4);
         t3 = subproblem3(g.axis[2], p4 - p3, p2 - p3, v.norm());
       }
       out.singular = out.singular || wrist_singular || t5.singular;
       out.singular = out.singular || t3.singular;
       for (int j = 0; j < t3.count; ++j) {
-        q[2] = t3.theta[j];
+        q[2] = t3.turn[j];
         const M3 R3 = axis_rotation(g.axis[2], q[2]);
-        q[1] = subproblem1(h2, (p3 - p2) + R3 * (p4 - p3), v).theta[0];
-        // Axes 3 and 4 may point against axis 2 (parallel lines): R(h3, q3) = R(h2, s3 q3).
-        const double s3 = g.axis[2].dot(h2) > 0 ? 1.0 : -1.0, s4 = g.axis[3].dot(h2) > 0 ? 1.0 : -1.0;
-        q[3] = s4 * (q234 - q[1] - s3 * q[2]);
-        const M3 R12 = R1 * axis_rotation(h2, q[1]), R14 = R12 * R3 * axis_rotation(g.axis[3], q[3]);
-        const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2), w4 = e3 + R12 * R3 * (p4 - p3);
+        q[1] = subproblem1(h2, (p3 - p2) + R3 * (p4 - p3), v).turn[0];
+        q[3] = (q234 - q[1] - q[2].times(s3)).times(s4);
+        const M3 R12 = R1 * axis_rotation(h2, q[1]), R13 = R12 * R3, R14 = R13 * axis_rotation(g.axis[3], q[3]);
+        const V3 s2 = p1 + R1 * (p2 - p1), e3 = s2 + R12 * (p3 - p2), w4 = e3 + R13 * (p4 - p3);
         const int e = elbow_label(s2, e3, w4, R1 * h2, g.axis[0], t3.singular);
-        const M3 R15 = R14 * R5;
-        out.add(q, s, e, wrist_label(R14 * g.axis[3], R14 * h5, R15 * h6, wrist_singular));
+        out.add(q, s, e, wrist_label(R14 * g.axis[3], R14 * h5, R14 * (R5 * h6), wrist_singular));
       }
     }
   }
@@ -374,10 +403,12 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   else if (kind == FamilyKind::WristMeetAfter) solve_meet_after(g, arm.family.center, arm.family.shoulder, G, c);
   else if (kind == FamilyKind::ParallelFirst) solve_parallel_first(g, arm.family.center, G, c);
   else solve_spherical(g, arm.family.center, G, c);
+  double angles[8 * 6];
+  c.angles(angles);
   const int n = 6 + arm.axes.held.has_value(), held = held_index(arm);
   for (int k = 0; k < c.m; ++k)
     for (int i = 0, j = 0; i < n; ++i)
-      q[k * n + i] = i == held ? arm.axes.held->value : c.q[k][arm.family.reversed ? 5 - j++ : j++];
+      q[k * n + i] = i == held ? arm.axes.held->value : angles[6 * k + (arm.family.reversed ? 5 - j++ : j++)];
   return n;
 }
 

@@ -1,7 +1,6 @@
-// The Paden-Kahan subproblems, each reduced to a cos theta + b sin theta = c, or to one atan2.
+// The Paden-Kahan subproblems, each reduced to a cos theta + b sin theta = c, or to one angle
+// between two vectors: cosines and sines by algebra, no trigonometric call.
 #include "robokin/subproblems.hpp"
-
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +8,29 @@
 namespace robokin {
 namespace {
 
-// theta with a cos theta + b sin theta = c: atan2(b, a) -+ acos(c / |(a, b)|). `scale` is the size
-// of the terms the coefficients were made from (the margin's unit).
+// (x, y) / |(x, y)| and |(x, y)| (the unit turn and 0 when both are 0). One square root and one
+// division (glibc's hypot costs several square roots), with hypot's care (no overflow or underflow
+// of the squares) only where the squares leave the normal range.
+Turn direction(double x, double y, double& length) {
+  const double n2 = x * x + y * y;
+  double inv;
+  if (n2 > 1e-290 && n2 < 1e290) {
+    length = std::sqrt(n2), inv = 1.0 / length;
+  } else {
+    length = std::hypot(x, y);
+    if (!(length > 0.0)) return {};
+    inv = 1.0 / length;
+  }
+  return {x * inv, y * inv};
+}
+
+// theta with a cos theta + b sin theta = c: theta = beta -+ spread, beta the direction of (a, b) and
+// cos spread = c / |(a, b)|. `scale` is the size of the terms the coefficients were made from (the
+// margin's unit).
 SubproblemAngles sinusoid(double a, double b, double c, double scale) {
   SubproblemAngles out;
-  const double r = std::hypot(a, b);
+  double r;
+  const Turn beta = direction(a, b, r);
   const double eps = kSubproblemEps * std::max(scale, 1e-300);
   if (!(r > eps)) {  // no dependence on theta: every angle or none
     if (std::abs(c) <= eps) out.count = 1, out.singular = true;
@@ -21,38 +38,38 @@ SubproblemAngles sinusoid(double a, double b, double c, double scale) {
   }
   const double ratio = c / r;
   if (!(std::abs(ratio) <= 1.0 + kSubproblemEps)) return out;  // also NaN
-  const double base = std::atan2(b, a);
   // Within the margin of +-1 the two solutions (nearly) coincide: flagged singular, and kept apart
   // unless their spread is 0 (the margin's roots are ~1e-6 apart: each is needed where a pose near
   // the singularity has both, its neighbours following them).
   out.singular = std::abs(ratio) >= 1.0 - kSubproblemEps;
-  const double spread = std::acos(std::clamp(ratio, -1.0, 1.0));
-  if (spread == 0.0 || spread == M_PI) {
+  const double cs = std::clamp(ratio, -1.0, 1.0), sn = std::sqrt((1.0 - cs) * (1.0 + cs));  // of the spread
+  const double ca = beta.c, sa = beta.s;
+  if (sn == 0.0) {  // spread 0 or pi: one solution
     out.count = 1;
-    out.theta[0] = base + spread;
+    out.turn[0] = {ca * cs, sa * cs};
     return out;
   }
   out.count = 2;
-  out.theta[0] = base - spread, out.theta[1] = base + spread;
+  out.turn[0] = {ca * cs + sa * sn, sa * cs - ca * sn};  // beta - spread
+  out.turn[1] = {ca * cs - sa * sn, sa * cs + ca * sn};  // beta + spread
   return out;
 }
 
 }  // namespace
 
-Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& k, double theta) {
-  return Eigen::AngleAxisd(theta, k).toRotationMatrix();
-}
-
 SubproblemAngles subproblem1(const Eigen::Vector3d& k, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
   SubproblemAngles out;
   const Eigen::Vector3d pp = p - k.dot(p) * k, qq = q - k.dot(q) * k;
-  const double eps = kSubproblemEps * std::max(std::max(p.norm(), q.norm()), 1e-300);
+  // |pp| <= kSubproblemEps max(|p|, |q|), in squares.
+  const double eps2 = kSubproblemEps * kSubproblemEps * std::max(p.squaredNorm(), q.squaredNorm());
   out.count = 1;
-  if (pp.norm() <= eps) {
+  if (pp.squaredNorm() <= eps2) {
     out.singular = true;
     return out;
   }
-  out.theta[0] = std::atan2(k.dot(pp.cross(qq)), pp.dot(qq));
+  // The angle from pp to qq about k: (cos, sin) proportional to (pp . qq, k . pp x qq).
+  double n;
+  out.turn[0] = direction(pp.dot(qq), k.dot(pp.cross(qq)), n);
   return out;
 }
 
@@ -73,10 +90,9 @@ void subproblem2(const Eigen::Vector3d& k1, const Eigen::Vector3d& k2, const Eig
   // k2 . R(k1, -theta1) q = k2 . p: subproblem 4 in -theta1; then theta2 by subproblem 1.
   const SubproblemAngles a = subproblem4(k2, k1, q, k2.dot(p));
   for (int i = 0; i < a.count; ++i) {
-    const double theta1 = -a.theta[i];
-    const SubproblemAngles b = subproblem1(k2, p, axis_rotation(k1, -theta1) * q);
-    t1.theta[t1.count++] = theta1;
-    t2.theta[t2.count++] = b.theta[0];
+    const SubproblemAngles b = subproblem1(k2, p, rotate(k1, a.turn[i], q));
+    t1.turn[t1.count++] = -a.turn[i];
+    t2.turn[t2.count++] = b.turn[0];
     t1.singular = t1.singular || a.singular;
     t2.singular = t2.singular || b.singular;
   }

@@ -20,7 +20,7 @@ Eigen::Vector3d v3(ArrayLike obj, const char* name) {
 
 py::tuple angles(const SubproblemAngles& t) {
   py::list out;
-  for (int i = 0; i < t.count; ++i) out.append(t.theta[i]);
+  for (int i = 0; i < t.count; ++i) out.append(t.turn[i].angle());
   return py::make_tuple(out, t.singular);
 }
 
