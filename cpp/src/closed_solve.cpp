@@ -50,12 +50,22 @@ struct Candidates {
     for (int i = 0; i < 6; ++i) q[m][i] = joints[i];
     shoulder[m] = s, elbow[m] = e, wrist[m++] = w;
   }
-  // The candidates' angles, rows of 6 into out.
+  // The candidates' angles, rows of 6 into out. A joint's turn equal to the previous candidate's
+  // (candidates of one wrist share joints 1 to 3) is taken once.
   void angles(double* out) const {
-    double y[48], x[48];
+    double y[48], x[48], t[48];
+    int at[48], u = 0;
     for (int k = 0; k < m; ++k)
-      for (int i = 0; i < 6; ++i) y[6 * k + i] = q[k][i].s, x[6 * k + i] = q[k][i].c;
-    vmath::atan2(y, x, out, 6 * m);
+      for (int i = 0; i < 6; ++i) {
+        const Turn& a = q[k][i];
+        if (k > 0 && a.c == q[k - 1][i].c && a.s == q[k - 1][i].s) {
+          at[6 * k + i] = at[6 * (k - 1) + i];
+          continue;
+        }
+        y[u] = a.s, x[u] = a.c, at[6 * k + i] = u++;
+      }
+    vmath::atan2(y, x, t, u);
+    for (int j = 0; j < 6 * m; ++j) out[j] = t[at[j]];
   }
 };
 
@@ -108,7 +118,7 @@ void wrist(const JointAxes& g, const WristGoal& goal, const M3& R03, Turn* q, in
   const V3 &h4 = g.axis[3], &h5 = g.axis[4], &h6 = g.axis[5];
   const V3 w6 = R03.transpose() * goal.h6, wx = R03.transpose() * goal.x6;  // R4 R5 R6 h6, R4 R5 R6 x
   SubproblemAngles t4, t5;
-  const bool aligned = h4.cross(w6).norm() < 1e-9;  // axes 4 and 6 aligned: q4 + q6 only
+  const bool aligned = h4.cross(w6).squaredNorm() < 1e-18;  // axes 4 and 6 aligned (1e-9): q4 + q6 only
   if (aligned) {
     t4.count = 1;
     t5 = subproblem1(h5, h6, w6);
@@ -121,8 +131,9 @@ void wrist(const JointAxes& g, const WristGoal& goal, const M3& R03, Turn* q, in
     // q6 turns x onto R6 x = (R4 R5)^T wx, in the plane (x, y) normal to h6: subproblem 1 on
     // orthonormal data.
     const V3 v = rotate(h5, -q[4], rotate(h4, -q[3], wx));
-    const double cx = goal.x.dot(v), cy = goal.y.dot(v), n = std::sqrt(cx * cx + cy * cy);
-    q[5] = n > 0 ? Turn{cx / n, cy / n} : Turn{};
+    const double cx = goal.x.dot(v), cy = goal.y.dot(v), n2 = cx * cx + cy * cy;  // ~1: v is a unit vector
+    const double inv = n2 > 0 ? 1.0 / std::sqrt(n2) : 0.0;
+    q[5] = n2 > 0 ? Turn{cx * inv, cy * inv} : Turn{};
     // The label's triple product (a4 x a6) . a5, with a4 = R03 h4, a5 = R03 R4 h5, a6 = R03 R4 R5 h6,
     // is the same seen after joint 4 (R03 R4 a rotation, fixing h4).
     out.add(q, s, e, wrist_label(h4, h5, rotate(h5, q[4], h6), aligned));
@@ -431,14 +442,15 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
   const double size = std::max(arm.axes.size, 1e-300);
   // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).
-  for (int k = 0; k < c.m; ++k)
-    if (!closed_reaches(F[k], T, size) && (F[k].p - T.p).norm() <= 1e-4 * size) {
+  for (int k = 0; k < c.m; ++k) {
+    bool reaches = closed_reaches(F[k], T, size);
+    if (!reaches && (F[k].p - T.p).norm() <= 1e-4 * size) {
       polish(chain, T, held, q + k * n, F[k]);
       fits[k] = fit_limits(q + k * n, n, limits, held);
       chain.fk(q + k * n, F[k]);
+      reaches = closed_reaches(F[k], T, size);
     }
-  for (int k = 0; k < c.m; ++k) {
-    if (!closed_reaches(F[k], T, size)) continue;
+    if (!reaches) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
     out.add(q + k * n, label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }

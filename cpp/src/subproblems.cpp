@@ -76,7 +76,8 @@ SubproblemAngles subproblem1(const Eigen::Vector3d& k, const Eigen::Vector3d& p,
 SubproblemAngles subproblem4(const Eigen::Vector3d& h, const Eigen::Vector3d& k, const Eigen::Vector3d& p, double d) {
   // h . R p = (k.p)(h.k) + cos theta h.(p - (k.p) k) + sin theta h.(k x p).
   const double kp = k.dot(p);
-  return sinusoid(h.dot(p - kp * k), h.dot(k.cross(p)), d - kp * h.dot(k), h.norm() * p.norm() + std::abs(d));
+  return sinusoid(h.dot(p - kp * k), h.dot(k.cross(p)), d - kp * h.dot(k),
+                  std::sqrt(h.squaredNorm() * p.squaredNorm()) + std::abs(d));
 }
 
 SubproblemAngles subproblem3(const Eigen::Vector3d& k, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d) {
