@@ -41,29 +41,27 @@ const char* label(int shoulder, int elbow, int wrist) {
 // The candidates of one solve, checked together at the end: each joint's turn, its angle taken
 // with every other's in one pass of arc tangents (angles()).
 struct Candidates {
-  Turn q[8][6];
+  double c[48], s[48];  // joint i of candidate k: its turn's cosine and sine at 6 k + i
   int shoulder[8], elbow[8], wrist[8];
   int m = 0;
   bool singular = false;
-  void add(const Turn* joints, int s, int e, int w) {
+  void add(const Turn* joints, int sh, int e, int w) {
     if (m == 8) return;
-    for (int i = 0; i < 6; ++i) q[m][i] = joints[i];
-    shoulder[m] = s, elbow[m] = e, wrist[m++] = w;
+    for (int i = 0; i < 6; ++i) c[6 * m + i] = joints[i].c, s[6 * m + i] = joints[i].s;
+    shoulder[m] = sh, elbow[m] = e, wrist[m++] = w;
   }
   // The candidates' angles, rows of 6 into out. A joint's turn equal to the previous candidate's
   // (candidates of one wrist share joints 1 to 3) is taken once.
   void angles(double* out) const {
     double y[48], x[48], t[48];
     int at[48], u = 0;
-    for (int k = 0; k < m; ++k)
-      for (int i = 0; i < 6; ++i) {
-        const Turn& a = q[k][i];
-        if (k > 0 && a.c == q[k - 1][i].c && a.s == q[k - 1][i].s) {
-          at[6 * k + i] = at[6 * (k - 1) + i];
-          continue;
-        }
-        y[u] = a.s, x[u] = a.c, at[6 * k + i] = u++;
+    for (int j = 0; j < 6 * m; ++j) {
+      if (j >= 6 && c[j] == c[j - 6] && s[j] == s[j - 6]) {
+        at[j] = at[j - 6];
+        continue;
       }
+      y[u] = s[j], x[u] = c[j], at[j] = u++;
+    }
     vmath::atan2(y, x, t, u);
     for (int j = 0; j < 6 * m; ++j) out[j] = t[at[j]];
   }
@@ -100,16 +98,16 @@ int shoulder_label(const JointAxes& g, const M3& R1, const V3& c, bool singular)
 }
 
 // What a spherical wrist turns towards at the target G: the tool's axis 6 and a unit vector x normal
-// to it (fixed in the last link), as the base sees them (G.R h6, G.R x); y = h6 x x.
+// to it (fixed in the last link), as the base sees them (G.R h6, G.R x); y = h6 x x. And the
+// subproblem 2 of its axes 4, 5 turning axis 6, prepared once for the solve's wrists.
 struct WristGoal {
   V3 x, y, h6, x6;
+  Subproblem2 turns;
 };
 
 WristGoal wrist_goal(const JointAxes& g, const Rigid& G) {
-  WristGoal w;
-  w.x = g.axis[5].unitOrthogonal(), w.y = g.axis[5].cross(w.x);
-  w.h6 = G.R * g.axis[5], w.x6 = G.R * w.x;
-  return w;
+  const V3 x = g.axis[5].unitOrthogonal();
+  return {x, g.axis[5].cross(x), G.R * g.axis[5], G.R * x, Subproblem2(g.axis[3], g.axis[4], g.axis[5])};
 }
 
 // The spherical wrist of q1 .. q3 (R03 their rotation): (q4, q5) by subproblem 2 on axis 6, q6 by
@@ -124,7 +122,7 @@ void wrist(const JointAxes& g, const WristGoal& goal, const M3& R03, Turn* q, in
     t5 = subproblem1(h5, h6, w6);
     out.singular = true;
   } else {
-    subproblem2(h4, h5, h6, w6, t4, t5);
+    goal.turns.solve(w6, t4, t5);
   }
   for (int i = 0; i < t4.count; ++i) {
     q[3] = t4.turn[i], q[4] = t5.turn[aligned ? 0 : i];

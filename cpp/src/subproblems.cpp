@@ -85,18 +85,32 @@ SubproblemAngles subproblem3(const Eigen::Vector3d& k, const Eigen::Vector3d& p,
   return subproblem4(q, k, p, 0.5 * (p.squaredNorm() + q.squaredNorm() - d * d));
 }
 
+Subproblem2::Subproblem2(const Eigen::Vector3d& k1, const Eigen::Vector3d& k2, const Eigen::Vector3d& p)
+    : k1_(k1), k2_(k2), k2xk1_(k2.cross(k1)), pp_(p - k2.dot(p) * k2), w_(k2.cross(pp_)), k2k1_(k2.dot(k1)),
+      k2p_(k2.dot(p)), k2sq_(k2.squaredNorm()), p2_(p.squaredNorm()), pp2_(pp_.squaredNorm()) {}
+
+void Subproblem2::solve(const Eigen::Vector3d& q, SubproblemAngles& t1, SubproblemAngles& t2) const {
+  t1 = SubproblemAngles{}, t2 = SubproblemAngles{};
+  // k2 . R(k1, -theta1) q = k2 . p: subproblem 4 in -theta1 (h = k2, k = k1, p = q, d = k2 . p).
+  const double q2 = q.squaredNorm(), kq = k1_.dot(q);
+  const SubproblemAngles a = sinusoid(k2_.dot(q) - kq * k2k1_, q.dot(k2xk1_), k2p_ - kq * k2k1_,
+                                      std::sqrt(k2sq_ * q2) + std::abs(k2p_));
+  // theta2 turns p onto v = R(k1, -theta1) q about k2 (subproblem 1): its cosine and sine are
+  // proportional to pp . v and (k2 x pp) . v.
+  const bool on_axis = pp2_ <= kSubproblemEps * kSubproblemEps * std::max(p2_, q2);
+  for (int i = 0; i < a.count; ++i) {
+    const Eigen::Vector3d v = rotate(k1_, a.turn[i], q);
+    double n;
+    t1.turn[t1.count++] = -a.turn[i];
+    t2.turn[t2.count++] = on_axis ? Turn{} : direction(pp_.dot(v), w_.dot(v), n);
+  }
+  t1.singular = a.count > 0 && a.singular;
+  t2.singular = a.count > 0 && on_axis;
+}
+
 void subproblem2(const Eigen::Vector3d& k1, const Eigen::Vector3d& k2, const Eigen::Vector3d& p,
                  const Eigen::Vector3d& q, SubproblemAngles& t1, SubproblemAngles& t2) {
-  t1 = SubproblemAngles{}, t2 = SubproblemAngles{};
-  // k2 . R(k1, -theta1) q = k2 . p: subproblem 4 in -theta1; then theta2 by subproblem 1.
-  const SubproblemAngles a = subproblem4(k2, k1, q, k2.dot(p));
-  for (int i = 0; i < a.count; ++i) {
-    const SubproblemAngles b = subproblem1(k2, p, rotate(k1, a.turn[i], q));
-    t1.turn[t1.count++] = -a.turn[i];
-    t2.turn[t2.count++] = b.turn[0];
-    t1.singular = t1.singular || a.singular;
-    t2.singular = t2.singular || b.singular;
-  }
+  Subproblem2(k1, k2, p).solve(q, t1, t2);
 }
 
 }  // namespace robokin

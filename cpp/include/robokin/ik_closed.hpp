@@ -25,9 +25,11 @@ constexpr double kClosedCosEps = 1e-12;
 // entry) at most kClosedTolR.
 constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
 
-// That check: the frame F reaches the target T, for an arm of `size`.
+// That check: the frame F reaches the target T, for an arm of `size` (the distance compared in
+// squares: no square root's latency before the verdict).
 inline bool closed_reaches(const Rigid& F, const Rigid& T, double size) {
-  return (F.p - T.p).norm() <= kClosedTolP * size && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
+  const double tol = kClosedTolP * size;
+  return (F.p - T.p).squaredNorm() <= tol * tol && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
 }
 
 // Throws std::invalid_argument("name: must be finite" or "name: must be positive") for a length

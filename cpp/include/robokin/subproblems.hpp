@@ -65,6 +65,18 @@ SubproblemAngles subproblem1(const Eigen::Vector3d& k, const Eigen::Vector3d& p,
 void subproblem2(const Eigen::Vector3d& k1, const Eigen::Vector3d& k2, const Eigen::Vector3d& p,
                  const Eigen::Vector3d& q, SubproblemAngles& t1, SubproblemAngles& t2);
 
+// Subproblem 2 for fixed k1, k2 and p and many q (a spherical wrist's axes and tool axis): what
+// depends on them alone is taken once.
+class Subproblem2 {
+ public:
+  Subproblem2(const Eigen::Vector3d& k1, const Eigen::Vector3d& k2, const Eigen::Vector3d& p);
+  void solve(const Eigen::Vector3d& q, SubproblemAngles& t1, SubproblemAngles& t2) const;
+
+ private:
+  Eigen::Vector3d k1_, k2_, k2xk1_, pp_, w_;  // pp_ p's part normal to k2, w_ = k2 x pp_
+  double k2k1_, k2p_, k2sq_, p2_, pp2_;
+};
+
 // Subproblem 3: theta with |R(k, theta) p - q| = d (d >= 0).
 SubproblemAngles subproblem3(const Eigen::Vector3d& k, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d);
 
