@@ -129,9 +129,7 @@ void wrist(const JointAxes& g, const WristGoal& goal, const M3& R03, Turn* q, in
     // q6 turns x onto R6 x = (R4 R5)^T wx, in the plane (x, y) normal to h6: subproblem 1 on
     // orthonormal data.
     const V3 v = rotate(h5, -q[4], rotate(h4, -q[3], wx));
-    const double cx = goal.x.dot(v), cy = goal.y.dot(v), n2 = cx * cx + cy * cy;  // ~1: v is a unit vector
-    const double inv = n2 > 0 ? 1.0 / std::sqrt(n2) : 0.0;
-    q[5] = n2 > 0 ? Turn{cx * inv, cy * inv} : Turn{};
+    q[5] = direction(goal.x.dot(v), goal.y.dot(v));
     // The label's triple product (a4 x a6) . a5, with a4 = R03 h4, a5 = R03 R4 h5, a6 = R03 R4 R5 h6,
     // is the same seen after joint 4 (R03 R4 a rotation, fixing h4).
     out.add(q, s, e, wrist_label(h4, h5, rotate(h5, q[4], h6), aligned));

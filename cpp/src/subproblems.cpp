@@ -24,6 +24,7 @@ Turn direction(double x, double y, double& length) {
   return {x * inv, y * inv};
 }
 
+
 // theta with a cos theta + b sin theta = c: theta = beta -+ spread, beta the direction of (a, b) and
 // cos spread = c / |(a, b)|. `scale` is the size of the terms the coefficients were made from (the
 // margin's unit).
@@ -57,6 +58,11 @@ SubproblemAngles sinusoid(double a, double b, double c, double scale) {
 
 }  // namespace
 
+Turn direction(double x, double y) {
+  double length;
+  return direction(x, y, length);
+}
+
 SubproblemAngles subproblem1(const Eigen::Vector3d& k, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
   SubproblemAngles out;
   const Eigen::Vector3d pp = p - k.dot(p) * k, qq = q - k.dot(q) * k;
@@ -68,8 +74,7 @@ SubproblemAngles subproblem1(const Eigen::Vector3d& k, const Eigen::Vector3d& p,
     return out;
   }
   // The angle from pp to qq about k: (cos, sin) proportional to (pp . qq, k . pp x qq).
-  double n;
-  out.turn[0] = direction(pp.dot(qq), k.dot(pp.cross(qq)), n);
+  out.turn[0] = direction(pp.dot(qq), k.dot(pp.cross(qq)));
   return out;
 }
 
@@ -100,9 +105,8 @@ void Subproblem2::solve(const Eigen::Vector3d& q, SubproblemAngles& t1, Subprobl
   const bool on_axis = pp2_ <= kSubproblemEps * kSubproblemEps * std::max(p2_, q2);
   for (int i = 0; i < a.count; ++i) {
     const Eigen::Vector3d v = rotate(k1_, a.turn[i], q);
-    double n;
     t1.turn[t1.count++] = -a.turn[i];
-    t2.turn[t2.count++] = on_axis ? Turn{} : direction(pp_.dot(v), w_.dot(v), n);
+    t2.turn[t2.count++] = on_axis ? Turn{} : direction(pp_.dot(v), w_.dot(v));
   }
   t1.singular = a.count > 0 && a.singular;
   t2.singular = a.count > 0 && on_axis;

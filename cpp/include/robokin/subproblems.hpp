@@ -31,6 +31,9 @@ struct Turn {
   Turn times(double sign) const { return {c, sign * s}; }
 };
 
+// The turn of the direction (x, y): (x, y) / |(x, y)|, the angle 0 when both are 0.
+Turn direction(double x, double y);
+
 // Up to two angles of one subproblem.
 struct SubproblemAngles {
   int count = 0;
