@@ -23,3 +23,13 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 def rng():
     """A seeded generator: every test run sees the same random cases."""
     return np.random.default_rng(20261122)
+
+
+@pytest.fixture(autouse=True)
+def _module_rng_restarted(request):
+    """A module's generator RNG restarted from its RNG_SEED before each of its tests: the cases a
+    test sees never depend on which tests ran before it in its process (`make test` spreads a
+    module's tests over several, in any order)."""
+    module = request.module
+    if hasattr(module, "RNG_SEED"):
+        module.RNG = np.random.default_rng(module.RNG_SEED)

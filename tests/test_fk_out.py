@@ -11,7 +11,8 @@ import pytest
 
 import robokin as rk
 
-RNG = np.random.default_rng(8)
+RNG_SEED = 8  # conftest restarts RNG from it for each test
+RNG = np.random.default_rng(RNG_SEED)
 UR5 = rk.robots.ur5()
 RPR = rk.robots.rpr()
 

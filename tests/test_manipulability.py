@@ -8,7 +8,8 @@ import pytest
 
 import robokin as rk
 
-RNG = np.random.default_rng(7)
+RNG_SEED = 7  # conftest restarts RNG from it for each test
+RNG = np.random.default_rng(RNG_SEED)
 A1, A2 = 0.4, 0.3
 ARM = rk.Chain.from_dh([(A1, 0, 0, 0, "R"), (A2, 0, 0, 0, "R")])
 

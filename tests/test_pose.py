@@ -9,7 +9,8 @@ import pytest
 
 from robokin import pose
 
-RNG = np.random.default_rng(11)
+RNG_SEED = 11  # conftest restarts RNG from it for each test
+RNG = np.random.default_rng(RNG_SEED)
 
 
 def rx(a):

@@ -8,7 +8,8 @@ import pytest
 import robokin as rk
 from robokin import pose, traj
 
-RNG = np.random.default_rng(3)
+RNG_SEED = 3  # conftest restarts RNG from it for each test
+RNG = np.random.default_rng(RNG_SEED)
 UR5 = rk.robots.ur5()
 ARM7 = rk.Chain.from_dh([(0.3, 0.5, 0.1, 0.2, "R")] * 7, modified=True,
                         limits=(np.full(7, -2.5), np.full(7, 2.5)))

@@ -1,7 +1,9 @@
 """The test suite's own rules: a collection error fails the run loudly without hiding the other
-tests, and the planted-bug list of `make mutate` is well formed."""
+tests, a module's random generator restarts for each test, and the planted-bug list of `make mutate`
+is well formed."""
 
 import importlib.util
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -20,6 +22,21 @@ def test_a_collection_error_fails_the_run_but_the_other_tests_still_run(tmp_path
     assert run.returncode != 0, run.stdout
     assert "2 passed" in run.stdout and "1 error" in run.stdout, run.stdout
     assert "broken at import" in run.stdout
+
+
+def test_a_modules_generator_restarts_for_each_test(tmp_path):
+    """conftest restarts a module's RNG from its RNG_SEED before each test: a test sees the same cases
+    whichever tests ran before it in its process (make test spreads them over processes)."""
+    shutil.copy(ROOT / "tests" / "conftest.py", tmp_path / "conftest.py")
+    (tmp_path / "test_draws.py").write_text(
+        "import numpy as np\n\nRNG_SEED = 5\nRNG = np.random.default_rng(RNG_SEED)\n\n"
+        "def test_first_draws_many():\n    RNG.random(1000)\n\n"
+        "def test_second_sees_the_seeds_first_draw():\n"
+        "    assert RNG.random() == np.random.default_rng(RNG_SEED).random()\n")
+    run = subprocess.run([sys.executable, "-m", "pytest", "-c", str(ROOT / "pyproject.toml"), "--rootdir", str(tmp_path),
+                          "-p", "no:cacheprovider", "-p", "no:xdist", str(tmp_path)], capture_output=True, text=True,
+                         timeout=120, cwd=tmp_path)
+    assert run.returncode == 0 and "2 passed" in run.stdout, run.stdout
 
 
 def load_mutate():

@@ -11,7 +11,8 @@ import pytest
 from robokin import traj
 from robokin.traj import Trajectory
 
-RNG = np.random.default_rng(21)
+RNG_SEED = 21  # conftest restarts RNG from it for each test
+RNG = np.random.default_rng(RNG_SEED)
 
 
 def empty_out(k, n, fill=np.nan):
