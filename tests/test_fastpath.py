@@ -65,6 +65,24 @@ def test_fk_few_gives_single_fk_bits(name):
         _testing.fk_few(chain, random_q(chain, rng, 9))
 
 
+@pytest.mark.parametrize("name", sorted(CHAINS))
+def test_fk_few_turns_reads_the_turns_of_revolute_chains(name):
+    """Chain::fk_few_turns (the closed forms' check of candidates held as cosines and sines) gives
+    fk of the turns' angles on a chain of revolute joints, and fk of the rows of Q (the turns not
+    read) on one with a prismatic joint: given the turns of Q + 0.1, the first gives fk(Q + 0.1)."""
+    from robokin import _testing
+
+    chain, rng = CHAINS[name](), np.random.default_rng(9)
+    revolute = name in ("ur5", "puma560", "planar_3r")
+    Q = random_q(chain, rng, 8)
+    for count in range(1, 9):
+        turned = Q[:count] + 0.1
+        few = _testing.fk_few_turns(chain, Q[:count], np.cos(turned), np.sin(turned))
+        assert few.shape == (count, 4, 4)
+        for k in range(count):
+            np.testing.assert_allclose(few[k], chain.fk(turned[k] if revolute else Q[k]), rtol=0, atol=1e-14)
+
+
 @pytest.mark.parametrize("threads", ["1", "2"])
 @pytest.mark.parametrize("name", ["rpr", "ur5"])
 def test_large_frame_batch_gives_the_bits_of_small_batches(name, threads, monkeypatch):

@@ -143,6 +143,9 @@ void Chain::fk_jacobian(const double* q, Rigid& T, double* jac) const {
 }
 
 void Chain::fk_few(const double* q, int count, Rigid* out) const { kernel::fk_few(*path_, q, count, out); }
+void Chain::fk_few_turns(const double* q, const double* c, const double* s, int count, Rigid* out) const {
+  kernel::fk_few_turns(*path_, q, c, s, count, out);
+}
 
 bool Chain::fk_batch(const double* q, long count, double* out, FkOutput what, Progress* progress) const {
   return kernel::fk_batch(*path_, q, count, out, what, progress);

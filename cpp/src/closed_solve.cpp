@@ -381,6 +381,7 @@ ClosedArm read_closed_arm(const Chain& chain, const ClosedFamilyOptions& options
   ClosedArm arm;
   arm.axes = joint_axes(chain, held);
   arm.family = closed_family(arm.axes, options, &arm.solved);
+  if (held) arm.held_cos = std::cos(held->value), arm.held_sin = std::sin(held->value);
   return arm;
 }
 
@@ -399,8 +400,9 @@ namespace {
 int held_index(const ClosedArm& arm) { return arm.axes.held ? static_cast<int>(arm.axes.held->joint) : -1; }
 
 // The candidates of the arm's family for T as the chain's joint vectors, packed (rows of n =
-// chain.dof() values into q): read back from the reversed axes, the held joint's value in its place.
-int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
+// chain.dof() values into q, their turns' cosines and sines into tc, ts): read back from the
+// reversed axes, the held joint's value in its place.
+int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q, double* tc, double* ts) {
   Rigid G = T * arm.axes.tool.inverse();  // E1 ... E6: the joints' motion
   if (arm.family.reversed) G = G.inverse();
   const FamilyKind kind = arm.family.kind;
@@ -414,8 +416,14 @@ int candidates(const ClosedArm& arm, const Rigid& T, Candidates& c, double* q) {
   c.angles(angles);
   const int n = 6 + arm.axes.held.has_value(), held = held_index(arm);
   for (int k = 0; k < c.m; ++k)
-    for (int i = 0, j = 0; i < n; ++i)
-      q[k * n + i] = i == held ? arm.axes.held->value : angles[6 * k + (arm.family.reversed ? 5 - j++ : j++)];
+    for (int i = 0, j = 0; i < n; ++i) {
+      if (i == held) {
+        q[k * n + i] = arm.axes.held->value, tc[k * n + i] = arm.held_cos, ts[k * n + i] = arm.held_sin;
+        continue;
+      }
+      const int at = 6 * k + (arm.family.reversed ? 5 - j++ : j++);
+      q[k * n + i] = angles[at], tc[k * n + i] = c.c[at], ts[k * n + i] = c.s[at];
+    }
   return n;
 }
 
@@ -425,16 +433,17 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
                                  int* slot) {
   ClosedFormSolutions out;
   Candidates c;
-  double q[8 * ClosedFormSolutions::kMaxDof];
-  const int n = out.dof = candidates(arm, T, c, q);
+  double q[8 * ClosedFormSolutions::kMaxDof], tc[8 * ClosedFormSolutions::kMaxDof], ts[8 * ClosedFormSolutions::kMaxDof];
+  const int n = out.dof = candidates(arm, T, c, q, tc, ts);
   out.singular = c.singular;
   if (c.m == 0) return out;
   // The held joint keeps its value as given (within the limits, checked by the caller).
   const int held = held_index(arm);
   bool fits[8];
   fit_limits_rows(q, c.m, n, limits, fits, held);
+  // The chain's forward model checks the candidates from their turns (whose arc tangents are q).
   Rigid F[8];
-  chain.fk_few(q, c.m, F);
+  chain.fk_few_turns(q, tc, ts, c.m, F);
   const double size = std::max(arm.axes.size, 1e-300);
   // A candidate within 1e-4 x the arm's size of T is polished when it misses by more than the check
   // allows; one farther away is no solution (an arc tangent of the wrong branch, a reach clamped).

@@ -73,6 +73,14 @@ void bind_hooks(pybind11::module_& m) {
   });
 }
 
+// Frames as a new (count, 4, 4) array.
+py::array_t<double> frames_of(const Rigid* F, int count) {
+  py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}, py::ssize_t{4}});
+  for (int k = 0; k < count; ++k)
+    Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * k) = F[k].matrix();
+  return out;
+}
+
 void bind_references(py::module_& m) {
   m.def(
       "hessian_times",
@@ -122,12 +130,23 @@ void bind_references(py::module_& m) {
         const int count = static_cast<int>(a.shape(0));
         Rigid F[Chain::kFkFew];
         chain.fk_few(a.data(), count, F);
-        py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}, py::ssize_t{4}});
-        for (int k = 0; k < count; ++k)
-          Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(out.mutable_data() + 16 * k) = F[k].matrix();
-        return out;
+        return frames_of(F, count);
       },
       py::arg("chain"), py::arg("Q"));
+  // Chain::fk_few_turns on the rows of Q and their turns (C, S: cosines and sines, Q's shape).
+  m.def(
+      "fk_few_turns",
+      [](const Chain& chain, py::handle q_obj, py::handle c_obj, py::handle s_obj) {
+        Array q = as_array(q_obj, "Q"), c = as_array(c_obj, "C"), s = as_array(s_obj, "S");
+        if (q.ndim() != 2 || q.shape(1) != chain.dof() || q.shape(0) > Chain::kFkFew)
+          fail("Q: expected shape (k, dof) with k <= 8, got " + shape_of(q));
+        if (shape_of(c) != shape_of(q) || shape_of(s) != shape_of(q)) fail("C, S: expected Q's shape");
+        const int count = static_cast<int>(q.shape(0));
+        Rigid F[Chain::kFkFew];
+        chain.fk_few_turns(q.data(), c.data(), s.data(), count, F);
+        return frames_of(F, count);
+      },
+      py::arg("chain"), py::arg("Q"), py::arg("C"), py::arg("S"));
   using testing::KdlIkReference;
   py::class_<KdlIkReference>(m, "KdlIk", "Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.")
       .def(py::init([](const Chain& chain, const std::string& solver, int max_iter, double eps) {

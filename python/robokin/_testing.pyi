@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import robokin._core
 import typing
-__all__: list[str] = ['KdlIk', 'closed_layout', 'closed_solve_subproblems', 'fk_few', 'hessian_times', 'ik_solve_seconds', 'ik_starts', 'parallel_for_throwing', 'subproblem1', 'subproblem2', 'subproblem3', 'subproblem4', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
+__all__: list[str] = ['KdlIk', 'closed_layout', 'closed_solve_subproblems', 'fk_few', 'fk_few_turns', 'hessian_times', 'ik_solve_seconds', 'ik_starts', 'parallel_for_throwing', 'subproblem1', 'subproblem2', 'subproblem3', 'subproblem4', 'throw', 'vmath_atan2', 'vmath_sincos', 'wrap_angle']
 class KdlIk:
     """
     Reference for benchmarks: KDL's ChainIkSolverPos_LMA / _NR_JL.
@@ -23,6 +23,8 @@ def closed_layout(chain: robokin._core.Chain) -> typing.Any:
 def closed_solve_subproblems(chain: robokin._core.Chain, target: numpy.typing.ArrayLike) -> robokin._core.IKSolutions:
     ...
 def fk_few(chain: robokin._core.Chain, Q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    ...
+def fk_few_turns(chain: robokin._core.Chain, Q: typing.Any, C: typing.Any, S: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     ...
 def hessian_times(chain: robokin._core.Chain, q: typing.Any, a: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     """

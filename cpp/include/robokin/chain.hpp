@@ -137,6 +137,10 @@ class Chain {
   // batch kernel: out[k] has the bits fk gives for row k (for the closed forms' checks).
   static constexpr int kFkFew = 8;
   void fk_few(const double* q, int count, Rigid* out) const;
+  // fk_few of q, each joint's motion read from its turn where every joint is revolute (c, s: the
+  // cosines and sines of q's angles, rows as q's): the closed forms' check of the candidates they
+  // hold as turns, without a pass of sines and cosines.
+  void fk_few_turns(const double* q, const double* c, const double* s, int count, Rigid* out) const;
   // count configurations (count x dof, row-major) -> count frames (16 values each) or points (3);
   // false when some joint value or some result is not finite (lengths near overflow): the joint
   // values are checked here, in the pass that reads them.

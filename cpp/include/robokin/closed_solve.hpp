@@ -54,6 +54,7 @@ struct ClosedArm {
   JointAxes axes;
   ClosedFamily family;
   JointAxes solved;  // reversed_axes(axes) when family.reversed, else empty
+  double held_cos = 1.0, held_sin = 0.0;  // the held joint's value as a turn (for the FK check)
 };
 
 // The arm as the closed form reads it, whatever its family (family.kind None: no closed form, the

@@ -203,13 +203,37 @@ ROBOKIN_KERNEL void fk_few_kernel(const FkPath& path, const double* q, int count
   for (int k = 0; k < count; ++k) lane_to_rigid(L, k, out[k]);
 }
 
+// The same from the joints' turns (rows of dof cosines and sines, as q's), gathered joint by joint.
+ROBOKIN_KERNEL void fk_few_turns_kernel(const FkPath& path, const double* c, const double* s, int count, Rigid* out) {
+  constexpr int N = Chain::kFkFew;
+  const int dof = path.dof();
+  double turns[2 * N * kFkFewJoints];
+  for (int j = 0; j < dof; ++j)
+    for (int k = 0; k < N; ++k) {
+      const int from = (k < count ? k : 0) * dof + j;
+      turns[j * N + k] = c[from], turns[(dof + j) * N + k] = s[from];
+    }
+  Lanes<N> L;
+  run_lanes<N>(path, L, nullptr, 0, nullptr, {}, turns);
+  for (int k = 0; k < count; ++k) lane_to_rigid(L, k, out[k]);
+}
+
 void fk_few_lanes(const FkPath& path, const double* q, int count, Rigid* out) {
   fk_few_kernel(path, q, count, out);
+}
+
+void fk_few_turns_lanes(const FkPath& path, const double* c, const double* s, int count, Rigid* out) {
+  fk_few_turns_kernel(path, c, s, count, out);
 }
 
 #ifdef ROBOKIN_DISPATCH
 ROBOKIN_TARGET_AVX2 ROBOKIN_NO_CONTRACT void fk_few_avx2(const FkPath& path, const double* q, int count, Rigid* out) {
   fk_few_kernel(path, q, count, out);
+}
+
+ROBOKIN_TARGET_AVX2 ROBOKIN_NO_CONTRACT void fk_few_turns_avx2(const FkPath& path, const double* c, const double* s,
+                                                               int count, Rigid* out) {
+  fk_few_turns_kernel(path, c, s, count, out);
 }
 #endif
 
@@ -228,6 +252,15 @@ void fk_few(const FkPath& path, const double* q, int count, Rigid* out) {
   if (detected_isa() != Isa::Baseline) return fk_few_avx2(path, q, count, out);
 #endif
   fk_few_lanes(path, q, count, out);
+}
+
+void fk_few_turns(const FkPath& path, const double* q, const double* c, const double* s, int count, Rigid* out) {
+  if (count > Chain::kFkFew || path.dof() > kFkFewJoints || !path.turns) return fk_few(path, q, count, out);
+  if (count <= 0) return;
+#ifdef ROBOKIN_DISPATCH
+  if (detected_isa() != Isa::Baseline) return fk_few_turns_avx2(path, c, s, count, out);
+#endif
+  fk_few_turns_lanes(path, c, s, count, out);
 }
 
 bool fk_batch(const FkPath& path, const double* q, long count, double* out, FkOutput what, Progress* progress) {

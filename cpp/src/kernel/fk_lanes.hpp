@@ -71,10 +71,12 @@ struct NoHook {
 
 // The chain on N lanes: joint i of lane k is q[k * stride + i], or q[i * N + k] with stride =
 // kJointMajor (a batch block gathered joint by joint). When axes is given (N = 1), the point and z
-// axis of every joint after its motion are stored there: axes[6 i .. 6 i + 5].
+// axis of every joint after its motion are stored there: axes[6 i .. 6 i + 5]. When turns is given
+// (N <= Chain::kFkFew, every joint revolute of scale 1: path.turns), the joints' motions are read
+// from their cosines turns[i * N + k] and sines turns[(dof + i) * N + k], and q is not read.
 template <int N, class AfterJoint = NoHook>
 ROBOKIN_KERNEL void run_lanes(const FkPath& path, Lanes<N>& L, const double* q, long stride, double* axes,
-                              AfterJoint after_joint = {}) {
+                              AfterJoint after_joint = {}, const double* turns = nullptr) {
   const int dof = path.dof();
   const std::vector<Link>& links = path.links;
   double v[N], s[N], c[N];
@@ -85,7 +87,9 @@ ROBOKIN_KERNEL void run_lanes(const FkPath& path, Lanes<N>& L, const double* q, 
   constexpr int kAtOnce = 256;
   double v1[kAtOnce], s1[kAtOnce], c1[kAtOnce];
   const bool all_at_once = N * dof <= kAtOnce && N <= Chain::kFkFew && stride != kJointMajor;
-  if (all_at_once) {
+  const double* c_at = turns ? turns : c1;  // the cosines and sines of the joints at once
+  const double* s_at = turns ? turns + N * dof : s1;
+  if (all_at_once && !turns) {
     int m = 0;
     for (int joint = 0; joint < dof; ++joint) {
       if (links[joint].prismatic && N > 1) continue;
@@ -105,7 +109,7 @@ ROBOKIN_KERNEL void run_lanes(const FkPath& path, Lanes<N>& L, const double* q, 
     const double* sj = s;
     const double* cj = c;
     if (all_at_once && (N == 1 || !link.prismatic)) {
-      vj = v1 + at, sj = s1 + at, cj = c1 + at;
+      vj = v1 + at, sj = s_at + at, cj = c_at + at;
       at += N;
     } else {  // a prismatic joint of several lanes (its values only), or too many values at once
       if (stride == kJointMajor) {

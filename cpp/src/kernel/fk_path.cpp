@@ -1,6 +1,7 @@
 // Building a chain's evaluation path (fk_path.hpp) from its KDL segments.
 #include "fk_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace robokin {
@@ -104,6 +105,7 @@ FkPath build_fk_path(const KDL::Chain& chain) {
     since_motion = G.inverse() * P0.inverse() * Rigid::from_kdl(seg.pose(0.0));
   }
   links.back().after = Fixed::of(since_motion);
+  path.turns = std::all_of(links.begin(), links.end(), [](const Link& l) { return !l.prismatic && l.scale == 1.0; });
   build_masks(path);
   return path;
 }

@@ -38,6 +38,7 @@ struct Link {
 struct FkPath {
   Rigid base;  // fixed frame before the first joint's motion
   std::vector<Link> links;
+  bool turns = false;  // every joint revolute of scale 1: its motion is its angle's turn (fk_few_turns)
   int dof() const { return static_cast<int>(links.size()); }
 };
 
@@ -47,6 +48,7 @@ FkPath build_fk_path(const KDL::Chain& chain);
 // The kernel's entry points for many configurations (fk_batch.cpp): Chain::fk_few, Chain::fk_batch.
 // A single configuration's (fk) is inline in fk_lanes.hpp.
 void fk_few(const FkPath& path, const double* q, int count, Rigid* out);
+void fk_few_turns(const FkPath& path, const double* q, const double* c, const double* s, int count, Rigid* out);
 bool fk_batch(const FkPath& path, const double* q, long count, double* out, FkOutput what, Progress* progress);
 
 }  // namespace kernel
