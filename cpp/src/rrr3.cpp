@@ -166,9 +166,13 @@ double RRR3::loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::V
 
 RRR3Fk RRR3::fk(const Eigen::Vector3d& alpha, const Pose& guess, const RRR3NewtonOptions& options) const {
   options.validate();
+  return close_loops(elbows(alpha), guess, options);
+}
+
+RRR3Fk RRR3::close_loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& guess,
+                         const RRR3NewtonOptions& options) const {
   const int max_iter = options.max_iter;
   const double tol = options.tol;
-  const Eigen::Matrix<double, 3, 2> A = elbows(alpha);
   RRR3Fk res;
   Pose x = guess;
   for (int it = 0;; ++it) {

@@ -112,9 +112,9 @@ struct Elimination {
   }
 };
 
-// A root of p in [lo, hi] where p(lo), p(hi) have opposite signs: Newton kept inside the bracket.
-double refine(const TrigPoly& p, double lo, double hi) {
-  double flo = p.value(lo);
+// A root of p in [lo, hi] where p(lo) = flo and p(hi) have opposite signs: Newton kept inside the
+// bracket.
+double refine(const TrigPoly& p, double lo, double hi, double flo) {
   double x = 0.5 * (lo + hi);
   for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
     double f, df, ddf;
@@ -138,7 +138,7 @@ double extremum(const TrigPoly& p, double lo, double hi) {
   TrigPoly d;  // p' as a trigonometric polynomial
   d.a[0] = d.b[0] = 0;
   for (int k = 1; k <= kDegree; ++k) d.a[k] = k * p.b[k], d.b[k] = -k * p.a[k];
-  return refine(d, lo, hi);
+  return refine(d, lo, hi, d.value(lo));
 }
 
 
@@ -156,7 +156,7 @@ void search_change(const TrigPoly& p, double curvature, double jerk, double lo, 
   p.eval(lo, f, dlo, dd);
   p.eval(hi, f, dhi, dd);
   if (depth == 0 || ((dlo < 0) == (dhi < 0) && std::min(std::abs(dlo), std::abs(dhi)) > jerk * h * h / 8)) {
-    roots.push_back(refine(p, lo, hi));
+    roots.push_back(refine(p, lo, hi, flo));
     return;
   }
   const double mid = 0.5 * (lo + hi), fmid = p.value(mid);
@@ -375,13 +375,18 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
   error.reserve(2 * kDegree);
   auto add = [&](const Pose& guess, double phi) {
     if (!guess.allFinite()) return;
-    RRR3Fk polished = fk(alpha, guess, {8, 1e-13});
+    RRR3Fk polished = close_loops(A, guess, {8, 1e-13});
     if (!(polished.error < close)) return;
     // Closed to rounding where Newton gets there and stays on the same root (at a double root it
     // converges only linearly and may jump once at rounding level): two distinct modes close
     // together then close much better than the loops between them, which same_mode needs to see.
-    const RRR3Fk finer = fk(alpha, polished.pose, {8, 4 * eps * size});
-    if (finer.error < polished.error && same_mode(A, polished.pose, polished.error, finer.pose, finer.error))
+    // A move within 1e-12 of the size (a simple root's last steps) stays on it: the loops cannot
+    // open by rounding's 1e-16 of the size between two modes that close together.
+    const RRR3Fk finer = close_loops(A, polished.pose, {8, 4 * eps * size});
+    const bool stays = (finer.pose.head<2>() - polished.pose.head<2>()).norm() <= 1e-12 * size &&
+                       std::abs(wrap_angle(finer.pose(2) - polished.pose(2))) <= 1e-12;
+    if (finer.error < polished.error &&
+        (stays || same_mode(A, polished.pose, polished.error, finer.pose, finer.error)))
       polished = finer;
     // Slid far to another root: that one is polished from its own phi. Near a double root the two
     // assembly modes may lie some 1e-5 rad on either side of the phi found.

@@ -189,6 +189,8 @@ class RRR3 {
   // fk's loop equations at pose x for the elbows A: f_i = (|A_i B_i|^2 - l2^2) / (2 l2) and their
   // Jacobian in (x, y, phi). Returns max_i | |A_i B_i| - l2 |.
   double loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& x, Eigen::Vector3d& f, Eigen::Matrix3d& J) const;
+  // fk for the elbows A of alpha (fk_all polishes each of its roots from the same elbows).
+  RRR3Fk close_loops(const Eigen::Matrix<double, 3, 2>& A, const Pose& guess, const RRR3NewtonOptions& options) const;
   // fk_all: poses p and q, closing the loops of A to ep and eq, are one assembly mode.
   bool same_mode(const Eigen::Matrix<double, 3, 2>& A, const Pose& p, double ep, const Pose& q, double eq) const;
 
