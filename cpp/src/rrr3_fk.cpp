@@ -380,8 +380,9 @@ std::vector<Pose> RRR3::fk_all(const Eigen::Vector3d& alpha) const {
     // Closed to rounding where Newton gets there and stays on the same root (at a double root it
     // converges only linearly and may jump once at rounding level): two distinct modes close
     // together then close much better than the loops between them, which same_mode needs to see.
-    // A move within 1e-12 of the size (a simple root's last steps) stays on it: the loops cannot
-    // open by rounding's 1e-16 of the size between two modes that close together.
+    // A move within 1e-12 of the size (a simple root's last steps) stays on it: between two poses
+    // that close and lie that near, the loops open by some 1e-24 of the size, far below rounding,
+    // so same_mode would take them as one.
     const RRR3Fk finer = close_loops(A, polished.pose, {8, 4 * eps * size});
     const bool stays = (finer.pose.head<2>() - polished.pose.head<2>()).norm() <= 1e-12 * size &&
                        std::abs(wrap_angle(finer.pose(2) - polished.pose(2))) <= 1e-12;
