@@ -45,7 +45,7 @@ struct FkPath {
 // The path of a chain with at least one joint.
 FkPath build_fk_path(const KDL::Chain& chain);
 
-// The kernel's entry points for many configurations (fk_batch.cpp): Chain::fk_few, Chain::fk_batch.
+// The kernel's entry points for many configurations (fk_batch.cpp): Chain::fk_few, fk_few_turns, fk_batch.
 // A single configuration's (fk) is inline in fk_lanes.hpp.
 void fk_few(const FkPath& path, const double* q, int count, Rigid* out);
 void fk_few_turns(const FkPath& path, const double* q, const double* c, const double* s, int count, Rigid* out);
