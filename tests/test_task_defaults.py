@@ -209,6 +209,24 @@ def test_a_target_of_no_task_keeps_the_shape_message():
         rk.reach(RPR, [np.nan, 1.0], Q3)
 
 
+def test_a_frame_that_is_not_rigid_is_named_alone_or_by_its_index_in_a_batch():
+    """One check of every frame argument (rigid_at): a single frame by its argument's name, a
+    batch's by its index as well, whichever call reads the batch."""
+    bad = np.eye(4)
+    bad[0, 1] = 0.5  # not orthonormal
+    frames = np.repeat(UR5.fk(Q6)[None], 3, axis=0)
+    frames[2] = bad
+    rigid = "not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)"
+    with pytest.raises(ValueError) as err:
+        rk.ik(UR5, bad, Q6)
+    assert str(err.value) == "target: " + rigid
+    for call in (lambda: rk.ik_batch(UR5, frames, Q6), lambda: rk.closed.ClosedSolver(UR5).solve_batch(frames),
+                 lambda: rk.closed.ur_batch(frames, UR5)):
+        with pytest.raises(ValueError) as err:
+            call()
+        assert str(err.value) == "targets: frame 2 is " + rigid
+
+
 # --- every IKOptions field is accepted by every caller of the batch IK --------------------------
 
 def bad_value(kind):

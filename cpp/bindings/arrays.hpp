@@ -214,10 +214,12 @@ inline bool is_rigid(const double* data) {
            (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 || R.determinant() < 0);
 }
 
-// The row-major 4x4 at m (finite), which must be a rigid transform: ValueError naming `name` if not.
-inline Eigen::Matrix4d rigid_at(const double* m, const char* name) {
+// The row-major 4x4 at m (finite), which must be a rigid transform: ValueError naming `name`, and
+// the frame's index k in a batch (k >= 0), if not. Every frame argument is checked here.
+inline Eigen::Matrix4d rigid_at(const double* m, const char* name, long k = -1) {
   if (!is_rigid(m))
-    fail(std::string(name) + ": not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)");
+    fail(std::string(name) + (k >= 0 ? ": frame " + std::to_string(k) + " is" : ":") +
+         " not a rigid transform (rotation must be orthonormal, last row 0 0 0 1)");
   return Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m);
 }
 

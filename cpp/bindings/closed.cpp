@@ -31,11 +31,7 @@ std::vector<Rigid> rigid_frames(ArrayLike targets_obj, const char* name) {
   const Array a = rows_arg(targets_obj, name, {4, 4}, "N");
   const long count = a.shape(0);
   std::vector<Rigid> targets(count);
-  for (long k = 0; k < count; ++k) {
-    const double* m = a.data() + 16 * k;
-    if (!is_rigid(m)) fail(std::string(name) + ": frame " + std::to_string(k) + " is not a rigid transform");
-    targets[k] = Rigid::from_matrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m));
-  }
+  for (long k = 0; k < count; ++k) targets[k] = Rigid::from_matrix(rigid_at(a.data() + 16 * k, name, k));
   return targets;
 }
 

@@ -106,7 +106,7 @@ inline std::vector<Target> many_targets(const Chain& chain, Task task, py::handl
   std::vector<Target> targets;
   targets.reserve(n);
   for (long k = 0; k < n; ++k) {
-    if (task == Task::Pose) rigid_at(a.data() + 16 * k, name);
+    if (task == Task::Pose) rigid_at(a.data() + 16 * k, name, k);
     targets.push_back(target_from(task, a.data() + k * stride));
   }
   return targets;
