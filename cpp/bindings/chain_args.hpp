@@ -95,12 +95,14 @@ inline JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismat
   return lim;
 }
 
-// The limits of a closed form bound to a chain: "default" for the chain's own (none when it has
-// not dof joints), else as limits_arg.
-inline JointLimits limits_or_default(const Chain& chain, py::handle obj, int dof) {
-  if (!py::isinstance<py::str>(obj)) return limits_arg(obj, dof);
-  if (obj.cast<std::string>() != "default") fail("limits: expected 'default', None or a pair (lower, upper)");
-  return chain.dof() == dof ? chain.limits() : JointLimits{};
+// The limits of a closed form bound to a chain: "default" for the chain's own, read in place (none
+// when it has not dof joints), else as limits_arg, held in `given` (the caller's, which outlives
+// the reference returned).
+inline const JointLimits& limits_or_default(const Chain& chain, py::handle obj, int dof, JointLimits& given) {
+  if (!py::isinstance<py::str>(obj)) return given = limits_arg(obj, dof);
+  if (PyUnicode_CompareWithASCIIString(obj.ptr(), "default") != 0)
+    fail("limits: expected 'default', None or a pair (lower, upper)");
+  return chain.dof() == dof ? chain.limits() : given;
 }
 
 }  // namespace robokin::bind

@@ -93,8 +93,9 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
 ClosedFormSolutions ur(ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   const std::optional<URArm>& arm = chain.closed_layout().ur;  // read once per chain
+  JointLimits given;
   // Without the UR layout, ur_arm throws the ValueError naming what differs.
-  return ik_ur(arm ? *arm : ur_arm(chain), chain, T, limits_or_default(chain, limits, 6));
+  return ik_ur(arm ? *arm : ur_arm(chain), chain, T, limits_or_default(chain, limits, 6, given));
 }
 
 py::array_t<double> solutions_q(const ClosedFormSolutions& s) { return array_of(s.row(0), {s.count(), s.dof}); }
@@ -236,7 +237,8 @@ struct BoundSolver {
 std::unique_ptr<BoundSolver> bound_solver(py::object chain_obj, py::handle limits_obj, py::handle locked,
                                           const ClosedFamilyOptions& o, bool required) {
   const Chain& chain = chain_obj.cast<const Chain&>();
-  JointLimits limits = limits_or_default(chain, limits_obj, chain.dof());
+  JointLimits given;
+  const JointLimits& limits = limits_or_default(chain, limits_obj, chain.dof(), given);
   const std::optional<HeldJoint> held = held_arg(locked);
   if (required) return std::make_unique<BoundSolver>(BoundSolver{chain_obj, ClosedSolver(chain, limits, o, held)});
   std::optional<ClosedSolver> found = ClosedSolver::find(chain, limits, o, held);

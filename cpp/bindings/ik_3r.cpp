@@ -17,7 +17,8 @@ void bind_ik_3r(py::module_& m) {
       [](ArrayLike target, const Chain& chain, ChainLimitsLike limits) {
         const Eigen::VectorXd p = as_vector(target, "target", 3);
         const Arm3R arm = arm_3r(chain);
-        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3));
+        JointLimits given;
+        return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3, given));
       },
       py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
   m.def(

@@ -48,18 +48,19 @@ Rigid Rigid::from_kdl(const KDL::Frame& f) {
 Rigid Rigid::from_matrix(const Matrix4& m) { return {m.topLeftCorner<3, 3>(), m.topRightCorner<3, 1>()}; }
 
 Chain::Chain(KDL::Chain chain, const Vector& lower, const Vector& upper)
-    : kdl_(std::move(chain)), dof_(static_cast<int>(kdl_.getNrOfJoints())), lower_(lower), upper_(upper) {
+    : kdl_(std::move(chain)), dof_(static_cast<int>(kdl_.getNrOfJoints())), limits_{lower, upper, {}} {
   if (dof_ == 0) throw std::invalid_argument("chain: a chain needs at least one joint");
-  validate_limits(dof_, lower_, upper_);
-  if (lower_.size() == 0) {
-    lower_ = Vector::Constant(dof_, -INFINITY);
-    upper_ = Vector::Constant(dof_, INFINITY);
+  validate_limits(dof_, limits_.lower, limits_.upper);
+  if (limits_.lower.size() == 0) {
+    limits_.lower = Vector::Constant(dof_, -INFINITY);
+    limits_.upper = Vector::Constant(dof_, INFINITY);
   }
   for (const KDL::Segment& s : kdl_.segments) records_.push_back(SegmentRecord::of(s));
   // Rewritten as base * Mz(s_1 q_1) * after_1 * ... * Mz(s_n q_n) * after_n, where Mz is a
   // rotation about (or translation along) the local z axis: each joint then costs one sin/cos pair
   // and one rigid product (kernel/fk_path.cpp).
   path_ = std::make_shared<const kernel::FkPath>(kernel::build_fk_path(kdl_));
+  for (int i = 0; i < dof_; ++i) limits_.prismatic.push_back(prismatic(i));
   planar_ = moves_in_base_plane();
   lazy_ = std::make_shared<Lazy>();
 }

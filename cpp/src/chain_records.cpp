@@ -100,7 +100,7 @@ bool Chain::named() const {
 bool Chain::same_kinematics(const Chain& o) const {
   const std::vector<kernel::Link>&links = path_->links, &other = o.path_->links;
   if (dof_ != o.dof_ || links.size() != other.size()) return false;
-  if (!same_bits(lower_.data(), o.lower_.data(), dof_) || !same_bits(upper_.data(), o.upper_.data(), dof_))
+  if (!same_bits(lower().data(), o.lower().data(), dof_) || !same_bits(upper().data(), o.upper().data(), dof_))
     return false;
   auto same_rigid = [](const Rigid& a, const Rigid& b) {
     return same_bits(a.R.data(), b.R.data(), 9) && same_bits(a.p.data(), b.p.data(), 3);
@@ -123,8 +123,8 @@ std::size_t Chain::kinematics_hash() const {
       h ^= std::hash<std::uint64_t>()(bits) + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
     }
   };
-  mix(lower_.data(), dof_);
-  mix(upper_.data(), dof_);
+  mix(lower().data(), dof_);
+  mix(upper().data(), dof_);
   mix(path_->base.p.data(), 3);
   for (const kernel::Link& l : path_->links) {
     const double prismatic = l.prismatic ? 1.0 : 0.0;

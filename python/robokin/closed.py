@@ -258,7 +258,7 @@ def ur(target, robot, limits="default") -> IKSolutions:
         1e-3 of the wrist's singularity, where q2 + q3 + q4 is known only to ~1e-16 / |sin q5|, an
         elbow within that rounding of straight or folded is returned straight or folded.
     """
-    chain = _ur_chain(robot)
+    chain = robot if isinstance(robot, Chain) else _ur_chain(robot)  # a Chain as it is, without a call
     try:
         return _core.ik_ur(target, chain, limits)
     except ValueError:

@@ -104,20 +104,17 @@ class Chain {
   std::size_t kinematics_hash() const;  // equal for chains of the same kinematics
 
   int dof() const { return dof_; }
-  const Vector& lower() const { return lower_; }
-  const Vector& upper() const { return upper_; }
+  const Vector& lower() const { return limits_.lower; }
+  const Vector& upper() const { return limits_.upper; }
   bool prismatic(int joint) const;
   // Every joint moves the tool in planes parallel to the base xy plane: revolute axes along the
   // base z axis, prismatic axes perpendicular to it (rows v_z, w_x, w_y of the Jacobian zero; read
   // at q = 0, which decides for every q: turns about z keep the axes' angles with z). natural_task
   // (task.hpp) reads it.
   bool planar() const { return planar_; }
-  // The limits as the closed forms take them (lower, upper and which joints are prismatic).
-  JointLimits limits() const {
-    JointLimits lim{lower_, upper_, {}};
-    for (int i = 0; i < dof_; ++i) lim.prismatic.push_back(prismatic(i));
-    return lim;
-  }
+  // The limits as the closed forms take them (lower, upper and which joints are prismatic), held
+  // by the chain: a call reads them in place.
+  const JointLimits& limits() const { return limits_; }
   const KDL::Chain& kdl() const { return kdl_; }
 
   // Names, read from the records (a URDF chain's are the file's). joint_names: the dof moving
@@ -170,7 +167,7 @@ class Chain {
   DHTable dh_;
   std::string base_name_;
   int dof_ = 0;
-  Vector lower_, upper_;
+  JointLimits limits_;  // no limits: -inf and +inf
   // Built once by the constructor, never changed: copies share it, const calls only read it.
   std::shared_ptr<const kernel::FkPath> path_;
   bool planar_ = false;
