@@ -131,3 +131,16 @@ def test_find_refuses_bad_arguments_as_the_constructor_does():
         rk.closed.ClosedSolver.find(rk.robots.ur5(), "nope")
     with pytest.raises(TypeError, match="unexpected keyword argument 'tolerance'"):
         rk.closed.ClosedSolver.find(rk.robots.ur5(), tolerance=1e-3)
+
+
+@pytest.mark.parametrize("d6", [1e150, 1.3407807929942597e154])
+def test_an_arm_whose_squares_overflow_returns_only_what_reaches(d6):
+    # The arm's size (the FK check's scale) summed from lengths whose squares reach the largest
+    # float: measured as a plain norm it was infinite, and a tool d6 away from its target passed.
+    alphas = (np.pi / 2, 0, 0, np.pi / 2, -np.pi / 2, 0)  # the UR table's, every length 0 but d6
+    chain = rk.Chain.from_dh([(0.0, alpha, d6 if i == 5 else 0.0, 0.0, "R") for i, alpha in enumerate(alphas)])
+    solver = rk.closed.ClosedSolver.find(chain, None)
+    assert solver is not None and solver.family == "three parallel axes 2, 3, 4"
+    T = rk.robots.ur5().fk(np.zeros(6))
+    for q in solver.solve(T).q:
+        assert np.max(np.abs(chain.fk(q)[:3, 3] - T[:3, 3])) <= 1e-9 * d6

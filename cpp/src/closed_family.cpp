@@ -201,12 +201,12 @@ JointAxes joint_axes(const Chain& chain) {
       g.number.push_back(static_cast<int>(g.number.size()) + 1);
     }
     const KDL::Frame tip = seg.pose(0.0);
-    g.size += vec(tip.p).norm();
+    g.size += vec(tip.p).stableNorm();  // stableNorm: lengths beyond 1e154 would overflow a sum of squares
     F = F * tip;
   }
   const Vector zero = Vector::Zero(chain.dof());
   chain.fk(zero.data(), g.tool);
-  g.size += (g.tool.p - vec(F.p)).norm();  // a tool the chain applies after its segments
+  g.size += (g.tool.p - vec(F.p)).stableNorm();  // a tool the chain applies after its segments
   return g;
 }
 
