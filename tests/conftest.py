@@ -1,4 +1,5 @@
 import os
+import signal
 
 import numpy as np
 import pytest
@@ -17,6 +18,13 @@ settings.register_profile("asan", max_examples=60, derandomize=True, **_COMMON)
 settings.register_profile("mutate", max_examples=300, derandomize=True,
                           phases=[Phase.explicit, Phase.reuse, Phase.generate], **_COMMON)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+# A suite started in the background by a shell without job control (`make test &` in a script)
+# inherits Ctrl-C ignored, and Python then installs no KeyboardInterrupt handler, neither here nor
+# in the interpreters the tests start (an ignored signal stays ignored across exec). The tests of
+# Ctrl-C need Python's own handler, as a user's interpreter has it.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture
