@@ -20,7 +20,7 @@ import numpy as np
 import robokin as rk
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _timing import goal, once, per_call  # noqa: E402
+from _timing import goal, once, per_call_interleaved  # noqa: E402
 
 
 def main():
@@ -36,11 +36,13 @@ def main():
     found = sum(len(rk.closed.ur(T, ur5)) for T in poses)
     # Each call timed the same way, over the same poses in turn: the frames made once (a list of
     # views, cycled), so that the loop's own cost is a next() (~20 ns), not an index and a new numpy
-    # view per call (~100 ns, a tenth of a closed-form call).
+    # view per call (~100 ns, a tenth of a closed-form call). The two calls' repeats are taken in
+    # turn, so that both see the same spells of the shared machine's load.
     frames = list(poses)
-    ns = {"closed": rk.closed.ur, "solve": solver.solve, "ur5": ur5, "q0": q0}
-    t_closed, _ = per_call("closed(next(frames), ur5)", dict(ns, frames=itertools.cycle(frames)), budget=0.3)
-    t_num, _ = per_call("solve(next(frames), q0)", dict(ns, frames=itertools.cycle(frames)), budget=0.3)
+    ns = {"closed": rk.closed.ur, "solve": solver.solve, "ur5": ur5, "q0": q0,
+          "closed_frames": itertools.cycle(frames), "solve_frames": itertools.cycle(frames)}
+    (t_closed, _), (t_num, _) = per_call_interleaved(
+        ["closed(next(closed_frames), ur5)", "solve(next(solve_frames), q0)"], ns, repeat=15, budget=0.1)
     ratio = t_closed / t_num
     print(f"UR5, {len(poses)} random poses: closed.ur {1e6 * t_closed:.2f} us/call ({found / len(poses):.2f} "
           f"solutions/pose), IKSolver(lm, restarts=20) {1e6 * t_num:.2f} us/call ({ok}/{len(poses)} solved, 1 "
