@@ -8,6 +8,7 @@ import threading
 
 import numpy as np
 import pytest
+from closed_helpers import angle_distance
 
 import robokin as rk
 
@@ -148,20 +149,22 @@ def test_an_arm_whose_squares_overflow_returns_only_what_reaches(d6):
 
 def test_an_arm_a_1e150th_of_the_size_solves_as_the_unit_arm(rng):
     # Lengths of 1e-150 m: squares of coordinates below the normal range, where the subproblems'
-    # directions are measured by hypot instead. A uniform scale leaves every angle as it is.
+    # directions are measured by hypot instead. A uniform scale leaves every angle as it is; the
+    # small arm's own forward model checks its answers too.
     alphas = (-np.pi / 2, np.pi / 2, np.pi / 2, -np.pi / 2, -np.pi / 2, np.pi / 2, 0.0)
     lengths = (0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126)  # the iiwa 14's (robots.iiwa14), no limits
-
-    def arm(scale):
-        return rk.Chain.from_dh([(0.0, a, scale * d, 0.0, "R") for a, d in zip(alphas, lengths)])
-
-    unit = rk.closed.ClosedSolver(arm(1.0), None, locked={2: 0.3})
-    tiny = rk.closed.ClosedSolver(arm(1e-150), None, locked={2: 0.3})
+    big, small = (rk.Chain.from_dh([(0.0, a, scale * d, 0.0, "R") for a, d in zip(alphas, lengths)])
+                  for scale in (1.0, 1e-150))
+    unit = rk.closed.ClosedSolver(big, None, locked={2: 0.3})
+    tiny = rk.closed.ClosedSolver(small, None, locked={2: 0.3})
     for q in rng.uniform(-2, 2, (50, 7)):
         q[2] = 0.3
-        T = arm(1.0).fk(q)
-        small = T.copy()
-        small[:3, 3] *= 1e-150
-        want, got = unit.solve(T), tiny.solve(small)
+        T = big.fk(q)
+        T_small = T.copy()
+        T_small[:3, 3] *= 1e-150
+        want, got = unit.solve(T), tiny.solve(T_small)
         assert len(want) >= 1 and got.postures == want.postures
-        assert np.max(np.abs(np.remainder(got.q - want.q + np.pi, 2 * np.pi) - np.pi)) < 1e-9
+        assert np.max(angle_distance(got.q, want.q)) < 1e-9
+        reached = small.fk(got.q)
+        assert np.max(np.abs(reached[:, :3, 3] - T_small[:3, 3])) <= 1e-9 * 1e-150
+        assert np.max(np.abs(reached[:, :3, :3] - T[:3, :3])) <= 1e-9
