@@ -134,37 +134,45 @@ def test_find_refuses_bad_arguments_as_the_constructor_does():
         rk.closed.ClosedSolver.find(rk.robots.ur5(), tolerance=1e-3)
 
 
-@pytest.mark.parametrize("d6", [1e150, 1.3407807929942597e154])
+@pytest.mark.parametrize("d6", [1e150, 1.3407807929942597e154, 1e165])
 def test_an_arm_whose_squares_overflow_returns_only_what_reaches(d6):
     # The arm's size (the FK check's scale) summed from lengths whose squares reach the largest
     # float: measured as a plain norm it was infinite, and a tool d6 away from its target passed.
+    # At 1e165 the check's squared tolerance overflows too: an infinite squared distance passed it.
     alphas = (np.pi / 2, 0, 0, np.pi / 2, -np.pi / 2, 0)  # the UR table's, every length 0 but d6
     chain = rk.Chain.from_dh([(0.0, alpha, d6 if i == 5 else 0.0, 0.0, "R") for i, alpha in enumerate(alphas)])
     solver = rk.closed.ClosedSolver.find(chain, None)
     assert solver is not None and solver.family == "three parallel axes 2, 3, 4"
-    T = rk.robots.ur5().fk(np.zeros(6))
-    for q in solver.solve(T).q:
-        assert np.max(np.abs(chain.fk(q)[:3, 3] - T[:3, 3])) <= 1e-9 * d6
+    T = rk.robots.ur5().fk(np.zeros(6))  # a metre from the base: out of this arm's reach
+    assert len(solver.solve(T)) == 0
+    own = chain.fk(np.full(6, 0.4))
+    solutions = solver.solve(own)
+    assert len(solutions) >= 1
+    for q in solutions.q:
+        assert np.max(np.abs(chain.fk(q)[:3, 3] - own[:3, 3])) <= 1e-9 * d6
 
 
-def test_an_arm_a_1e150th_of_the_size_solves_as_the_unit_arm(rng):
+@pytest.mark.parametrize("scale", [1e-150, 1e100])
+def test_an_arm_scaled_far_from_a_metre_solves_as_the_unit_arm(rng, scale):
     # Lengths of 1e-150 m: squares of coordinates below the normal range, where the subproblems'
-    # directions are measured by hypot instead. A uniform scale leaves every angle as it is; the
-    # small arm's own forward model checks its answers too.
+    # directions are measured by hypot instead. Lengths of 1e100 m: fourth powers beyond the
+    # largest float, where a subproblem's scale (the root of a product of squares) takes two roots.
+    # A uniform scale leaves every angle as it is; the scaled arm's own forward model checks its
+    # answers too.
     alphas = (-np.pi / 2, np.pi / 2, np.pi / 2, -np.pi / 2, -np.pi / 2, np.pi / 2, 0.0)
     lengths = (0.36, 0.0, 0.42, 0.0, 0.4, 0.0, 0.126)  # the iiwa 14's (robots.iiwa14), no limits
-    big, small = (rk.Chain.from_dh([(0.0, a, scale * d, 0.0, "R") for a, d in zip(alphas, lengths)])
-                  for scale in (1.0, 1e-150))
-    unit = rk.closed.ClosedSolver(big, None, locked={2: 0.3})
-    tiny = rk.closed.ClosedSolver(small, None, locked={2: 0.3})
+    arm, scaled = (rk.Chain.from_dh([(0.0, a, factor * d, 0.0, "R") for a, d in zip(alphas, lengths)])
+                  for factor in (1.0, scale))
+    unit = rk.closed.ClosedSolver(arm, None, locked={2: 0.3})
+    scaled_solver = rk.closed.ClosedSolver(scaled, None, locked={2: 0.3})
     for q in rng.uniform(-2, 2, (50, 7)):
         q[2] = 0.3
-        T = big.fk(q)
-        T_small = T.copy()
-        T_small[:3, 3] *= 1e-150
-        want, got = unit.solve(T), tiny.solve(T_small)
+        T = arm.fk(q)
+        T_scaled = T.copy()
+        T_scaled[:3, 3] *= scale
+        want, got = unit.solve(T), scaled_solver.solve(T_scaled)
         assert len(want) >= 1 and got.postures == want.postures
         assert np.max(angle_distance(got.q, want.q)) < 1e-9
-        reached = small.fk(got.q)
-        assert np.max(np.abs(reached[:, :3, 3] - T_small[:3, 3])) <= 1e-9 * 1e-150
+        reached = scaled.fk(got.q)
+        assert np.max(np.abs(reached[:, :3, 3] - T_scaled[:3, 3])) <= 1e-9 * scale
         assert np.max(np.abs(reached[:, :3, :3] - T[:3, :3])) <= 1e-9

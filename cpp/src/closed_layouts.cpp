@@ -86,7 +86,7 @@ URArm ur_arm_of(const JointAxes& g) {
   const Eigen::Vector3d o4 = right_angle_meeting(g, 3, 4, tol_d, not_ur);
   const Eigen::Vector3d o5 = right_angle_meeting(g, 4, 5, tol_d, not_ur);
   const Eigen::Vector3d o2 = foot_on_line(o1, g.point[2], z[2]), o3 = foot_on_line(o2, g.point[3], z[3]);
-  arm.a2 = (o2 - o1).norm(), arm.a3 = (o3 - o2).norm();
+  arm.a2 = (o2 - o1).stableNorm(), arm.a3 = (o3 - o2).stableNorm();
   if (arm.a2 <= tol_d || arm.a3 <= tol_d) not_ur("axes 2, 3, 4 do not stand apart (a2 and a3 must not be 0)");
   Eigen::Vector3d x[6];
   x[1] = z[0].cross(z[1]).normalized(), x[0] = x[1];
@@ -96,6 +96,8 @@ URArm ur_arm_of(const JointAxes& g) {
   arm.d1 = 0.0, arm.d4 = (o4 - o3).dot(z[3]), arm.d5 = (o5 - o4).dot(z[4]);
   arm.base = dh_frame(x[0], z[0], o1);
   arm.tool = dh_frame(x[5], z[5], o5).inverse() * g.tool;
+  arm.size = std::abs(arm.d1) + arm.a2 + arm.a3 + std::abs(arm.d4) + std::abs(arm.d5) + arm.base.p.stableNorm() +
+             arm.tool.p.stableNorm();
   return arm;
 }
 
@@ -124,7 +126,7 @@ SphericalArm spherical_arm_of(const JointAxes& g) {
   const Eigen::Vector3d o2 = foot_on_line(o1, g.point[2], z[2]);
   nearest_points(g.point[2], z[2], g.point[3], z[3], f2, o3);
   ArmGeometry& arm = sa.arm;
-  arm.a2 = (o2 - o1).norm();
+  arm.a2 = (o2 - o1).stableNorm();
   if (arm.a2 <= tol_d) not_spherical("axes 2 and 3 do not stand apart (a2 must not be 0)");
   Eigen::Vector3d x[6];
   x[1] = z[0].cross(z[1]).normalized(), x[0] = x[1];
@@ -137,6 +139,8 @@ SphericalArm spherical_arm_of(const JointAxes& g) {
   if (std::hypot(arm.a3, arm.d4) <= tol_d) not_spherical("the wrist centre is on axis 3 (the forearm has no length)");
   sa.base = dh_frame(x[0], z[0], o0);
   sa.tool = dh_frame(x[5], z[5], c).inverse() * g.tool;
+  sa.size = std::abs(arm.a1) + arm.a2 + std::abs(arm.a3) + std::abs(arm.d3) + std::abs(arm.d4) + sa.base.p.stableNorm() +
+            sa.tool.p.stableNorm();
   return sa;
 }
 

@@ -489,9 +489,8 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
   fit_limits_rows(q[0], m, 6, limits, within);
   Rigid F[8];
   chain.fk_few(q[0], m, F);
-  const double size = arm_size(sa.arm, 0.0) + sa.base.p.norm() + sa.tool.p.norm();
   for (int j = 0; j < m; ++j) {
-    if (!closed_reaches(F[j], T, size)) continue;
+    if (!closed_reaches(F[j], T, sa.size)) continue;
     const int k = keep[j], wrist = c.wrist_singular[k] ? 3 : 1 + c.flip[k];
     // kURPostures' slot: shoulder left 0 / right 1 (arm_label's 1 / 0; singular in the first),
     // elbow up 0 / down 1 (straight or folded in the first), wrist no flip 0 / flip 1.
@@ -618,8 +617,8 @@ namespace {
 // cosines in one vectorised pass (fast_math.hpp). Td, the frame A1 ... A5 Rz(q6) of the bare DH arm
 // (its origin is the wrist centre), is the caller's.
 struct URStages {
-  // The arm's size (for the FK check), its unit (the longest of a2, a3, d4, d5), |a2| and |a3|.
-  double size, unit, a2, a3;
+  // The arm's unit (the longest of a2, a3, d4, d5), |a2| and |a3|.
+  double unit, a2, a3;
   // Shoulders (side 0 left, 1 right; one when singular): q1 and its sine and cosine.
   bool shoulder_singular;
   int sides;
@@ -651,8 +650,6 @@ struct URStages {
 inline __attribute__((always_inline)) bool ur_shoulders(const URArm& arm, const Rigid& Td, URStages& s,
                                                         ClosedFormSolutions& out) {
   const Eigen::Vector3d& p = Td.p;
-  s.size = std::abs(arm.d1) + std::abs(arm.a2) + std::abs(arm.a3) + std::abs(arm.d4) + std::abs(arm.d5) +
-           arm.base.p.norm() + arm.tool.p.norm();
   const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
   s.unit = unit;
   // |p_xy| without std::hypot (glibc's took ~5 % of a call): p is a point within the arm's reach,
@@ -786,14 +783,15 @@ inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URSta
 
 // The candidates brought within the limits where they fit (marked), checked by the chain's forward
 // model together: those that reach T are the answer.
-inline __attribute__((always_inline)) void ur_checked(const Chain& chain, const Rigid& T, const JointLimits& limits,
-                                                      URStages& s, int* slot, ClosedFormSolutions& out) {
+inline __attribute__((always_inline)) void ur_checked(const URArm& arm, const Chain& chain, const Rigid& T,
+                                                      const JointLimits& limits, URStages& s, int* slot,
+                                                      ClosedFormSolutions& out) {
   bool fits[8];
   fit_limits_rows(s.cand[0], s.m, 6, limits, fits);
   Rigid F[8];
   chain.fk_few(s.cand[0], s.m, F);
   for (int k = 0; k < s.m; ++k) {
-    if (!closed_reaches(F[k], T, s.size)) continue;
+    if (!closed_reaches(F[k], T, arm.size)) continue;
     if (slot) slot[out.count()] = s.cand_slot[k];
     out.add(s.cand[k], s.posture[k], fits[k]);
   }
@@ -812,7 +810,7 @@ ClosedFormSolutions ik_ur(const URArm& arm, const Chain& chain, const Rigid& T, 
   ur_pairs(arm, s);
   ur_angles(arm, s, out);
   ur_candidates(arm, s);
-  ur_checked(chain, T, limits, s, slot, out);
+  ur_checked(arm, chain, T, limits, s, slot, out);
   return out;
 }
 

@@ -35,11 +35,13 @@ void fit_limits_rows(double* q, int rows, int n, const JointLimits& lim, bool* o
   for (int i = 0; i < n && wrap_only; ++i)
     wrap_only = i == keep || (lim.prismatic.empty() || !lim.prismatic[i]) && (!limited || (lim.lower(i) <= -M_PI && lim.upper(i) >= M_PI));
   if (wrap_only) {
-    for (int k = 0; k < rows * n; ++k) {
-      if (k % n == keep) continue;
-      if (limited && !std::isfinite(q[k])) ok[k / n] = false;
-      q[k] = wrap_angle(q[k]);
-    }
+    for (int r = 0; r < rows; ++r)
+      for (int i = 0; i < n; ++i) {
+        if (i == keep) continue;
+        double& v = q[r * n + i];
+        if (limited && !std::isfinite(v)) ok[r] = false;
+        v = wrap_angle(v);
+      }
     return;
   }
   // Otherwise joint by joint, row by row (a wide revolute joint's wrap is settle_into_limits'

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace robokin {
 namespace {
@@ -24,6 +25,14 @@ Turn direction(double x, double y, double& length) {
   return {x * inv, y * inv};
 }
 
+// sqrt(a2 b2) of two squared lengths: one square root where their product is a normal float, two
+// where it is not (lengths beyond ~1e77 or below ~1e-77, whose fourth powers leave the range).
+double root_of_product(double a2, double b2) {
+  const double product = a2 * b2;
+  if (product >= std::numeric_limits<double>::min() && product <= std::numeric_limits<double>::max())
+    return std::sqrt(product);
+  return std::sqrt(a2) * std::sqrt(b2);
+}
 
 // theta with a cos theta + b sin theta = c: theta = beta -+ spread, beta the direction of (a, b) and
 // cos spread = c / |(a, b)|. `scale` is the size of the terms the coefficients were made from (the
@@ -82,7 +91,7 @@ SubproblemAngles subproblem4(const Eigen::Vector3d& h, const Eigen::Vector3d& k,
   // h . R p = (k.p)(h.k) + cos theta h.(p - (k.p) k) + sin theta h.(k x p).
   const double kp = k.dot(p);
   return sinusoid(h.dot(p - kp * k), h.dot(k.cross(p)), d - kp * h.dot(k),
-                  std::sqrt(h.squaredNorm() * p.squaredNorm()) + std::abs(d));
+                  root_of_product(h.squaredNorm(), p.squaredNorm()) + std::abs(d));
 }
 
 SubproblemAngles subproblem3(const Eigen::Vector3d& k, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d) {
@@ -99,7 +108,7 @@ void Subproblem2::solve(const Eigen::Vector3d& q, SubproblemAngles& t1, Subprobl
   // k2 . R(k1, -theta1) q = k2 . p: subproblem 4 in -theta1 (h = k2, k = k1, p = q, d = k2 . p).
   const double q2 = q.squaredNorm(), kq = k1_.dot(q);
   const SubproblemAngles a = sinusoid(k2_.dot(q) - kq * k2k1_, q.dot(k2xk1_), k2p_ - kq * k2k1_,
-                                      std::sqrt(k2sq_ * q2) + std::abs(k2p_));
+                                      root_of_product(k2sq_, q2) + std::abs(k2p_));
   // theta2 turns p onto v = R(k1, -theta1) q about k2 (subproblem 1): its cosine and sine are
   // proportional to pp . v and (k2 x pp) . v.
   const bool on_axis = pp2_ <= kSubproblemEps * kSubproblemEps * std::max(p2_, q2);

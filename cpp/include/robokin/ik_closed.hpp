@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -26,10 +27,13 @@ constexpr double kClosedCosEps = 1e-12;
 constexpr double kClosedTolP = 1e-9, kClosedTolR = 1e-8;
 
 // That check: the frame F reaches the target T, for an arm of `size` (the distance compared in
-// squares: no square root's latency before the verdict).
+// squares: no square root's latency before the verdict). The squared tolerance is capped at the
+// largest float: for an arm so large that it overflows, an infinite squared distance still fails
+// (the cap refuses some answers of such an arm, never passes a wrong one).
 inline bool closed_reaches(const Rigid& F, const Rigid& T, double size) {
   const double tol = kClosedTolP * size;
-  return (F.p - T.p).squaredNorm() <= tol * tol && (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
+  return (F.p - T.p).squaredNorm() <= std::min(tol * tol, std::numeric_limits<double>::max()) &&
+         (F.R - T.R).cwiseAbs().maxCoeff() <= kClosedTolR;
 }
 
 // Throws std::invalid_argument("name: must be finite" or "name: must be positive") for a length
@@ -109,6 +113,7 @@ struct SphericalArm {
   double theta[6] = {0, 0, 0, 0, 0, 0};
   double scale[6] = {1, 1, 1, 1, 1, 1};
   Rigid base, tool;
+  double size = 0;  // the FK check's scale: the lengths' and the base's and tool's offsets' sum
 };
 
 // The chain's ortho-parallel geometry read from its joint axes at q = 0, whatever describes it:
@@ -150,6 +155,7 @@ struct URArm {
   double theta[6] = {0, 0, 0, 0, 0, 0};  // DH angle = scale * q + theta
   double scale[6] = {1, 1, 1, 1, 1, 1};  // +1 or -1
   Rigid base, tool;                      // fixed frames before joint 1 and after joint 6
+  double size = 0;                       // the FK check's scale: the lengths' and the base's and tool's offsets' sum
 };
 
 // The chain's UR geometry read from its joint axes at q = 0, whatever describes it (DH rows, a
