@@ -141,6 +141,9 @@ def test_an_arm_whose_squares_overflow_returns_only_what_reaches(d6):
     # At 1e165 the check's squared tolerance overflows too: an infinite squared distance passed it.
     alphas = (np.pi / 2, 0, 0, np.pi / 2, -np.pi / 2, 0)  # the UR table's, every length 0 but d6
     chain = rk.Chain.from_dh([(0.0, alpha, d6 if i == 5 else 0.0, 0.0, "R") for i, alpha in enumerate(alphas)])
+    # The family's distance tolerance is its options' tol times that size: finite, and d6's.
+    tol = rk.closed.ClosedFamilyOptions().tol
+    assert rk.closed.family(chain).tol_distance == pytest.approx(tol * d6, rel=1e-12)
     solver = rk.closed.ClosedSolver.find(chain, None)
     assert solver is not None and solver.family == "three parallel axes 2, 3, 4"
     T = rk.robots.ur5().fk(np.zeros(6))  # a metre from the base: out of this arm's reach
