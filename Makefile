@@ -78,7 +78,7 @@ mutate: setup
 
 bench: setup
 	$(DEPS) python3-pykdl
-	$(VPY) -m pip install -q pin roboticstoolbox-python
+	$(VPY) -m pip install -q pin roboticstoolbox-python eaik
 	$(VPY) benchmarks/run_all.py
 
 # The type stubs of the C++ modules, generated from the bindings (tests/test_stubs.py checks them).
