@@ -313,7 +313,7 @@ FAST_CALL_ERRORS = [
     (lambda: rk._core.Chain.fk(1, Q5), TypeError, "doesn't apply to a 'int' object"),
     (lambda: rk.ik(1, np.eye(4), Q5), TypeError, "chain: expected a robokin.Chain, got int"),
     (lambda: rk.ik_batch(1, np.eye(4)[None], Q5), TypeError, "chain: expected a robokin.Chain, got int"),
-    (lambda: rk._core.ik(UR5, np.eye(4), Q5, seed="x"), ValueError, "seed: expected None or an int"),
+    (lambda: rk._core.ik(UR5, np.eye(4), Q5, seed="x"), TypeError, "seed: expected None or an int"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, tol_p=-1.0), ValueError, "tol_p: must be a positive number"),
     (lambda: rk._core.ik(UR5, np.eye(4), Q5, bogus=1), TypeError, "bogus"),
     (lambda: UR5.manipulability(), TypeError, "manipulability() missing required argument 'q'"),

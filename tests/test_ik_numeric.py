@@ -256,7 +256,7 @@ def test_bad_input_names_the_argument():
         rk.ik(chain, T, np.zeros(6), restarts=-1)
     with pytest.raises(ValueError, match="max_iter"):
         rk.ik(chain, T, np.zeros(6), max_iter=0)
-    with pytest.raises(ValueError, match="seed"):
+    with pytest.raises(TypeError, match="seed"):  # the wrong kind
         rk.ik(chain, T, np.zeros(6), seed="abc")
     with pytest.raises(ValueError, match="targets"):
         rk.ik_batch(chain, np.zeros((3, 4)), np.zeros(6))

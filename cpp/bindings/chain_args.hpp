@@ -87,7 +87,8 @@ inline JointLimits limits_arg(py::handle obj, int dof, std::vector<bool> prismat
   // A 0-d array is a sequence without a length: PyObject_Length fails (-1), which is cleared here.
   const Py_ssize_t size = py::isinstance<py::sequence>(obj) ? PyObject_Length(obj.ptr()) : -1;
   if (size < 0) PyErr_Clear();
-  if (py::isinstance<py::str>(obj) || size != 2) fail("limits: expected None or a pair (lower, upper) of arrays");
+  if (py::isinstance<py::str>(obj) || size < 0) fail_kind("limits: expected None or a pair (lower, upper) of arrays");
+  if (size != 2) fail("limits: expected None or a pair (lower, upper) of arrays");
   const py::sequence pair = py::reinterpret_borrow<py::sequence>(obj);
   lim.lower = as_vector(pair[0], "limits", dof, false);
   lim.upper = as_vector(pair[1], "limits", dof, false);

@@ -28,7 +28,7 @@ std::uint64_t seed_arg(py::handle seed) {
     return z ^ (z >> 31);
   }
   // Any int (or object with __index__, such as numpy's integers) but a bool.
-  if (py::isinstance<py::bool_>(seed) || !PyIndex_Check(seed.ptr())) fail("seed: expected None or an int");
+  if (py::isinstance<py::bool_>(seed) || !PyIndex_Check(seed.ptr())) fail_kind("seed: expected None or an int");
   const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(seed.ptr()));
   if (!index) throw py::error_already_set();
   const unsigned long long v = PyLong_AsUnsignedLongLong(index.ptr());

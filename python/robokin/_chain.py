@@ -35,7 +35,9 @@ def _records(value, name: str, size: int, what: str) -> list:
     if len(value) == 0:
         raise ValueError(f"{name}: a chain needs at least one joint")
     for i, record in enumerate(value):
-        if not _checks.is_sequence(record) or len(record) != size:
+        if not _checks.is_sequence(record):
+            raise TypeError(f"{name}[{i}]: expected {what}")
+        if len(record) != size:
             raise ValueError(f"{name}[{i}]: expected {what}")
     return list(value)
 

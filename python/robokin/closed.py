@@ -211,12 +211,15 @@ def _ur_chain(robot) -> Chain:
     """``robot`` as a Chain: a Chain as it is, or the UR arm of a mapping ``d1, a2, a3, d4, d5, d6``."""
     if isinstance(robot, Chain):
         return robot
-    if not isinstance(robot, dict) or set(robot) != set(_UR_KEYS):
-        raise ValueError(f"robot: expected a Chain or a dict with the keys {', '.join(_UR_KEYS)}, got {robot!r}")
+    expected = f"robot: expected a Chain or a dict with the keys {', '.join(_UR_KEYS)}, got {robot!r}"
+    if not isinstance(robot, dict):
+        raise TypeError(expected)
+    if set(robot) != set(_UR_KEYS):
+        raise ValueError(expected)
     try:
         key = tuple(float(robot[k]) for k in _UR_KEYS)
     except (TypeError, ValueError):
-        raise ValueError(f"robot: the lengths must be real numbers, got {robot!r}") from None
+        raise TypeError(f"robot: the lengths must be real numbers, got {robot!r}") from None
     if not all(math.isfinite(v) for v in key):
         raise ValueError("robot: the lengths must be finite")
     return Chain.from_dh(ur_dh_rows(*key))

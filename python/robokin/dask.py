@@ -185,8 +185,9 @@ def _rows(a, name: str, chunks):
         a = real_array(a, name)
         if a.ndim < 1:
             raise ValueError(f"{name}: expected a batch (N, ...), got a scalar")
-        if not (chunks == "auto" or (isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool)
-                                     and chunks >= 1)):
+        if not (chunks == "auto" or (isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool))):
+            raise TypeError(f"chunks: expected 'auto' or a positive int (rows per chunk), got {chunks!r}")
+        if chunks != "auto" and chunks < 1:
             raise ValueError(f"chunks: expected 'auto' or a positive int (rows per chunk), got {chunks!r}")
         a = da.from_array(a, chunks=(chunks,) + (-1,) * (a.ndim - 1))
     elif a.dtype.kind not in "biuf":

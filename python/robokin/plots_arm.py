@@ -170,7 +170,9 @@ def _animate_arguments(chain, qs, path, fps, size):
     kind = os.path.splitext(os.fspath(path))[1].lower()
     if kind not in (".gif", ".mp4"):
         raise ValueError(f"path: must end in .gif or .mp4, got {os.fspath(path)!r}")
-    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not 0.1 <= fps <= 100:
+    if isinstance(fps, bool) or not isinstance(fps, (int, float)):
+        raise TypeError(f"fps: expected a number in [0.1, 100], got {fps!r}")
+    if not 0.1 <= fps <= 100:
         raise ValueError(f"fps: expected a number in [0.1, 100], got {fps!r}")
     try:
         width, height = (int(v) for v in size)

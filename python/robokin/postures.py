@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import real_array, whole
+from ._checks import number, real_array, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -99,13 +99,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
 
 
 def _dt(dt) -> float:
-    try:
-        v = float(dt)
-    except (TypeError, ValueError):
-        raise ValueError(f"dt: expected a positive number, got {dt!r}") from None
-    if not (v > 0 and math.isfinite(v)):
-        raise ValueError(f"dt: expected a positive finite number, got {dt!r}")
-    return v
+    return number(dt, "dt", positive=True)
 
 
 def _speed(qdot_max, n) -> np.ndarray:
@@ -251,7 +245,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     step_dt = _dt(dt)
     vmax = _speed(qdot_max, n)
     if not isinstance(method, str):
-        raise ValueError(f"method: expected 'closed', 'numerical' or an IK method, got {method!r}")
+        raise TypeError(f"method: expected 'closed', 'numerical' or an IK method, got {method!r}")
     if method == "closed" and ik_options:
         raise ValueError(f"ik_options: {sorted(ik_options)} apply to the numerical IK only (method='closed')")
     options = None if method == "closed" else _ik_options(method, ik_options)

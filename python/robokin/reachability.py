@@ -208,7 +208,9 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     check_chain(chain)
     if task is None:
         task = chain.natural_task
-    if not isinstance(task, str) or task not in _TASKS:
+    if not isinstance(task, str):
+        raise TypeError(f"task: expected None or one of {_TASKS}, got {task!r}")
+    if task not in _TASKS:
         raise ValueError(f"task: expected None or one of {_TASKS}, got {task!r}")
     axes = grid(bounds, resolution)
     if len(axes) != (2 if task in _PLANAR else 3):

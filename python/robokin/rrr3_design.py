@@ -49,11 +49,11 @@ class BestL2:
 def _values(values, name: str) -> np.ndarray:
     try:
         v = np.asarray(values)
-        if v.dtype.kind not in "biuf":  # complex would lose its imaginary part in a float cast
-            raise TypeError
-        v = v.astype(float)
     except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected an array of real numbers") from None
+        raise TypeError(f"{name}: expected an array of real numbers") from None
+    if v.dtype.kind not in "biuf":  # complex would lose its imaginary part in a float cast
+        raise TypeError(f"{name}: expected an array of real numbers")
+    v = v.astype(float)
     if v.ndim != 1 or v.size == 0:
         raise ValueError(f"{name}: expected a non-empty 1-D array, got shape {v.shape}")
     if not np.all(np.isfinite(v)) or np.any(v <= 0):
