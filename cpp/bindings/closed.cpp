@@ -316,17 +316,18 @@ void bind_solver_class(py::module_& m) {
 
 void bind_closed(py::module_& m) {
   bind_solutions(m);
-  m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits") = py::none());
-  m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits") = py::none());
-  m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"),
-        py::arg("method") = "algebraic", py::arg("limits") = py::none());
-  m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1") = 0.0,
-        py::arg("limits") = py::none());
+  // No defaults here: robokin.closed's functions hold them and pass every argument.
+  m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits"));
+  m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits"));
+  m.def("ik_planar_3r", &planar_3r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("a3"), py::arg("method"),
+        py::arg("limits"));
+  m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1"),
+        py::arg("limits"));
   m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
-        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits") = py::none());
+        py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits"));
   m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
-        py::arg("d4"), py::arg("d1") = 0.0, py::arg("d6") = 0.0, py::arg("limits") = py::none());
-  m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
+        py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("limits"));
+  m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits"));
   {
     py::list names;
     for (const char* p : kURPostures) names.append(py::str(p));

@@ -20,7 +20,7 @@ void bind_ik_3r(py::module_& m) {
         JointLimits given;
         return ik_3r(arm, chain, Eigen::Vector3d(p(0), p(1), p(2)), limits_or_default(chain, limits, 3, given));
       },
-      py::arg("target"), py::arg("chain"), py::arg("limits") = "default");
+      py::arg("target"), py::arg("chain"), py::arg("limits"));  // robokin.closed.general_3r holds the default
   m.def(
       "det_3r",
       [](const Chain& chain, double q2, double q3) {
@@ -45,9 +45,10 @@ void bind_ik_3r(py::module_& m) {
         out["cusps"] = cusps;
         out["aspects"] = r.aspects;
         out["sign"] = array_of(r.sign.data(), {resolution, resolution});
+        out["grid"] = array_of(r.grid.data(), {resolution});
         return out;
       },
-      py::arg("chain"), py::arg("resolution") = 256);
+      py::arg("chain"), py::arg("resolution"));
 }
 
 }  // namespace robokin::bind

@@ -527,6 +527,8 @@ CuspidalResult cuspidal_3r(const Arm3R& arm, int N) {
   CuspidalResult res;
   res.resolution = N;
   const TorusGrid G(N);
+  res.grid.resize(N);
+  for (int i = 0; i < N; ++i) res.grid[i] = G.angle(i);
   const std::vector<double> dd = sample_det(arm, G, res);
   label_aspects(arm, G, res);
   for (int i = 0; i < N; ++i)

@@ -1667,7 +1667,7 @@ def closed_family(chain: Chain, locked: dict[int, float] | None = None, **kwargs
     Options (keyword-only, ClosedFamilyOptions):
         tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
     """
-def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex = 256) -> dict:
+def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex) -> dict:
     ...
 def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
@@ -1675,25 +1675,25 @@ def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike,
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """
-def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> IKSolutions:
+def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
+def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
 def ik_batch(chain: Chain, targets: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, path: bool = False, **kwargs) -> IKBatchResult:
     """
     Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.
     """
-def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
+def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str = 'algebraic', limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
+def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_planar_rp(target: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
+def ik_planar_rp(target: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex = 0.0, d6: typing.SupportsFloat | typing.SupportsIndex = 0.0, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> IKSolutions:
+def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> tuple:
+def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> tuple:
     ...
-def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = 'default') -> IKSolutions:
+def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
 def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     """

@@ -27,9 +27,6 @@ from ._core import Chain
 
 __all__ = ["Cuspidality", "cuspidal"]
 
-_OFFSET = 0.37  # the grid: q = -pi + (i + OFFSET) 2 pi / N
-
-
 @dataclass
 class Cuspidality:
     """Result of :func:`cuspidal`.
@@ -59,9 +56,10 @@ class Cuspidality:
     path: Optional[np.ndarray]
 
 
-def _cell(q, n):
-    h = 2 * math.pi / n
-    return int(round((np.remainder(q + math.pi, 2 * math.pi) - _OFFSET * h) / h)) % n
+def _cell(q, grid):
+    """The index of the grid angle nearest q (the grid is evenly spaced around the circle)."""
+    n = len(grid)
+    return int(round(np.remainder(q - grid[0], 2 * math.pi) / (2 * math.pi / n))) % n
 
 
 def _grid_path(label, a, b):
@@ -90,7 +88,6 @@ def _posture_change(chain, grid, label, sign, cusps, size):
     """A point near a cusp with two solutions in one aspect, and a non-singular path between them."""
     from .closed import general_3r
 
-    n = len(grid)
     rng = np.random.default_rng(0)
     for q2c, q3c, _, _ in cusps:
         pc = chain.fk(np.array([0.0, q2c, q3c]))[:3, 3]
@@ -99,7 +96,7 @@ def _posture_change(chain, grid, label, sign, cusps, size):
                 d = rng.normal(size=3)
                 p = pc + radius * size * d / np.linalg.norm(d)
                 sols = general_3r(p, chain, limits=None)
-                cells = [(_cell(q[1], n), _cell(q[2], n)) for q in sols.q]
+                cells = [(_cell(q[1], grid), _cell(q[2], grid)) for q in sols.q]
                 for x in range(len(cells)):
                     for y in range(x + 1, len(cells)):
                         a, b = cells[x], cells[y]
@@ -145,7 +142,7 @@ def cuspidal(chain: Chain, resolution: int = 256) -> Cuspidality:
     whole(resolution, "resolution", 16, 4096, "grid points per joint")
     r = _core.cuspidal_3r(chain, int(resolution))
     n = int(resolution)
-    grid = -math.pi + (np.arange(n) + _OFFSET) * 2 * math.pi / n
+    grid = np.asarray(r["grid"])
     cusps = np.asarray(r["cusps"])
     sign, label = np.asarray(r["sign"]), np.asarray(r["label"])
     point = path = None

@@ -44,6 +44,7 @@ struct CuspidalResult {
   int aspects = 0;                 // connected regions of constant sign of det J on the (q2, q3) torus
   std::vector<signed char> sign;   // resolution x resolution grid of sign(det J), row = q2
   std::vector<int> label;          // the aspect of each grid cell (-1 where det J = 0)
+  std::vector<double> grid;        // the grid's angles (for q2 and q3), below
   int resolution = 0;
 };
 
