@@ -136,7 +136,8 @@ inline double* float64_data(const py::array& a) {
 // ---- Fast methods -------------------------------------------------------------------------------
 // CPython's METH_FASTCALL | METH_KEYWORDS convention, the arguments read where CPython passes them:
 // pybind11's dispatcher (an argument vector and a function record per call, type lookups, a bound
-// method object per call) was a third of these sub-microsecond calls. What stays as with .def: the
+// method object per call) is a large share of a sub-microsecond call (benchmarks/README.md, "Fast
+// methods against pybind11's dispatcher"). What stays as with .def: the
 // argument names, defaults and conversions (the bound functions are the same), C++ exceptions
 // translated by pybind11's registered translators, and a docstring whose first line is the
 // signature pybind11 writes (help(), the generated stubs).

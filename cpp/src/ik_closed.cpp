@@ -652,8 +652,8 @@ inline __attribute__((always_inline)) bool ur_shoulders(const URArm& arm, const 
   const Eigen::Vector3d& p = Td.p;
   const double unit = std::max({std::abs(arm.a2), std::abs(arm.a3), std::abs(arm.d4), std::abs(arm.d5)});
   s.unit = unit;
-  // |p_xy| without std::hypot (glibc's took ~5 % of a call): p is a point within the arm's reach,
-  // its squares far from overflow and underflow.
+  // |p_xy| without std::hypot (glibc's takes several square roots): the squares of a point an arm
+  // of a sane size reaches are far from overflow and underflow (an arm near 1e154 finds nothing).
   const double r = std::sqrt(p.x() * p.x() + p.y() * p.y()) / unit, d4 = std::abs(arm.d4) / unit;
   const double disc = (r - d4) * (r + d4);
   if (!(disc >= -kCosEps * std::max(1.0, r * r))) return false;
