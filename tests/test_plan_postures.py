@@ -19,12 +19,12 @@ from robokin import _core
 
 
 def reference(sets, vmax, dt, cont, q0=None):
-    """(pick, reconfigurations, motion) by the rules above, with numpy."""
+    """(pick, reconfigured waypoints, motion) by the rules above, with numpy."""
     n = len(vmax)
     reached = [k for k, s in enumerate(sets) if len(s)]
     pick = np.full(len(sets), -1)
     if not reached:
-        return pick, 0, 0.0
+        return pick, [], 0.0
 
     def step(a, b, steps):
         d = b[None, :, :] - a[:, None, :]
@@ -56,7 +56,16 @@ def reference(sets, vmax, dt, cont, q0=None):
         pick[k] = row
         if k != first:
             row = back[k][row]
-    return pick, r, m
+    # The waypoints the chosen rows enter by a jump (from q0 or the previous waypoint reached).
+    previous = None if q0 is None else (-1, np.asarray(q0, float))
+    reconfigured = []
+    for k in reached:
+        row_q = sets[k][pick[k]]
+        if previous is not None and step(previous[1][None, :], row_q[None, :], k - previous[0])[0][0, 0]:
+            reconfigured.append(k)
+        previous = (k, row_q)
+    assert len(reconfigured) == r
+    return pick, reconfigured, m
 
 
 def random_layers(rng, whole_numbers):
@@ -77,47 +86,52 @@ def random_layers(rng, whole_numbers):
 
 @pytest.mark.parametrize("whole_numbers", [True, False])
 def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
-    ties = 0
+    ties = jumps = 0
     for trial in range(300):
         sets, vmax, dt, cont, q0 = random_layers(rng, whole_numbers)
         pick, r, m = _core.plan_postures(sets, vmax, dt, cont, q0)
         ref_pick, ref_r, ref_m = reference(sets, vmax, dt, cont, q0)
         np.testing.assert_array_equal(pick, ref_pick, err_msg=str(trial))
-        assert (r, m) == (ref_r, ref_m), trial
+        assert (list(r), m) == (ref_r, ref_m), trial
+        jumps += len(r)
         ties += whole_numbers and sum(len(np.unique(s, axis=0)) < len(s) for s in sets)
     assert not whole_numbers or ties > 50  # duplicate rows: exact ties in motion and reconfigurations
+    assert jumps > 50  # plans with reconfigurations, their waypoints compared
 
 
 def test_ties_go_to_the_lowest_row():
     # Two identical rows everywhere: every choice ties; the lowest rows are taken.
     same = np.array([[0.0, 1.0], [0.0, 1.0]])
     pick, r, m = _core.plan_postures([same, same, same], [1.0, 1.0], 0.1, [False, False])
-    assert list(pick) == [0, 0, 0] and (r, m) == (0, 0.0)
+    assert list(pick) == [0, 0, 0] and (list(r), m) == ([], 0.0)
     # Equal motion both ways (1 to the left, 1 to the right): the lower row.
     pick, _, m = _core.plan_postures([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
     assert list(pick) == [0, 0] and m == 1.0
     # Fewer reconfigurations beat less motion.
     sets = [np.array([[0.0]]), np.array([[0.3], [0.2]]), np.array([[0.6], [10.0]])]
     pick, r, _ = _core.plan_postures(sets, [0.35], 1.0, [False])
-    assert list(pick) == [0, 0, 0] and r == 0
+    assert list(pick) == [0, 0, 0] and len(r) == 0
 
 
 def test_gaps_q0_and_continuous_joints():
     # An empty waypoint: the step over the gap has two intervals' allowance.
     sets = [np.array([[0.0]]), np.zeros((0, 1)), np.array([[1.5], [-0.1]])]
     pick, r, _ = _core.plan_postures(sets, [1.0], 1.0, [False])
-    assert list(pick) == [0, -1, 1] and r == 0
+    assert list(pick) == [0, -1, 1] and len(r) == 0
     # q0 is waypoint -1: the first step counts.
     pick, r, _ = _core.plan_postures([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
-    assert list(pick) == [1] and r == 0
+    assert list(pick) == [1] and len(r) == 0
+    # A jump over a gap is marked at the waypoint it enters.
+    pick, r, _ = _core.plan_postures([np.array([[0.0]]), np.zeros((0, 1)), np.array([[2.5]])], [1.0], 1.0, [False])
+    assert list(pick) == [0, -1, 0] and list(r) == [2]
     # A continuous joint goes the short way round: 3 to -3 is a step of 2 pi - 6.
     pick, r, m = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
-    assert r == 0 and m == pytest.approx(2 * math.pi - 6)
+    assert len(r) == 0 and m == pytest.approx(2 * math.pi - 6)
     pick, r, _ = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
-    assert r == 1
+    assert list(r) == [1]
     # No solution anywhere, and no waypoint at all.
     pick, r, m = _core.plan_postures([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
-    assert list(pick) == [-1, -1, -1] and (r, m) == (0, 0.0)
+    assert list(pick) == [-1, -1, -1] and (len(r), m) == (0, 0.0)
     assert len(_core.plan_postures([], [1.0], 0.1, [False])[0]) == 0
 
 

@@ -62,6 +62,9 @@ def test_dynamic_programme_matches_exhaustive_search(robot, rng):
             r, m = brute_force(sets, 0.1, vmax, cont, q0)
             assert len(res.reconfigurations) == r, (trial, vmax)
             assert res.motion == pytest.approx(m, abs=1e-9), (trial, vmax)
+            # The waypoints marked are where the returned joint path jumps (counted on its own).
+            np.testing.assert_array_equal(res.reconfigurations,
+                                          rk.count_reconfigurations(res.q, 0.1, vmax, q0=q0, chain=chain))
             for T, q in zip(poses, res.q):
                 assert np.allclose(chain.fk(q), T, atol=1e-9)
             compared += 1

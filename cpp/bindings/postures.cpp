@@ -60,13 +60,16 @@ void bind_postures(py::module_& m) {
                                a.has_q0 ? a.q0.data() : nullptr);
         });
         const py::array_t<long> pick = array_of(plan.pick.data(), {static_cast<py::ssize_t>(plan.pick.size())});
-        return py::make_tuple(pick, plan.reconfigurations, plan.motion);
+        const py::array_t<long> reconfigured =
+            array_of(plan.reconfigured.data(), {static_cast<py::ssize_t>(plan.reconfigured.size())});
+        return py::make_tuple(pick, reconfigured, plan.motion);
       },
       py::arg("sets"), py::arg("qdot_max"), py::arg("dt"), py::arg("continuous"), py::arg("q0") = py::none(),
-      "track_postures' dynamic programme: (pick, reconfigurations, motion), pick[k] the row of sets[k]\n"
+      "track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]\n"
       "chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than\n"
       "qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the\n"
-      "lowest row. q0 (n,) is the joints before the path. The GIL is released while it runs.");
+      "lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is\n"
+      "the joints before the path. The GIL is released while it runs.");
 }
 
 }  // namespace robokin::bind

@@ -72,6 +72,21 @@ long best_row(const Costs& cost) {
   return best;
 }
 
+// The waypoints the plan's rows enter by a reconfiguration (the steps the programme counted along
+// them): from q0 or the previous waypoint with solutions.
+void mark_reconfigurations(const std::vector<PostureLayer>& layers, const std::vector<long>& reached, long n,
+                           const double* qdot_max, double dt, const std::vector<bool>& continuous, const double* q0,
+                           PosturePlan& plan) {
+  const double* previous = q0;
+  long previous_k = -1;
+  for (const long k : reached) {
+    const double* row = layers[k].q + plan.pick[k] * n;
+    if (previous && step_cost(previous, row, n, qdot_max, dt, k - previous_k, continuous).jump)
+      plan.reconfigured.push_back(k);
+    previous = row, previous_k = k;
+  }
+}
+
 }  // namespace
 
 double posture_step(double a, double b, bool continuous) {
@@ -104,12 +119,12 @@ PosturePlan plan_postures(const std::vector<PostureLayer>& layers, long n, const
     cost = advance(cost, layers[a], layers[b], b - a, n, qdot_max, dt, continuous, back[l]);
   }
   long row = best_row(cost);
-  plan.reconfigurations = cost.r[row];
   plan.motion = cost.m[row];
   for (size_t l = reached.size(); l-- > 0;) {
     plan.pick[reached[l]] = row;
     if (l > 0) row = back[l][row];
   }
+  mark_reconfigurations(layers, reached, n, qdot_max, dt, continuous, q0, plan);
   return plan;
 }
 

@@ -1701,12 +1701,13 @@ def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     (q_max - q_min)) (0 for an unlimited joint), qbar their middle: a float for q (dof,), an
     array (N,) for a batch (N, dof).
     """
-def plan_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], int, float]:
+def plan_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.int64], float]:
     """
-    track_postures' dynamic programme: (pick, reconfigurations, motion), pick[k] the row of sets[k]
+    track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]
     chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than
     qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the
-    lowest row. q0 (n,) is the joints before the path. The GIL is released while it runs.
+    lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is
+    the joints before the path. The GIL is released while it runs.
     """
 def pose_error(target: numpy.typing.ArrayLike, current: numpy.typing.ArrayLike) -> numpy.ndarray:
     """

@@ -39,8 +39,9 @@ class TrackPosturesResult:
         q: (K, n) joints; a waypoint without solution repeats the previous joints (the next
             solution's for a leading one).
         success: (K,) booleans: the waypoint has an inverse solution (within the limits).
-        reconfigurations: Indices ``k`` where the step from waypoint ``k - 1`` (``q0`` for ``k = 0``)
-            to ``k`` exceeds ``qdot_max * dt`` on some joint.
+        reconfigurations: Indices ``k`` of the waypoints entered by a reconfiguration: the step from
+            the previous waypoint with a solution (``q0`` before the first) to ``k`` exceeds
+            ``qdot_max * dt`` times their intervals on some joint.
         motion: Sum over the steps of the norm of the joint change (rad).
         solutions: The solution set of each waypoint, (m_k, n) arrays.
         postures: The posture label of each chosen solution (closed forms), else None.
@@ -224,11 +225,8 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         q[:] = start if start is not None else 0.0
         return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
                                    [None] * K if labels is not None else None)
-    pick, _, _ = _core.plan_postures(sets, vmax, step_dt, cont, start)
+    pick, recon, motion = _core.plan_postures(sets, vmax, step_dt, cont, start)
     q = _joint_path(chain, sets, pick, start, cont)
-    recon = _reconfigurations(q, success, start, step_dt, vmax, cont, chain)
-    steps = q if start is None else np.vstack([start, q])
-    motion = float(np.sum(np.linalg.norm(_step(steps[:-1], steps[1:], cont), axis=1)))
     chosen = [labels[k][pick[k]] if pick[k] >= 0 else None for k in range(K)] if labels is not None else None
     return TrackPosturesResult(q, success, recon, motion, sets, chosen)
 
@@ -280,23 +278,3 @@ def _joint_path(chain: Chain, sets, pick, start, cont) -> np.ndarray:
     return q
 
 
-def _reconfigurations(q, success, start, step_dt, vmax, cont, chain: Chain) -> np.ndarray:
-    """The reconfigurations of the joint path q; a failed waypoint repeats the joints, so the step
-    over a gap is judged over its duration."""
-    recon = count_reconfigurations(q, step_dt, vmax, q0=start, chain=chain)
-    if np.all(success):
-        return recon
-    keep = []
-    for k in recon:
-        a = k - 1
-        while a >= 0 and not success[a]:
-            a -= 1
-        if not success[k]:
-            continue
-        base = (start if a < 0 else q[a]) if (a >= 0 or start is not None) else None
-        if base is None:
-            continue
-        d = _step(base, q[k], cont)
-        if np.any(np.abs(d) > vmax * step_dt * (k - a) * (1 + 1e-9)):
-            keep.append(k)
-    return np.array(keep, dtype=np.intp)

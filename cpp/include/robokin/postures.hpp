@@ -16,11 +16,12 @@ struct PostureLayer {
 // (numpy's remainder(b - a + pi, 2 pi) - pi: the sign of the divisor).
 double posture_step(double a, double b, bool continuous);
 
-// The plan: pick[k] is the row chosen at waypoint k (-1 where it has no solution); the optimum's
-// reconfigurations and motion as the programme summed them.
+// The plan: pick[k] is the row chosen at waypoint k (-1 where it has no solution); the waypoints
+// the chosen rows enter by a reconfiguration, in order (their number is the optimum's), and its
+// motion as the programme summed it.
 struct PosturePlan {
   std::vector<long> pick;
-  long reconfigurations = 0;
+  std::vector<long> reconfigured;
   double motion = 0;
 };
 
