@@ -27,7 +27,7 @@ CASES = [
     (lambda: rk.closed.ur(POSES[0], {"d1": 0.1}), ValueError, ROBOT + ", got {'d1': 0.1}"),
     (lambda: rk.closed.ur(POSES[0], dict.fromkeys(UR_TABLE, "x")), TypeError, "robot: the lengths must be real numbers"),
     (lambda: rrr3_design.area_vs_platform_radius(["a"], n=10), TypeError,
-     "platform_radii: expected an array of real numbers"),
+     "platform_radii: expected real numbers"),
     (lambda: animate(UR5, np.zeros((2, 6)), "a.gif", fps="fast"), TypeError,
      "fps: expected a number in [0.1, 100], got 'fast'"),
     (lambda: animate(UR5, np.zeros((2, 6)), "a.gif", fps=1000), ValueError,

@@ -97,6 +97,13 @@ def real_array(value, name: str) -> np.ndarray:
         raise TypeError(f"{name}: expected real numbers, got {value!r} ({exc})") from None
 
 
+def finite(a: np.ndarray, name: str) -> np.ndarray:
+    """``a`` (a float array, shape checked) when every entry is finite."""
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: contains NaN or inf")
+    return a
+
+
 def shaped(value, name: str, shape: tuple) -> np.ndarray:
     """``value`` as a float array of ``shape`` (its values not checked)."""
     a = real_array(value, name)
@@ -107,10 +114,7 @@ def shaped(value, name: str, shape: tuple) -> np.ndarray:
 
 def joints(chain_, value, name: str = "q") -> np.ndarray:
     """One configuration of ``chain_``: ``(dof,)`` finite real numbers."""
-    a = shaped(value, name, (chain_.dof,))
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: contains NaN or inf")
-    return a
+    return finite(shaped(value, name, (chain_.dof,)), name)
 
 
 def flag(value, name: str) -> bool:
@@ -125,9 +129,7 @@ def planar_points(value, name: str) -> np.ndarray:
     p = real_array(value, name)
     if p.ndim != 2 or p.shape[0] < 1 or p.shape[1] != 2:
         raise ValueError(f"{name}: expected a (K, 2) array of real numbers, K >= 1, got shape {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError(f"{name}: contains NaN or inf")
-    return p
+    return finite(p, name)
 
 
 def frame_like(value):

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._checks import number, real_array, whole
+from ._checks import finite, number, real_array, whole
 
 __all__ = ["MAX_POINTS", "line", "circle", "clover"]
 
@@ -19,9 +19,7 @@ def _point(value, name: str) -> np.ndarray:
     p = real_array(value, name)
     if p.ndim != 1 or p.shape[0] not in (2, 3):
         raise ValueError(f"{name}: expected a 2-D or 3-D point, got shape {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError(f"{name}: contains NaN or inf")
-    return p
+    return finite(p, name)
 
 
 def _count(n, name: str = "n") -> int:

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core
-from ._checks import frame_like, real_array
+from ._checks import finite, frame_like, real_array
 
 __all__ = [
     "from_rpy",
@@ -41,8 +41,7 @@ def _with_position(frames: np.ndarray, position) -> np.ndarray:
     p = real_array(position, "position")
     if p.ndim not in (1, 2) or p.shape[-1] != 3:
         raise ValueError(f"position: expected shape (3,) or (N, 3), got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError("position: contains NaN or inf")
+    finite(p, "position")
     if p.ndim == 2:
         if frames.ndim == 2:
             frames = np.repeat(frames[None], len(p), axis=0)
@@ -119,8 +118,7 @@ def from_axis_angle(axis, angle, position=None) -> np.ndarray:
     a = real_array(axis, "axis")
     if a.ndim not in (1, 2) or a.shape[-1] != 3:
         raise ValueError(f"axis: expected shape (3,) or (N, 3), got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError("axis: contains NaN or inf")
+    finite(a, "axis")
     big = np.max(np.abs(a), axis=-1, keepdims=True)
     if np.any(big == 0):
         raise ValueError("axis: must not be zero")
@@ -129,8 +127,7 @@ def from_axis_angle(axis, angle, position=None) -> np.ndarray:
     theta = real_array(angle, "angle")
     if theta.ndim > 1 or (theta.ndim == 1 and (a.ndim != 2 or len(theta) != len(a))):
         raise ValueError(f"angle: expected a number, or shape (N,) with axis (N, 3), got {theta.shape}")
-    if not np.all(np.isfinite(theta)):
-        raise ValueError("angle: contains NaN or inf")
+    finite(theta, "angle")
     return _with_position(_core.pose_from_rotation_vector((a / norm) * theta[..., None]), position)
 
 

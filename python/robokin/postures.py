@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import number, real_array, whole
+from ._checks import finite, number, real_array, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -238,8 +238,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     P = real_array(poses, "poses")
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
         raise ValueError(f"poses: expected a (K, 4, 4) array, K >= 1, got shape {P.shape}")
-    if not np.all(np.isfinite(P)):
-        raise ValueError("poses: contains NaN or inf")
+    finite(P, "poses")
     step_dt = _dt(dt)
     vmax = _speed(qdot_max, n)
     if not isinstance(method, str):

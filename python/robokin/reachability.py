@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 from ._checks import chain as check_chain
-from ._checks import joints, number, real_array, whole
+from ._checks import finite, joints, number, real_array, whole
 from ._checks import seed as check_seed
 from ._core import IKOptions
 from ._options import keywords, with_options
@@ -273,8 +273,7 @@ def _bounds(bounds) -> np.ndarray:
     b = real_array(bounds, "bounds")
     if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] not in (2, 3):
         raise ValueError(f"bounds: expected shape (2, 2) or (3, 2) ((lo, hi) per axis), got {b.shape}")
-    if not np.all(np.isfinite(b)):
-        raise ValueError("bounds: contains NaN or inf")
+    finite(b, "bounds")
     if np.any(b[:, 0] > b[:, 1]):
         raise ValueError("bounds: a lower bound is above its upper bound")
     if np.any(np.abs(b) > 1e6):

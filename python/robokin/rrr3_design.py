@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core
-from ._checks import number
+from ._checks import number, real_array
 from ._options import with_options
 
 __all__ = ["AreaCurve", "BestL2", "STUDY_BASE_RADIUS", "STUDY_LINK", "STUDY_PLATFORM_RADIUS", "area_vs_platform_radius",
@@ -47,13 +47,7 @@ class BestL2:
 
 
 def _values(values, name: str) -> np.ndarray:
-    try:
-        v = np.asarray(values)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}: expected an array of real numbers") from None
-    if v.dtype.kind not in "biuf":  # complex would lose its imaginary part in a float cast
-        raise TypeError(f"{name}: expected an array of real numbers")
-    v = v.astype(float)
+    v = real_array(values, name)  # complex would lose its imaginary part in a float cast
     if v.ndim != 1 or v.size == 0:
         raise ValueError(f"{name}: expected a non-empty 1-D array, got shape {v.shape}")
     if not np.all(np.isfinite(v)) or np.any(v <= 0):
