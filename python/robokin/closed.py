@@ -28,6 +28,7 @@ import numpy as np
 
 from . import _core
 from . import robots as _robots
+from ._checks import chain as check_chain
 from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
 from ._options import with_options
 from ._ur_dh import ur_dh_rows
@@ -372,8 +373,7 @@ def family(chain: Chain, locked=None, **options) -> Family:
     Returns:
         A :class:`Family`.
     """
-    if not isinstance(chain, Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     name, solvable, reason, meet, parallel, tol_distance = _core.closed_family(chain, locked, **options)
     return Family(name, solvable, reason, tuple(map(tuple, meet)), tuple(map(tuple, parallel)), tol_distance)
 
@@ -470,6 +470,5 @@ def solve(target, chain: Chain, limits="default", locked=None, **options) -> IKS
     Returns:
         IKSolutions (every solution, ``within_limits`` marking those within the limits).
     """
-    if not isinstance(chain, Chain):
-        raise TypeError(f"chain: expected a robokin.Chain, got {type(chain).__name__}")
+    check_chain(chain)
     return ClosedSolver(chain, limits, locked, **options).solve(target)
