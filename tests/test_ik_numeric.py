@@ -26,6 +26,18 @@ def verified(chain, q, T, tol_p=1e-9, tol_r=1e-9):
     return np.linalg.norm(F[:3, 3] - T[:3, 3]) < tol_p and rotation_angle(F[:3, :3].T @ T[:3, :3]) < tol_r
 
 
+def bent_ur5():
+    """The UR5 with axes 2 and 3 a microradian from parallel: the same reach, but no closed form, so
+    IK's restarts are the stored and random starts (the UR5's own start from its closed form's
+    solutions, which solve at once and hide the random ones and the tolerances' edges)."""
+    p = math.pi / 2
+    rows = [(0, p, 0.089159, 0, "R"), (-0.425, 1e-6, 0, 0, "R"), (-0.39225, 0, 0, 0, "R"),
+            (0, p, 0.10915, 0, "R"), (0, -p, 0.09465, 0, "R"), (0, 0, 0.0823, 0, "R")]
+    chain = rk.Chain.from_dh(rows, limits=rk.robots.ur5().limits)
+    assert not rk.closed.family(chain).solvable
+    return chain
+
+
 def random_targets(chain, count, seed):
     lo, hi = chain.limits
     q = np.random.default_rng(seed).uniform(lo, hi, (count, chain.dof))
@@ -63,7 +75,7 @@ def test_success_meets_each_tolerance_on_its_own(method, tol_p, tol_r):
     """Position and rotation tolerances far apart: success means both verified errors are within
     their own tolerance (a test with tol_p == tol_r cannot tell which error is compared with which
     tolerance, nor whether the rotation is compared at all)."""
-    chain = rk.robots.ur5()
+    chain = bent_ur5()
     _, targets = random_targets(chain, 40, seed=17)
     res = rk.ik_batch(chain, targets, np.zeros(6), method=method, tol_p=tol_p, tol_r=tol_r, restarts=2, seed=5,
                       max_iter=60)
@@ -75,7 +87,8 @@ def test_success_meets_each_tolerance_on_its_own(method, tol_p, tol_r):
             assert ep < tol_p * (1 + 1e-6) and er < tol_r * (1 + 1e-6), (k, ep, er)
         else:
             assert ep > tol_p * (1 - 1e-6) or er > tol_r * (1 - 1e-6), (k, ep, er)
-    # Not a test of nothing: some answers succeed and some fail on one tolerance only.
+    # Not a test of nothing: some answers succeed, and on the arm without a closed form some end
+    # within one tolerance only (in 15 of the 16 cases; the UR5's closed-form restarts left none).
     assert res.success.any()
 
 
@@ -283,12 +296,14 @@ def test_bound_solver_matches_ik():
 
 
 def test_batch_in_parallel_equals_one_by_one():
-    chain = rk.robots.ur5()
+    # Few iterations an attempt: many targets reach the random restarts (seed + k for target k).
+    chain = bent_ur5()
     _, T = random_targets(chain, 40, seed=31)
-    batch = rk.ik_batch(chain, T, np.zeros(6), method="lm", restarts=10, seed=100)
+    batch = rk.ik_batch(chain, T, np.zeros(6), method="lm", restarts=20, max_iter=6, seed=100)
     for k in range(40):
-        r = rk.ik(chain, T[k], np.zeros(6), method="lm", restarts=10, seed=100 + k)
+        r = rk.ik(chain, T[k], np.zeros(6), method="lm", restarts=20, max_iter=6, seed=100 + k)
         assert np.array_equal(batch.q[k], r.q) and batch.success[k] == r.success
+    assert 0 < batch.success.sum() < 40 and np.any(batch.attempts > 9)  # random restarts were taken
 
 
 @pytest.mark.parametrize("method", METHODS)

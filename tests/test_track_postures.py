@@ -43,6 +43,14 @@ def brute_force(sets, dt, vmax, cont, q0=None):
     return best
 
 
+def test_count_reconfigurations_takes_continuous_joints_the_short_way():
+    # Every UR5 joint spans 4 pi: continuous. Joint 1 turns 3.13 rad, then 0.02 rad across +-pi.
+    q = np.zeros((3, 6))
+    q[1, 0], q[2, 0] = P - 0.01, -P + 0.01
+    assert list(rk.count_reconfigurations(q, 0.1, 1.0, chain=rk.robots.ur5())) == [1]
+    assert list(rk.count_reconfigurations(q, 0.1, 1.0)) == [1, 2]  # without a chain no joint is continuous
+
+
 @pytest.mark.parametrize("robot", ["ur5", "puma560"])
 def test_dynamic_programme_matches_exhaustive_search(robot, rng):
     chain = getattr(rk.robots, robot)()
