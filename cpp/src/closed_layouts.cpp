@@ -139,8 +139,7 @@ SphericalArm spherical_arm_of(const JointAxes& g) {
   if (std::hypot(arm.a3, arm.d4) <= tol_d) not_spherical("the wrist centre is on axis 3 (the forearm has no length)");
   sa.base = dh_frame(x[0], z[0], o0);
   sa.tool = dh_frame(x[5], z[5], c).inverse() * g.tool;
-  sa.size = std::abs(arm.a1) + arm.a2 + std::abs(arm.a3) + std::abs(arm.d3) + std::abs(arm.d4) + sa.base.p.stableNorm() +
-            sa.tool.p.stableNorm();
+  sa.size = arm.size() + sa.base.p.stableNorm() + sa.tool.p.stableNorm();
   return sa;
 }
 

@@ -40,10 +40,6 @@ bool planar_tip_near(double a1, double a2, double t1, double t2, double x, doubl
          tol;
 }
 
-double arm_size(const ArmGeometry& g, double d6) {
-  return std::abs(g.a1) + std::abs(g.d1) + g.a2 + std::abs(g.a3) + std::abs(g.d3) + std::abs(g.d4) + std::abs(d6);
-}
-
 // Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
 const char* const kShoulder[] = {"shoulder right", "shoulder left", "shoulder singular"};
 const char* const kElbow[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
@@ -256,6 +252,10 @@ void check_length(double v, const char* name, bool positive) {
   if (positive && !(v > 0)) throw std::invalid_argument(std::string(name) + ": must be positive");
 }
 
+double ArmGeometry::size(double d6) const {
+  return std::abs(a1) + std::abs(d1) + a2 + std::abs(a3) + std::abs(d3) + std::abs(d4) + std::abs(d6);
+}
+
 void ArmGeometry::validate() const {
   check_length(a1, "a1", false);
   check_length(d1, "d1", false);
@@ -367,7 +367,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   ClosedFormSolutions out;
   out.dof = 3;
   const auto reaches = [&](const double* q) {
-    return (arm_fk(arm, q).p - p).norm() <= kTolP * arm_size(arm, 0);
+    return (arm_fk(arm, q).p - p).norm() <= kTolP * arm.size();
   };
   ArmSolution arms[4];
   const int n = arm_solve(arm, p, out.singular, arms);
@@ -460,7 +460,7 @@ ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const 
     std::copy(c.q[k], c.q[k] + 6, angles + 6 * k);
   }
   vmath::sincos(angles, sn, cs, 6 * c.n);
-  const double size = arm_size(arm, d6);
+  const double size = arm.size(d6);
   for (int k = 0; k < c.n; ++k) {
     const Rigid F = wrist_arm_fk(arm, d6, cs + 6 * k, sn + 6 * k);
     if (closed_reaches(F, T, size))

@@ -87,7 +87,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
     if q.ndim != 2 or q.shape[0] < 1 or not np.all(np.isfinite(q)):
         raise ValueError(f"q: expected a finite (K, n) array, K >= 1, got shape {q.shape}")
     n = q.shape[1]
-    lim = _speed(qdot_max, n) * _dt(dt)
+    lim = _speed(qdot_max, n) * number(dt, "dt", positive=True)
     cont = _continuous(chain) if chain is not None else np.zeros(n, bool)
     if chain is not None and chain.dof != n:
         raise ValueError(f"q: expected {chain.dof} columns for the chain, got {n}")
@@ -97,10 +97,6 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
     jumps = np.any(np.abs(_step(path[:-1], path[1:], cont)) > lim * (1 + 1e-9), axis=1)
     idx = np.nonzero(jumps)[0]
     return idx if q0 is not None else idx + 1
-
-
-def _dt(dt) -> float:
-    return number(dt, "dt", positive=True)
 
 
 def _speed(qdot_max, n) -> np.ndarray:
@@ -239,7 +235,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
         raise ValueError(f"poses: expected a (K, 4, 4) array, K >= 1, got shape {P.shape}")
     finite(P, "poses")
-    step_dt = _dt(dt)
+    step_dt = number(dt, "dt", positive=True)
     vmax = _speed(qdot_max, n)
     if not isinstance(method, str):
         raise TypeError(f"method: expected 'closed', 'numerical' or an IK method, got {method!r}")

@@ -91,6 +91,8 @@ struct ArmGeometry {
   // Throws std::invalid_argument("name: ...") unless every length is finite, a2 positive and the
   // forearm has a length (a3 or d4 non-zero).
   void validate() const;
+  // The arm's size, the scale of the FK check: the sum of its lengths and of d6's.
+  double size(double d6 = 0.0) const;
 };
 
 // The anthropomorphic arm: tip position p; 4 postures (shoulder right / left x elbow up / down).
@@ -113,7 +115,7 @@ struct SphericalArm {
   double theta[6] = {0, 0, 0, 0, 0, 0};
   double scale[6] = {1, 1, 1, 1, 1, 1};
   Rigid base, tool;
-  double size = 0;  // the FK check's scale: the lengths' and the base's and tool's offsets' sum
+  double size = 0;  // the FK check's scale: arm.size() and the base's and tool's offsets
 };
 
 // The chain's ortho-parallel geometry read from its joint axes at q = 0, whatever describes it:
@@ -155,7 +157,7 @@ struct URArm {
   double theta[6] = {0, 0, 0, 0, 0, 0};  // DH angle = scale * q + theta
   double scale[6] = {1, 1, 1, 1, 1, 1};  // +1 or -1
   Rigid base, tool;                      // fixed frames before joint 1 and after joint 6
-  double size = 0;                       // the FK check's scale: the lengths' and the base's and tool's offsets' sum
+  double size = 0;                       // the FK check's scale: the lengths' and the offsets' sum
 };
 
 // The chain's UR geometry read from its joint axes at q = 0, whatever describes it (DH rows, a
