@@ -206,18 +206,20 @@ Measure measure_of(py::handle obj) {
 }
 
 // Chain.manipulability, bound as a fast method (the table below).
-py::object chain_manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj) {
+py::object chain_manipulability(const Chain& c, ArrayLike q_obj, MeasureName measure_obj, TaskName task_obj,
+                                 OutArray out_obj) {
   const Measure measure = measure_of(measure_obj);
   const Task task = task_of(task_obj, c);
   const QView q(q_obj);
   const long count = check_q(c, q);
   if (count < 0) {
+    if (!out_obj.is_none()) fail("out: a single q gives a float; out is for a batch q (N, dof)");
     const double v = robokin::manipulability(c, q.data, task, measure);
     require_finite_result(&v, 1);
     return py::float_(v);
   }
   const py::ssize_t shape[1] = {count};
-  py::array out = new_array(1, shape);
+  py::array out = output_array(out_obj, 1, shape, q.data, q.size);
   double* dst = float64_data(out);
   released("Chain.manipulability",
            [&](Progress* progress) { manipulability_batch(c, q.data, count, task, measure, dst, progress); });
@@ -403,13 +405,14 @@ void def_chain_fast_calls(py::class_<Chain>& cls) {
       "None: the chain's natural_task.\n"
       "out: an array of the result's shape to write it into (returned), for repeated calls.\n");
   fast_method<&chain_manipulability>(
-      cls, "manipulability", {{"q", ""}, {"measure", "'yoshikawa'"}, {"task", "None"}}, 3,
+      cls, "manipulability", {{"q", ""}, {"measure", "'yoshikawa'"}, {"task", "None"}, {"out", "None"}}, 3,
       "float | numpy.typing.NDArray[numpy.float64]",
       "Manipulability at q by measure, from the singular values of the task's Jacobian rows:\n"
       "'yoshikawa' their product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min /\n"
       "sigma_max (the inverse condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min.\n"
       "A float for q (dof,), an array (N,) for a batch (N, dof) (GIL released, every core). task\n"
-      "None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).\n");
+      "None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).\n"
+      "out: for a batch, an (N,) array to write the values into (returned), for repeated calls.\n");
 }
 
 }  // namespace

@@ -60,12 +60,13 @@ Pose as_pose(py::handle obj, const char* name = "pose") {
 
 using Elbows = Eigen::Matrix<double, 3, 2>;
 
-py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj) {
+py::array ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj, OutArray out_obj) {
   const Mode mode = as_mode(mode_obj);
   const Array poses = rows_arg(poses_obj, "poses", {3}, "N");
   const long n = static_cast<long>(poses.shape(0));
-  py::array_t<double> out = new_array({n, 3});
-  double* dst = out.mutable_data();
+  const py::ssize_t shape[2] = {n, 3};
+  py::array out = output_array(out_obj, 2, shape, poses.data(), poses.size(), "poses");
+  double* dst = float64_data(out);
   const double* src = poses.data();
   released("RRR3.ik_batch", [&](Progress* progress) { r.ik_batch(src, n, mode, dst, progress); });
   return out;
@@ -201,8 +202,9 @@ void def_kinematics(py::class_<RRR3>& cls) {
       .def("ik_all", &ik_all, py::arg("pose"), "(8, 3) actuated angles for pose (x, y, phi): row k for mode k of RRR3.modes, NaN where\n"
            "unreachable.")
       .def("ik_batch", &ik_batch, py::arg("poses"), py::arg("mode") = FieldCodec<Mode>::to_python(kDefaultMode),
+           py::kw_only(), py::arg("out") = py::none(),
            "(N, 3) actuated angles for (N, 3) poses in working mode mode, NaN rows where a leg cannot\n"
-           "reach (GIL released).")
+           "reach (GIL released). out: an (N, 3) array to write them into (returned), for repeated calls.")
       .def("ik_newton", &ik_newton, py::arg("pose"), py::arg("guess"), ik_newton_doc.c_str())
       .def("fk", &fk, py::arg("alpha"), py::arg("guess"), fk_doc.c_str())
       .def("fk_all", &fk_all, py::arg("alpha"),
