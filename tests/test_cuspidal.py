@@ -1,4 +1,4 @@
-"""General 3R arms: rk.closed.general_3r (every position solution) and rk.cuspidal.
+"""rk.cuspidal: the aspects, cusps and posture changes of 3R arms.
 
 Truth: the forward model (KDL's, chain._fk_kdl), numerical IK from many random starts (every
 distinct solution it finds must be in the closed-form set), KDL's Jacobian for the singular curve,
@@ -28,92 +28,7 @@ import numpy as np
 import pytest
 
 import robokin as rk
-
-P = math.pi
-
-
-def standard(rows):
-    return rk.Chain.from_dh([tuple(r) + ("R",) for r in rows])
-
-
-def orthogonal(d2, d3, d4, r2, r3):
-    """Baili, Wenger and Chablat's orthogonal 3R (modified DH), tool d4 along x3."""
-    tool = np.eye(4)
-    tool[0, 3] = d4
-    rows = [(0.0, 0.0, 0.0, 0.0, "R"), (d2, -P / 2, r2, 0.0, "R"), (d3, P / 2, r3, 0.0, "R")]
-    return rk.Chain.from_dh(rows, modified=True, tool=tool)
-
-
-WENGER_CUSPIDAL = dict(d2=1.0, d3=2.0, d4=1.5, r2=1.0, r3=0.0)
-
-
-def random_arm(rng, condition=None):
-    a = rng.uniform(0.3, 1.5, 3)
-    alpha = rng.uniform(-P, P, 3)
-    d = rng.uniform(-1.0, 1.0, 3)
-    if condition == "first parallel":
-        alpha[0] = 0.0
-    elif condition == "first intersect":
-        a[0] = 0.0
-    elif condition == "last parallel":
-        alpha[1] = 0.0
-    elif condition == "last intersect":
-        a[1] = 0.0
-    return standard([(a[i], alpha[i], d[i], 0.0) for i in range(3)])
-
-
-def wrapped(a, b):
-    return np.max(np.abs(np.remainder(np.asarray(a) - np.asarray(b) + P, 2 * P) - P), axis=-1)
-
-
-@pytest.mark.parametrize("condition", [None, "first parallel", "first intersect", "last parallel", "last intersect"])
-def test_every_solution_reaches_and_numerical_ik_finds_no_other(condition, rng):
-    for _ in range(4):
-        chain = random_arm(rng, condition)
-        Q = rng.uniform(-P, P, (6, 3))
-        for q in Q:
-            p = chain.fk(q)[:3, 3]
-            s = rk.closed.general_3r(p, chain, limits=None)
-            assert 1 <= len(s) <= 4
-            for row in s.q:
-                assert np.linalg.norm(chain._fk_kdl(row)[:3, 3] - p) < 1e-9
-            assert np.min(wrapped(s.q, q)) < 1e-7
-            starts = rng.uniform(-P, P, (24, 3))
-            res = rk.ik_batch(chain, np.repeat(p[None], 24, axis=0), starts, task="position", max_iter=200)
-            for qn in res.q[res.success]:
-                if abs(np.linalg.det(chain.jacobian(qn, task="position"))) < 1e-6:
-                    continue  # a near-singular solution (two roots merging): closed-form rounding
-                assert np.min(wrapped(s.q, qn)) < 1e-5, (condition, q, qn, s)
-
-
-def test_solutions_are_polished_to_the_forward_models_rounding():
-    """general_3r's roots are polished by Newton's method on the forward model (its docstring): each
-    solution puts the tool within 1e-14 of the arm's size of the target by KDL's FK (unpolished
-    eigenvalue roots miss by up to ~1e-13 and a few are dropped by the 1e-9 check)."""
-    rng = np.random.default_rng(0)
-    worst = 0.0
-    for _ in range(400):
-        rows = [(rng.uniform(-2, 2), rng.uniform(-4, 4), rng.uniform(-2, 2), rng.uniform(-4, 4), "R") for _ in range(3)]
-        chain = rk.Chain.from_dh(rows)
-        size = 1 + sum(abs(r[0]) + abs(r[2]) for r in rows)
-        p = chain._fk_kdl(rng.uniform(-np.pi, np.pi, 3))[:3, 3]
-        s = rk.closed.general_3r(p, chain, limits=None)
-        assert len(s) >= 1
-        for q in s.q:
-            worst = max(worst, np.linalg.norm(chain._fk_kdl(q)[:3, 3] - p) / size)
-    assert worst < 1e-14
-
-
-def test_four_solutions_somewhere_and_labels_follow_det_j(rng):
-    chain = orthogonal(**WENGER_CUSPIDAL)
-    counts = []
-    for q in rng.uniform(-P, P, (60, 3)):
-        s = rk.closed.general_3r(chain.fk(q)[:3, 3], chain, limits=None)
-        counts.append(len(s))
-        for row, label in zip(s.q, s.postures):
-            d = np.linalg.det(chain.jacobian(row, task="position"))
-            assert label == ("det J > 0" if d > 0 else "det J < 0") or label == "singular"
-    assert max(counts) == 4 and min(counts) == 2
+from arms_3r import P, WENGER_CUSPIDAL, orthogonal, random_arm, wrapped
 
 
 @pytest.mark.parametrize("condition", ["first parallel", "first intersect", "last parallel", "last intersect"])
@@ -208,9 +123,28 @@ def test_bad_arguments():
         rk.cuspidal(rk.robots.ur5())
     with pytest.raises(TypeError, match="chain: expected a robokin.Chain, got str"):
         rk.cuspidal("arm")
-    with pytest.raises(ValueError, match="resolution"):
+    with pytest.raises(ValueError, match=r"^resolution: expected an int in \[16, 4096\] \(grid points per joint\), got 3$"):
         rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), resolution=3)
-    with pytest.raises(ValueError, match="target"):
-        rk.closed.general_3r([0, 0], orthogonal(**WENGER_CUSPIDAL))
-    with pytest.raises(ValueError, match="chain"):
-        rk.closed.general_3r([0, 0, 0], rk.robots.ur5())
+    with pytest.raises(TypeError, match="^resolution: expected int, got str$"):
+        rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), resolution="fine")
+    with pytest.raises(TypeError):
+        rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), 64)  # an option: keyword-only
+
+
+def test_a_state_whose_evidence_has_the_wrong_shape_is_refused():
+    """The posture change is None or an array (point (3,), path (m, 3)); unpickling checks which."""
+    c = rk.cuspidal(orthogonal(**WENGER_CUSPIDAL), resolution=64)
+    state = c.__getstate__()
+    point, path = len(state) - 2, len(state) - 1
+    for index, value, field in ((point, np.zeros(2), "point"), (path, np.zeros((4, 2)), "path"),
+                                (path, "along", "path")):
+        bad = list(state)
+        bad[index] = value
+        copied = type(c).__new__(type(c))
+        with pytest.raises(ValueError, match=f"^Cuspidality state: {field} is not None or an array of the result's shape$"):
+            copied.__setstate__(tuple(bad))
+    none = list(state)
+    none[point] = none[path] = None
+    copied = type(c).__new__(type(c))
+    copied.__setstate__(tuple(none))
+    assert copied.point is None and copied.path is None and copied.cuspidal

@@ -1,4 +1,4 @@
-"""_core.plan_postures: track_postures' dynamic programme over the layers of inverse solutions.
+"""_core.track_postures: track_postures' dynamic programme over the layers of inverse solutions.
 
 Truth: a small reference programme written here with numpy, on random layers. Its rules are the
 core's, stated once: a step from row a of waypoint k to row b of waypoint l (the next waypoint with
@@ -89,7 +89,7 @@ def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
     ties = jumps = 0
     for trial in range(300):
         sets, vmax, dt, cont, q0 = random_layers(rng, whole_numbers)
-        pick, r, m = _core.plan_postures(sets, vmax, dt, cont, q0)
+        pick, r, m = _core.track_postures(sets, vmax, dt, cont, q0)
         ref_pick, ref_r, ref_m = reference(sets, vmax, dt, cont, q0)
         np.testing.assert_array_equal(pick, ref_pick, err_msg=str(trial))
         assert (list(r), m) == (ref_r, ref_m), trial
@@ -102,37 +102,37 @@ def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
 def test_ties_go_to_the_lowest_row():
     # Two identical rows everywhere: every choice ties; the lowest rows are taken.
     same = np.array([[0.0, 1.0], [0.0, 1.0]])
-    pick, r, m = _core.plan_postures([same, same, same], [1.0, 1.0], 0.1, [False, False])
+    pick, r, m = _core.track_postures([same, same, same], [1.0, 1.0], 0.1, [False, False])
     assert list(pick) == [0, 0, 0] and (list(r), m) == ([], 0.0)
     # Equal motion both ways (1 to the left, 1 to the right): the lower row.
-    pick, _, m = _core.plan_postures([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
+    pick, _, m = _core.track_postures([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
     assert list(pick) == [0, 0] and m == 1.0
     # Fewer reconfigurations beat less motion.
     sets = [np.array([[0.0]]), np.array([[0.3], [0.2]]), np.array([[0.6], [10.0]])]
-    pick, r, _ = _core.plan_postures(sets, [0.35], 1.0, [False])
+    pick, r, _ = _core.track_postures(sets, [0.35], 1.0, [False])
     assert list(pick) == [0, 0, 0] and len(r) == 0
 
 
 def test_gaps_q0_and_continuous_joints():
     # An empty waypoint: the step over the gap has two intervals' allowance.
     sets = [np.array([[0.0]]), np.zeros((0, 1)), np.array([[1.5], [-0.1]])]
-    pick, r, _ = _core.plan_postures(sets, [1.0], 1.0, [False])
+    pick, r, _ = _core.track_postures(sets, [1.0], 1.0, [False])
     assert list(pick) == [0, -1, 1] and len(r) == 0
     # q0 is waypoint -1: the first step counts.
-    pick, r, _ = _core.plan_postures([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
+    pick, r, _ = _core.track_postures([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
     assert list(pick) == [1] and len(r) == 0
     # A jump over a gap is marked at the waypoint it enters.
-    pick, r, _ = _core.plan_postures([np.array([[0.0]]), np.zeros((0, 1)), np.array([[2.5]])], [1.0], 1.0, [False])
+    pick, r, _ = _core.track_postures([np.array([[0.0]]), np.zeros((0, 1)), np.array([[2.5]])], [1.0], 1.0, [False])
     assert list(pick) == [0, -1, 0] and list(r) == [2]
     # A continuous joint goes the short way round: 3 to -3 is a step of 2 pi - 6.
-    pick, r, m = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
+    pick, r, m = _core.track_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
     assert len(r) == 0 and m == pytest.approx(2 * math.pi - 6)
-    pick, r, _ = _core.plan_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
+    pick, r, _ = _core.track_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
     assert list(r) == [1]
     # No solution anywhere, and no waypoint at all.
-    pick, r, m = _core.plan_postures([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
+    pick, r, m = _core.track_postures([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
     assert list(pick) == [-1, -1, -1] and (len(r), m) == (0, 0.0)
-    assert len(_core.plan_postures([], [1.0], 0.1, [False])[0]) == 0
+    assert len(_core.track_postures([], [1.0], 0.1, [False])[0]) == 0
 
 
 @pytest.mark.parametrize("args, error, name", [
@@ -155,4 +155,4 @@ def test_bad_arguments_name_themselves(args, error, name):
     call = dict(sets=[np.zeros((1, 2))], qdot_max=[1.0, 1.0], dt=0.1, continuous=[False, False], q0=None)
     call.update(args)
     with pytest.raises(error, match=name):
-        _core.plan_postures(**call)
+        _core.track_postures(**call)

@@ -19,7 +19,8 @@ void bind_urdf(pybind11::module_& m);  // the URDF parser for robokin._urdf, the
 void bind_traj(pybind11::module_& m);
 void bind_resolved_rate(pybind11::module_& m);
 void bind_pose(pybind11::module_& m);
-void bind_ik_3r(pybind11::module_& m);  // general 3R arms, cuspidality
+void bind_general_3r(pybind11::module_& m);  // general 3R arms
+void bind_cuspidal(pybind11::module_& m);  // cuspidality of 3R arms
 void bind_postures(pybind11::module_& m);  // track_postures' dynamic programme
 
 // Text for people (repr, str, tables) is written in Python: robokin._printing.function(args...).

@@ -65,13 +65,13 @@ ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, doub
   return ik_anthropomorphic(arm_arg(d1, a2, a3, 0, 0), p, limits_arg(limits, 3));
 }
 
-ClosedFormSolutions spherical_wrist(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
+ClosedFormSolutions spherical_wrist_6r(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
                                     double d6, LimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
-  return ik_spherical_wrist(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
+  return ik_spherical_wrist_6r(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
 }
 
-py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
+py::tuple spherical_wrist_6r_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
                                double d6, ArrayLike q0_obj, LimitsLike limits) {
   const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
   const long count = static_cast<long>(targets.size());
@@ -84,7 +84,7 @@ py::tuple spherical_wrist_path(ArrayLike targets_obj, double a2, double a3, doub
   bool* okd = ok.mutable_data();
   bool* reachd = reachable.mutable_data();
   released("spherical wrist path", [&](Progress* progress) {
-    ik_spherical_wrist_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, progress);
+    ik_spherical_wrist_6r_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, progress);
   });
   return py::make_tuple(q, ok, reachable);
 }
@@ -323,9 +323,9 @@ void bind_closed(py::module_& m) {
         py::arg("limits"));
   m.def("ik_anthropomorphic", &anthropomorphic, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d1"),
         py::arg("limits"));
-  m.def("ik_spherical_wrist_path", &spherical_wrist_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
+  m.def("ik_spherical_wrist_6r_path", &spherical_wrist_6r_path, py::arg("targets"), py::arg("a2"), py::arg("a3"),
         py::arg("d3"), py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("q0"), py::arg("limits"));
-  m.def("ik_spherical_wrist", &spherical_wrist, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
+  m.def("ik_spherical_wrist_6r", &spherical_wrist_6r, py::arg("target"), py::arg("a2"), py::arg("a3"), py::arg("d3"),
         py::arg("d4"), py::arg("d1"), py::arg("d6"), py::arg("limits"));
   m.def("ik_ur", &ur, py::arg("target"), py::arg("chain"), py::arg("limits"));
   {

@@ -14,6 +14,7 @@ PYBIND11_MODULE(_core, m) {
   robokin::bind::bind_traj(m);
   robokin::bind::bind_resolved_rate(m);
   robokin::bind::bind_pose(m);
-  robokin::bind::bind_ik_3r(m);
+  robokin::bind::bind_general_3r(m);
+  robokin::bind::bind_cuspidal(m);
   robokin::bind::bind_postures(m);
 }

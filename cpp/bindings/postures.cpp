@@ -52,11 +52,11 @@ PlanArgs plan_args(py::handle sets, ArrayLike qdot_max, double dt, ArrayLike con
 
 void bind_postures(py::module_& m) {
   m.def(
-      "plan_postures",
+      "track_postures",
       [](py::object sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::object q0) {
         const PlanArgs a = plan_args(sets, qdot_max, dt, continuous, q0);
         const PosturePlan plan = released([&] {
-          return plan_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
+          return track_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
                                a.has_q0 ? a.q0.data() : nullptr);
         });
         const py::array_t<long> pick = array_of(plan.pick.data(), {static_cast<py::ssize_t>(plan.pick.size())});

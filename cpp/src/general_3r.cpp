@@ -1,6 +1,7 @@
-// General 3R positioning arms: inverse solutions from a trigonometric polynomial in q3, aspects and
-// cusp points of the singular curves.
-#include "robokin/ik_3r.hpp"
+// General 3R positioning arms: the arm read from a chain, and every inverse solution of a point from
+// a trigonometric polynomial in q3.
+#include "robokin/general_3r.hpp"
+#include "arm_3r.hpp"
 #include "robokin/angles.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -16,6 +17,8 @@
 namespace robokin {
 namespace {
 
+using namespace arm_3r_model;
+
 constexpr double kPi = M_PI;
 
 Rigid frame_of(const KDL::Frame& f) {
@@ -27,68 +30,7 @@ Rigid frame_of(const KDL::Frame& f) {
   return r;
 }
 
-Eigen::Matrix3d rz(double a) {
-  Eigen::Matrix3d m;
-  const double c = std::cos(a), s = std::sin(a);
-  m << c, -s, 0, s, c, 0, 0, 0, 1;
-  return m;
-}
-
-// e_z x v
-Eigen::Vector3d ez_cross(const Eigen::Vector3d& v) { return {-v.y(), v.x(), 0.0}; }
-
 [[noreturn]] void not_3r(const std::string& why) { throw std::invalid_argument("chain: not a 3R arm (" + why + ")"); }
-
-// Points and derivatives in the frame after joint 1's rotation, at DH-like angles t = s q.
-struct Local {
-  Eigen::Vector3d w, u, du2, du3;
-};
-
-Local local(const Arm3R& a, double t2, double t3) {
-  Local L;
-  const Eigen::Vector3d r3 = rz(t3) * a.tip;
-  L.w = a.F2.R * r3 + a.F2.p;
-  const Eigen::Matrix3d R2 = rz(t2);
-  const Eigen::Vector3d v = R2 * L.w;
-  L.u = a.F1.R * v + a.F1.p;
-  L.du2 = a.F1.R * ez_cross(v);
-  L.du3 = a.F1.R * (R2 * (a.F2.R * ez_cross(r3)));
-  return L;
-}
-
-Eigen::Vector3d position(const Arm3R& a, const double t[3]) {
-  return a.base.R * (rz(t[0]) * local(a, t[1], t[2]).u) + a.base.p;
-}
-
-Eigen::Matrix3d jacobian(const Arm3R& a, const double t[3]) {
-  const Local L = local(a, t[1], t[2]);
-  const Eigen::Matrix3d R = a.base.R * rz(t[0]);
-  Eigen::Matrix3d J;
-  J.col(0) = R * ez_cross(L.u);
-  J.col(1) = R * L.du2;
-  J.col(2) = R * L.du3;
-  return J;
-}
-
-// det J at (0, t2, t3), angles t = s q: rho det D up to its sign, smooth everywhere (det D
-// alone is not across axis 1).
-double det_t(const Arm3R& a, double t2, double t3) {
-  const double t[3] = {0.0, t2, t3};
-  return jacobian(a, t).determinant();
-}
-
-// The image of the singular curve's tangent, D tau, at (t2, t3).
-Eigen::Vector2d image_tangent(const Arm3R& a, double t2, double t3) {
-  const double h = 1e-6;
-  const double g2 = (det_t(a, t2 + h, t3) - det_t(a, t2 - h, t3)) / (2 * h);
-  const double g3 = (det_t(a, t2, t3 + h) - det_t(a, t2, t3 - h)) / (2 * h);
-  const Local L = local(a, t2, t3);
-  const double rho = std::hypot(L.u.x(), L.u.y());
-  Eigen::Matrix2d D;
-  D << (L.u.x() * L.du2.x() + L.u.y() * L.du2.y()) / rho, (L.u.x() * L.du3.x() + L.u.y() * L.du3.y()) / rho,
-      L.du2.z(), L.du3.z();
-  return D * Eigen::Vector2d(-g3, g2);
-}
 
 // Real roots in [-pi, pi) of a trigonometric polynomial of degree <= 2 known by samples f(k 2pi/8):
 // its coefficients by the discrete Fourier transform (exact for that degree), then the roots z on
@@ -310,7 +252,7 @@ void keep_reaching(const Arm3R& arm, const Chain& chain, const Eigen::Vector3d& 
 
 }  // namespace
 
-ClosedFormSolutions ik_3r(const Arm3R& arm, const Chain& chain, const Eigen::Vector3d& p, const JointLimits& limits) {
+ClosedFormSolutions ik_general_3r(const Arm3R& arm, const Chain& chain, const Eigen::Vector3d& p, const JointLimits& limits) {
   ClosedFormSolutions out;
   out.dof = 3;
   const Reduced3R red(arm, p);
@@ -326,215 +268,6 @@ ClosedFormSolutions ik_3r(const Arm3R& arm, const Chain& chain, const Eigen::Vec
   }
   keep_reaching(arm, chain, p, limits, cand, out);
   return out;
-}
-
-namespace {
-
-// The torus grid of cuspidal_3r: angle(i) = -pi + (i + 0.37) 2 pi / N, i taken modulo N.
-struct TorusGrid {
-  int N;
-  double step, off;
-  explicit TorusGrid(int n) : N(n), step(2 * kPi / n), off(0.37 * step) {}
-  double angle(int i) const { return -kPi + off + step * ((i % N + N) % N); }
-};
-
-// sign(det J) (joint variables) into res.sign, and det J at the angles t = s q (smooth across
-// axis 1) into the returned grid, row = q2.
-std::vector<double> sample_det(const Arm3R& arm, const TorusGrid& G, CuspidalResult& res) {
-  const int N = G.N;
-  res.sign.assign(static_cast<size_t>(N) * N, 0);
-  std::vector<double> dd(static_cast<size_t>(N) * N);
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) {
-      const double q2 = G.angle(i), q3 = G.angle(j);
-      const double d = det_3r(arm, q2, q3);
-      res.sign[i * N + j] = d > 0 ? 1 : (d < 0 ? -1 : 0);
-      dd[i * N + j] = det_t(arm, arm.scale[1] * q2, arm.scale[2] * q3);
-    }
-  return dd;
-}
-
-// Whether the grid step from cell (i, j) by (di, dj) keeps det J of sign `sign` all along. Two cells
-// of one sign may still be parted by two singular curves crossing between them (opposite quadrants
-// of a crossing have the same sign): the step must keep it. Nor may det J touch 0 between them
-// without changing sign (a double zero, as where the tool crosses axis 1 of an arm whose first two
-// axes intersect): a dip of |det J| along the step is followed down to its minimum.
-bool step_keeps_sign(const Arm3R& arm, const TorusGrid& G, int i, int j, int di, int dj, int sign) {
-  const double step = G.step;
-  const auto det_at_u = [&](double u) { return det_3r(arm, G.angle(i) + u * di * step, G.angle(j) + u * dj * step); };
-  bool kept = true;
-  double v[9];
-  for (int m = 0; m <= 8 && kept; ++m) {
-    v[m] = det_at_u(m / 8.0);
-    kept = (v[m] > 0 ? 1 : (v[m] < 0 ? -1 : 0)) == sign;
-  }
-  for (int m = 1; m < 8 && kept; ++m) {
-    if (!(std::abs(v[m]) <= std::abs(v[m - 1]) && std::abs(v[m]) <= std::abs(v[m + 1]) &&
-          std::abs(v[m]) < 0.25 * std::min(std::abs(v[0]), std::abs(v[8]))))
-      continue;
-    double lo = (m - 1) / 8.0, hi = (m + 1) / 8.0;
-    for (int it = 0; it < 60; ++it) {  // ternary search for the minimum of |det J|
-      const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
-      if (std::abs(det_at_u(a)) < std::abs(det_at_u(b))) hi = b;
-      else lo = a;
-    }
-    const double dmin = det_at_u(0.5 * (lo + hi));
-    kept = (dmin > 0 ? 1 : (dmin < 0 ? -1 : 0)) == sign &&
-           std::abs(dmin) > 1e-6 * std::min(std::abs(v[0]), std::abs(v[8]));
-  }
-  return kept;
-}
-
-// Aspects: the 4-connected components of one sign of det J on the torus (res.label, res.aspects),
-// a step joining two cells only where det J keeps its sign along it.
-void label_aspects(const Arm3R& arm, const TorusGrid& G, CuspidalResult& res) {
-  const int N = G.N;
-  std::vector<int> label(static_cast<size_t>(N) * N, -1);
-  for (int s = 0; s < N * N; ++s) {
-    if (label[s] >= 0 || res.sign[s] == 0) continue;
-    std::vector<int> stack = {s};
-    label[s] = res.aspects;
-    while (!stack.empty()) {
-      const int c = stack.back();
-      stack.pop_back();
-      const int i = c / N, j = c % N;
-      const int nb[4] = {((i + 1) % N) * N + j, ((i + N - 1) % N) * N + j, i * N + (j + 1) % N, i * N + (j + N - 1) % N};
-      const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-      for (int k = 0; k < 4; ++k) {
-        const int n = nb[k];
-        if (label[n] >= 0 || res.sign[n] != res.sign[s]) continue;
-        if (step_keeps_sign(arm, G, i, j, di[k], dj[k], res.sign[s])) label[n] = res.aspects, stack.push_back(n);
-      }
-    }
-    ++res.aspects;
-  }
-  res.label = label;
-}
-
-// det D (as det J at t = s q) and its gradient by central differences, at x = (t2, t3).
-double det_at(const Arm3R& arm, const Eigen::Vector2d& x) { return det_t(arm, x(0), x(1)); }
-
-Eigen::Vector2d det_gradient(const Arm3R& arm, const Eigen::Vector2d& x, double h) {
-  return Eigen::Vector2d((det_at(arm, x + Eigen::Vector2d(h, 0)) - det_at(arm, x - Eigen::Vector2d(h, 0))) / (2 * h),
-                         (det_at(arm, x + Eigen::Vector2d(0, h)) - det_at(arm, x - Eigen::Vector2d(0, h))) / (2 * h));
-}
-
-// Distance of the workspace point of (t2, t3) from axis 1.
-double rho_at(const Arm3R& arm, const Eigen::Vector2d& x) {
-  const Local L = local(arm, x(0), x(1));
-  return std::hypot(L.u.x(), L.u.y());
-}
-
-// The zero of det D on the edge a -> b (fa = det D at a, the other end of opposite sign), by
-// bisection; false where det D is NaN or the point is on (near) axis 1, where the map to
-// (rho, z) is not smooth and no cusp of the workspace is sought.
-bool edge_crossing(const Arm3R& arm, Eigen::Vector2d a, Eigen::Vector2d b, double fa, Eigen::Vector2d& x) {
-  for (int it = 0; it < 60; ++it) {
-    const Eigen::Vector2d m = 0.5 * (a + b);
-    const double fm = det_at(arm, m);
-    if (std::isnan(fm)) return false;
-    if ((fm > 0) == (fa > 0)) a = m, fa = fm;
-    else b = m;
-  }
-  x = 0.5 * (a + b);
-  // On (near) axis 1 the map to (rho, z) is not smooth: no cusp of the workspace is sought there.
-  return rho_at(arm, x) > 1e-3 * arm.size;
-}
-
-// The crossings of det D = 0 with the edges of grid cell (i, j) (corners unwrapped, t = s q, so
-// the cell is a square even across +-pi); none when a corner's det is not finite.
-std::vector<Eigen::Vector2d> cell_crossings(const Arm3R& arm, const TorusGrid& G, const std::vector<double>& dd, int i,
-                                            int j) {
-  const int N = G.N;
-  const int ci[4] = {i, i + 1, i + 1, i}, cj[4] = {j, j, j + 1, j + 1};
-  double v[4];
-  Eigen::Vector2d corner[4];
-  bool finite = true;
-  for (int k = 0; k < 4; ++k) {
-    v[k] = dd[(ci[k] % N) * N + cj[k] % N];
-    // Unwrapped corner coordinates (t = s q), so the cell is a square even across +-pi.
-    corner[k] = Eigen::Vector2d(arm.scale[1] * (-kPi + G.off + G.step * ci[k]), arm.scale[2] * (-kPi + G.off + G.step * cj[k]));
-    finite = finite && std::isfinite(v[k]);
-  }
-  std::vector<Eigen::Vector2d> xs;
-  if (!finite) return xs;
-  for (int k = 0; k < 4; ++k) {
-    const int l = (k + 1) % 4;
-    if ((v[k] > 0) != (v[l] > 0)) {
-      Eigen::Vector2d x;
-      if (edge_crossing(arm, corner[k], corner[l], v[k], x)) xs.push_back(x);
-    }
-  }
-  return xs;
-}
-
-// Between two crossings whose image tangents D tau point opposite ways (ta the first's): the point
-// where D tau reverses, by bisection along the curve (each midpoint pulled back onto det D = 0 by
-// Newton along its gradient); false when the pull-back fails.
-bool reversal_between(const Arm3R& arm, Eigen::Vector2d a, Eigen::Vector2d b, const Eigen::Vector2d& ta,
-                      Eigen::Vector2d& x) {
-  x = a;
-  for (int it = 0; it < 50; ++it) {
-    x = 0.5 * (a + b);
-    for (int k = 0; k < 4; ++k) {  // Newton onto det D = 0 along its gradient
-      const double h = 1e-7, fx = det_at(arm, x);
-      const Eigen::Vector2d gr = det_gradient(arm, x, h);
-      if (!(gr.squaredNorm() > 0) || !std::isfinite(fx)) return false;
-      x -= fx * gr / gr.squaredNorm();
-    }
-    const Eigen::Vector2d tx = image_tangent(arm, x(0), x(1));
-    if (tx.dot(ta) > 0) a = x;
-    else b = x;
-  }
-  return true;
-}
-
-// The cusp in grid cell (i, j), if any, into res.cusps (each once): a cell crossed once by
-// det D = 0 (two sign changes on its edges) whose image tangents at the two crossings point
-// opposite ways has a cusp in between.
-void cusp_in_cell(const Arm3R& arm, const TorusGrid& G, const std::vector<double>& dd, int i, int j,
-                  CuspidalResult& res) {
-  const std::vector<Eigen::Vector2d> xs = cell_crossings(arm, G, dd, i, j);
-  if (xs.size() != 2) return;
-  Eigen::Vector2d ta = image_tangent(arm, xs[0](0), xs[0](1)), tb = image_tangent(arm, xs[1](0), xs[1](1));
-  if (!(ta.dot(tb) < 0)) return;
-  Eigen::Vector2d x;
-  if (!reversal_between(arm, xs[0], xs[1], ta, x)) return;
-  // Where two singular curves cross (det J factors, as for the arms of Pieper's conditions),
-  // D tau also reverses, but there grad det D vanishes: not a cusp of a smooth curve.
-  const auto grad_norm = [&](const Eigen::Vector2d& y) {
-    const Eigen::Vector2d gr = det_gradient(arm, y, 1e-7);
-    return std::hypot(gr(0), gr(1));
-  };
-  if (!(grad_norm(x) > 1e-2 * std::max(grad_norm(xs[0]), grad_norm(xs[1])))) return;
-  // On axis 1 det D is not smooth (rho is not): no cusp point of the workspace there.
-  if (rho_at(arm, x) < 1e-4 * arm.size) return;
-  CuspPoint c;
-  c.q2 = wrap_angle(x(0) * arm.scale[1]);
-  c.q3 = wrap_angle(x(1) * arm.scale[2]);
-  const Local L = local(arm, x(0), x(1));
-  c.rho = std::hypot(L.u.x(), L.u.y());
-  c.z = L.u.z();
-  bool dup = false;
-  for (const CuspPoint& o : res.cusps)
-    dup = dup || (std::abs(wrap_angle(o.q2 - c.q2)) < 1e-5 && std::abs(wrap_angle(o.q3 - c.q3)) < 1e-5);
-  if (!dup) res.cusps.push_back(c);
-}
-
-}  // namespace
-
-CuspidalResult cuspidal_3r(const Arm3R& arm, int N) {
-  CuspidalResult res;
-  res.resolution = N;
-  const TorusGrid G(N);
-  res.grid.resize(N);
-  for (int i = 0; i < N; ++i) res.grid[i] = G.angle(i);
-  const std::vector<double> dd = sample_det(arm, G, res);
-  label_aspects(arm, G, res);
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) cusp_in_cell(arm, G, dd, i, j, res);
-  res.cuspidal = !res.cusps.empty();
-  return res;
 }
 
 }  // namespace robokin

@@ -443,7 +443,7 @@ void spherical_candidates(const ArmGeometry& arm, double d6, const Rigid& T, Wri
 
 }  // namespace
 
-ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
+ClosedFormSolutions ik_spherical_wrist_6r(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits) {
   arm.validate();
   check_length(d6, "d6", false);
@@ -500,7 +500,7 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
   return out;
 }
 
-void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+void ik_spherical_wrist_6r_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
                              bool* reachable, Progress* progress) {
   arm.validate();
@@ -514,7 +514,7 @@ void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* tar
   std::copy(q0, q0 + 6, prev);
   for (long k = 0; k < count; ++k) {
     if (k % 256 == 0) report(progress, k, count);
-    ClosedFormSolutions s = ik_spherical_wrist(arm, d6, targets[k], limits);
+    ClosedFormSolutions s = ik_spherical_wrist_6r(arm, d6, targets[k], limits);
     // Each solution's angles shifted by the whole turns that bring them nearest the previous
     // joints, as far as the limits and kMaxShifted allow (v itself is within both, so 0 turns
     // always is).

@@ -103,7 +103,7 @@ double posture_step(double a, double b, bool continuous) {
   return r - M_PI;
 }
 
-PosturePlan plan_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
+PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
                           const std::vector<bool>& continuous, const double* q0) {
   PosturePlan plan;
   const long K = static_cast<long>(layers.size());

@@ -16,7 +16,7 @@ from .ik import IKBatchResult, IKOptions, IKResult, IKSolver, ik, ik_batch
 from .reach import reach, track
 from .resolved_rate import RateOptions, ServoOptions, ServoResult, resolved_rate, servo
 from .postures import TrackPosturesResult, count_reconfigurations, track_postures
-from .cuspidality import Cuspidality, cuspidal
+from .cuspidality import CuspidalOptions, Cuspidality, cuspidal
 
 __version__ = "0.1.0"
 
@@ -57,6 +57,7 @@ __all__ = [
     "TrackPosturesResult",
     "count_reconfigurations",
     "track_postures",
+    "CuspidalOptions",
     "Cuspidality",
     "cuspidal",
 ]

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal_3r', 'det_3r', 'ik', 'ik_3r', 'ik_anthropomorphic', 'ik_batch', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist', 'ik_spherical_wrist_path', 'ik_ur', 'joint_limit_cost', 'plan_postures', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -110,13 +110,14 @@ class Chain:
         None: the chain's natural_task.
         out: an array of the result's shape to write it into (returned), for repeated calls.
         """
-    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
+    def manipulability(self, q: numpy.typing.ArrayLike, measure: typing.Literal['yoshikawa', 'condition', 'min_singular'] = 'yoshikawa', task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> float | numpy.typing.NDArray[numpy.float64]:
         """
         Manipulability at q by measure, from the singular values of the task's Jacobian rows:
         'yoshikawa' their product (sqrt(det(J J^T)) when rows <= dof), 'condition' sigma_min /
         sigma_max (the inverse condition number, 1 isotropic, 0 singular), 'min_singular' sigma_min.
         A float for q (dof,), an array (N,) for a batch (N, dof) (GIL released, every core). task
         None: the chain's natural_task (a planar arm's 'pose' rows would always give 0).
+        out: for a batch, an (N,) array to write the values into (returned), for repeated calls.
         """
     def point_in_frame(self, q: numpy.typing.ArrayLike, point: numpy.typing.ArrayLike, frame: typing.SupportsInt | typing.SupportsIndex, in_frame: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -538,10 +539,10 @@ class RRR3:
         (8, 3) actuated angles for pose (x, y, phi): row k for mode k of RRR3.modes, NaN where
         unreachable.
         """
-    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1)) -> numpy.typing.NDArray[numpy.float64]:
+    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
         """
         (N, 3) actuated angles for (N, 3) poses in working mode mode, NaN rows where a leg cannot
-        reach (GIL released).
+        reach (GIL released). out: an (N, 3) array to write them into (returned), for repeated calls.
         """
     def ik_newton(self, pose: numpy.typing.ArrayLike, guess: numpy.typing.ArrayLike, **kwargs) -> RRR3Newton:
         """
@@ -1645,6 +1646,94 @@ class ServoResult:
         """
         (K,) step times k dt.
         """
+class CuspidalOptions:
+    """
+    The options of robokin.cuspidal.
+    """
+    __hash__: typing.ClassVar[None] = None
+    fields: typing.ClassVar[tuple] = ('resolution')
+    kinds: typing.ClassVar[tuple] = ('int')
+    def __eq__(self, arg0: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> dict:
+        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        Every option as a keyword argument; the ones not given keep their defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: dict) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError naming an option out of range.
+        """
+    @property
+    def resolution(self) -> int:
+        """
+        Grid size N on the (q2, q3) torus, 16 to 4096: the singular curves are traced cell by cell and each cusp refined by bisection along the curve.
+        """
+    @resolution.setter
+    def resolution(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class Cuspidality:
+    """
+    Result of robokin.cuspidal: whether a 3R arm is cuspidal, with the evidence.
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def aspects(self) -> int:
+        """
+        Number of aspects (connected regions of one sign of det J on the (q2, q3) torus).
+        """
+    @property
+    def cuspidal(self) -> bool:
+        """
+        The arm can change posture without meeting a singularity.
+        """
+    @property
+    def cusps(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (k, 4) cusp points q2, q3, rho, z: the joints on the singular curve and the workspace point (distance from axis 1, height along it, in the base frame).
+        """
+    @property
+    def evidence(self) -> str:
+        """
+        One sentence saying why.
+        """
+    @property
+    def grid(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N,) the joint angles of the grid's rows (q2) and columns (q3).
+        """
+    @property
+    def label(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (N, N) the aspect of each grid cell (int32), -1 on a singularity.
+        """
+    @property
+    def path(self) -> typing.Any:
+        """
+        For a cuspidal arm, (m, 3) joint configurations from one of those solutions to the other, det J of one sign all along (checked at 8 points per step), else None.
+        """
+    @property
+    def point(self) -> typing.Any:
+        """
+        For a cuspidal arm, a tool point (3,) with two solutions in one aspect (else None).
+        """
+    @property
+    def sign(self) -> numpy.typing.NDArray[numpy.int8]:
+        """
+        (N, N) sign of det J on the grid (int8), row = q2.
+        """
 def chain_from_dh(table: numpy.typing.ArrayLike, joints: str, modified: bool, tool: numpy.typing.ArrayLike | None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> Chain:
     """
     A chain from DH rows (table (n, 4), joints 'R' / 'P' each). Use Chain.from_dh.
@@ -1667,31 +1756,29 @@ def closed_family(chain: Chain, locked: dict[int, float] | None = None, **kwargs
     Options (keyword-only, ClosedFamilyOptions):
         tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
     """
-def cuspidal_3r(chain: Chain, resolution: typing.SupportsInt | typing.SupportsIndex) -> dict:
-    ...
-def det_3r(chain: Chain, q2: typing.SupportsFloat | typing.SupportsIndex, q3: typing.SupportsFloat | typing.SupportsIndex) -> float:
+def cuspidal(chain: Chain, **kwargs) -> Cuspidality:
     ...
 def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, seed: int | None = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.
     """
-def ik_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
-    ...
 def ik_anthropomorphic(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
 def ik_batch(chain: Chain, targets: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, *, seed: int | None = None, path: bool = False, **kwargs) -> IKBatchResult:
     """
     Numerical IK of many targets; options as keywords (IKOptions). Use robokin.ik_batch.
     """
+def ik_general_3r(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
+    ...
 def ik_planar_2r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
 def ik_planar_3r(target: numpy.typing.ArrayLike, a1: typing.SupportsFloat | typing.SupportsIndex, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, method: str, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
 def ik_planar_rp(target: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_spherical_wrist(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
+def ik_spherical_wrist_6r(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_spherical_wrist_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> tuple:
+def ik_spherical_wrist_6r_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> tuple:
     ...
 def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
@@ -1700,14 +1787,6 @@ def joint_limit_cost(chain: Chain, q: numpy.typing.ArrayLike) -> typing.Any:
     Seed 000's joint-limit cost z = 1/2 |W (qbar - q)|^2 of the chain's limits, W = diag(1 /
     (q_max - q_min)) (0 for an unlimited joint), qbar their middle: a float for q (dof,), an
     array (N,) for a batch (N, dof).
-    """
-def plan_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.int64], float]:
-    """
-    track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]
-    chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than
-    qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the
-    lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is
-    the joints before the path. The GIL is released while it runs.
     """
 def pose_error(target: numpy.typing.ArrayLike, current: numpy.typing.ArrayLike) -> numpy.ndarray:
     """
@@ -1777,6 +1856,14 @@ def servo(chain: Chain, poses: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLik
 def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, task: typing.Literal['pose', 'position', 'xy', 'xyphi'] | None = None, *, nullspace: typing.Literal['joint_limits'] | numpy.typing.ArrayLike | None = None, **kwargs) -> TrackResult:
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
+    """
+def track_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.int64], float]:
+    """
+    track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]
+    chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than
+    qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the
+    lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is
+    the joints before the path. The GIL is released while it runs.
     """
 def traj_cartesian(T0: numpy.typing.ArrayLike, T1: numpy.typing.ArrayLike, law: str, t: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """

@@ -162,6 +162,22 @@ def summary(result, names: Sequence[str]) -> str:
     return "\n".join(lines)
 
 
+def cuspidality_evidence(c) -> str:
+    """The sentence of a :class:`robokin.Cuspidality` saying why: its cusps and posture change, or
+    why there is none."""
+    n = len(c.grid)
+    if not c.cuspidal:
+        return (f"no cusp point on the singular curves ({n} x {n} grid of the (q2, q3) torus): "
+                f"every posture change meets a singularity; {c.aspects} aspect(s)")
+    q2, q3, rho, z = c.cusps[0]
+    text = (f"{len(c.cusps)} cusp point(s) on the singular curves, e.g. q2 = {q2:.4f}, q3 = {q3:.4f} "
+            f"(rho = {rho:.4f}, z = {z:.4f}), where three inverse solutions coincide")
+    if c.path is not None:
+        text += (f"; a posture change without singularity: two solutions of {np.round(c.point, 4).tolist()} "
+                 f"in one aspect, joined by {len(c.path)} configurations")
+    return text
+
+
 # ---- repr: the short, exact form ----------------------------------------------------------------
 
 # A chain's repr lists this many joint names first and this many last (a long list is elided).

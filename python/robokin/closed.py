@@ -151,7 +151,7 @@ def spherical_wrist_6r(target, a2: float, a3: float, d3: float, d4: float, d1: f
         Up to 8 solutions: shoulder right / left x elbow up / down x wrist no flip / flip. At the
         wrist singularity (``q5 = 0``) only ``q4 + q6`` is determined: ``q4 = 0`` (and ``pi``).
     """
-    return _core.ik_spherical_wrist(target, a2, a3, d3, d4, d1, d6, _limits(limits))
+    return _core.ik_spherical_wrist_6r(target, a2, a3, d3, d4, d1, d6, _limits(limits))
 
 
 def puma560(target, limits="default") -> IKSolutions:
@@ -165,7 +165,7 @@ def puma560(target, limits="default") -> IKSolutions:
     """
     if isinstance(limits, str) and limits == "default":
         limits = _robots.PUMA560_LIMITS
-    return _core.ik_spherical_wrist(target, *_PUMA560_LENGTHS, _limits(limits))
+    return _core.ik_spherical_wrist_6r(target, *_PUMA560_LENGTHS, _limits(limits))
 
 
 def puma560_path(targets, q0, limits="default"):
@@ -192,7 +192,7 @@ def puma560_path(targets, q0, limits="default"):
     """
     if isinstance(limits, str) and limits == "default":
         limits = _robots.PUMA560_LIMITS
-    return _core.ik_spherical_wrist_path(targets, *_PUMA560_LENGTHS, q0, _limits(limits))
+    return _core.ik_spherical_wrist_6r_path(targets, *_PUMA560_LENGTHS, q0, _limits(limits))
 
 
 def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
@@ -314,7 +314,7 @@ def general_3r(target, chain: Chain, limits="default") -> IKSolutions:
         IKSolutions labelled by the sign of det J ("det J > 0", "det J < 0", "singular");
         ``singular`` is set when a solution is singular or a joint is free (one representative).
     """
-    return _core.ik_3r(target, chain, limits)
+    return _core.ik_general_3r(target, chain, limits)
 
 
 @dataclass(frozen=True)

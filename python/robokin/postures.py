@@ -6,7 +6,7 @@ At every waypoint, the set of inverse solutions (the closed forms of :mod:`robok
 arm has one, otherwise numerical IK from many starts with duplicates merged); between consecutive
 waypoints, a step is *continuous* when no joint moves more than ``qdot_max * dt`` and a
 *reconfiguration* otherwise (the arm must leave the path to change posture). A dynamic programme
-over the layered graph of solutions (in the core: ``_core.plan_postures``) picks one solution per
+over the layered graph of solutions (in the core: ``_core.track_postures``) picks one solution per
 waypoint minimising first the number of reconfigurations, then the joint motion (the sum over steps
 of the Euclidean norm of the joint change); among equal plans, the lowest-numbered solutions. Greedy tracking (the solution nearest the previous one, :func:`robokin.closed.puma560_path`)
 is one path of that graph: the plan never has more reconfigurations.
@@ -221,7 +221,7 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         q[:] = start if start is not None else 0.0
         return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
                                    [None] * K if labels is not None else None)
-    pick, recon, motion = _core.plan_postures(sets, vmax, step_dt, cont, start)
+    pick, recon, motion = _core.track_postures(sets, vmax, step_dt, cont, start)
     q = _joint_path(chain, sets, pick, start, cont)
     chosen = [labels[k][pick[k]] if pick[k] >= 0 else None for k in range(K)] if labels is not None else None
     return TrackPosturesResult(q, success, recon, motion, sets, chosen)

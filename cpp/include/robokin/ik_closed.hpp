@@ -103,7 +103,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 //   (0, pi/2, d1), (a2, 0, 0), (a3, -pi/2, d3), (0, pi/2, d4), (0, -pi/2, 0), (0, 0, d6)
 // For the target tool frame T: up to 8 solutions, shoulder right / left x elbow up / down x wrist
 // flip / no flip. When s5 = 0 (wrist singular) q4 + q6 is fixed: q4 is set to 0 (or pi).
-ClosedFormSolutions ik_spherical_wrist(const ArmGeometry& arm, double d6, const Rigid& T,
+ClosedFormSolutions ik_spherical_wrist_6r(const ArmGeometry& arm, double d6, const Rigid& T,
                                        const JointLimits& limits);
 
 // The ortho-parallel spherical-wrist layout read from a chain's geometry, as URArm is for the UR
@@ -124,7 +124,7 @@ struct SphericalArm {
 // std::invalid_argument("robot: not an arm of the spherical-wrist layout (...)") naming what differs.
 SphericalArm spherical_arm(const Chain& chain);
 
-// Every solution of the tool frame T (up to 8) in the chain's joints, as ik_spherical_wrist's
+// Every solution of the tool frame T (up to 8) in the chain's joints, as ik_spherical_wrist_6r's
 // (the same labels, which are closed_solve.hpp's geometric ones), each checked by chain.fk and
 // marked within the limits or not; slot[k] (when given, size 8) is row k's slot as kURPostures'.
 ClosedFormSolutions ik_spherical(const SphericalArm& arm, const Chain& chain, const Rigid& T,
@@ -139,7 +139,7 @@ void ik_spherical_batch(const SphericalArm& arm, const Chain& chain, const Rigid
 // within the limits and |q| <= 2^20 rad (where a double still holds an angle to 1.2e-10 rad): no
 // branch jumps. ok[k] false (row k = previous joints) where the frame has no solution within the
 // limits; reachable[k] true where it has one, within the limits or not (ok implies reachable).
-void ik_spherical_wrist_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
+void ik_spherical_wrist_6r_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
                              const double* q0, const JointLimits& limits, double* q_out, bool* ok,
                              bool* reachable, Progress* progress = nullptr);
 

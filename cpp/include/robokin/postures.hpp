@@ -33,7 +33,7 @@ struct PosturePlan {
 // to the first waypoint with solutions counts too. Ties: among equal (reconfigurations, motion)
 // the lowest row, both for each row's predecessor and for the last waypoint's row. Allocates the
 // back pointers only (one per solution).
-PosturePlan plan_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
+PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
                           const std::vector<bool>& continuous, const double* q0);
 
 }  // namespace robokin
