@@ -39,6 +39,19 @@ CASES = [
     (lambda: rk.closed.ur(POSES[0], UR5, limits=5), TypeError, "limits: expected None or a pair (lower, upper)"),
     (lambda: rk.closed.ur(POSES[0], UR5, limits=(1, 2, 3)), ValueError, "limits: expected None or a pair (lower, upper)"),
     (lambda: rk.closed.planar_2r((1.0, 0.5), limits=5), TypeError, "limits: expected None or a pair (lower, upper)"),
+    # batches of rows (_checks.rows): one sentence for the shape, one for NaN or inf
+    (lambda: rk.track_postures(UR5, POSES[0], dt=0.1), ValueError,
+     "poses: expected a (K, 4, 4) array, K >= 1, got shape (4, 4)"),
+    (lambda: rk.count_reconfigurations(np.zeros(6), dt=0.1, qdot_max=1.0), ValueError,
+     "q: expected a (K, n) array, K >= 1, got shape (6,)"),
+    (lambda: rk.count_reconfigurations(np.full((2, 6), np.nan), dt=0.1, qdot_max=1.0), ValueError,
+     "q: contains NaN or inf"),
+    (lambda: rk.count_reconfigurations(np.zeros((2, 6)), dt=0.1, qdot_max=1.0, q0=np.zeros(5)), ValueError,
+     "q0: expected shape (6,), got (5,)"),
+    (lambda: animate(UR5, np.zeros((2, 5)), "a.gif"), ValueError, "qs: expected a (K, 6) array, 1 <= K <= "),
+    (lambda: rrr3_design.area_vs_platform_radius([], n=10), ValueError,
+     "platform_radii: expected a (K,) array, K >= 1, got shape (0,)"),
+    (lambda: rk.plots.rpr_line_figure(np.zeros((0, 2)), {}), ValueError, "points: expected a (K, 2) array, K >= 1, got shape (0, 2)"),
 ]
 
 

@@ -9,6 +9,8 @@ import collections.abc
 import math
 import numbers
 
+from typing import Optional
+
 import numpy as np
 
 from ._core import Chain
@@ -124,12 +126,21 @@ def flag(value, name: str) -> bool:
     return bool(value)
 
 
+def rows(value, name: str, row: tuple = (), most: Optional[int] = None) -> np.ndarray:
+    """``value`` as a finite float array of K >= 1 rows (at most ``most``) of shape ``row``; a None
+    in ``row`` takes any size (shown as n): ``rows(poses, "poses", (4, 4))`` for a (K, 4, 4) batch."""
+    a = real_array(value, name)
+    fits = a.ndim == 1 + len(row) and all(r is None or r == d for r, d in zip(row, a.shape[1:]))
+    if not fits or len(a) < 1 or (most is not None and len(a) > most):
+        shape = "(K" + "".join(f", {'n' if r is None else r}" for r in row) + ("," if not row else "") + ")"
+        count = "K >= 1" if most is None else f"1 <= K <= {most}"
+        raise ValueError(f"{name}: expected a {shape} array, {count}, got shape {a.shape}")
+    return finite(a, name)
+
+
 def planar_points(value, name: str) -> np.ndarray:
     """``value`` as a finite (K, 2) float array, K >= 1."""
-    p = real_array(value, name)
-    if p.ndim != 2 or p.shape[0] < 1 or p.shape[1] != 2:
-        raise ValueError(f"{name}: expected a (K, 2) array of real numbers, K >= 1, got shape {p.shape}")
-    return finite(p, name)
+    return rows(value, name, (2,))
 
 
 def frame_like(value):

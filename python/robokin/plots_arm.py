@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from ._checks import chain as check_chain
-from ._checks import finite, flag, joints, real_array
+from ._checks import flag, joints, rows
 from ._core import Chain
 from ._figures import new_figure
 from .plots import joint_axes
@@ -160,10 +160,7 @@ def arm(chain: Chain, q, ax=None, *, frames=True, axes=True, ellipsoid=False):
 def _animate_arguments(chain, qs, path, fps, size):
     """The checked arguments of :func:`animate`: qs, the file's kind, fps, (width, height)."""
     check_chain(chain)
-    qs = real_array(qs, "qs")
-    if qs.ndim != 2 or qs.shape[1] != chain.dof or not 1 <= len(qs) <= MAX_FRAMES:
-        raise ValueError(f"qs: expected shape (K, {chain.dof}) with 1 <= K <= {MAX_FRAMES}, got {qs.shape}")
-    finite(qs, "qs")
+    qs = rows(qs, "qs", (chain.dof,), most=MAX_FRAMES)
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path: expected a file name, got {type(path).__name__}")
     kind = os.path.splitext(os.fspath(path))[1].lower()

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import finite, number, real_array, whole
+from ._checks import finite, number, real_array, rows, shaped, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -83,9 +83,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
         q0: Optional (n,) joints before the path.
         chain: Optional chain (for its continuous joints).
     """
-    q = real_array(q, "q")
-    if q.ndim != 2 or q.shape[0] < 1 or not np.all(np.isfinite(q)):
-        raise ValueError(f"q: expected a finite (K, n) array, K >= 1, got shape {q.shape}")
+    q = rows(q, "q", (None,))
     n = q.shape[1]
     lim = _speed(qdot_max, n) * number(dt, "dt", positive=True)
     cont = _continuous(chain) if chain is not None else np.zeros(n, bool)
@@ -93,7 +91,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
         raise ValueError(f"q: expected {chain.dof} columns for the chain, got {n}")
     path = q
     if q0 is not None:
-        path = np.vstack([_vector(q0, n, "q0"), q])
+        path = np.vstack([finite(shaped(q0, "q0", (n,)), "q0"), q])
     jumps = np.any(np.abs(_step(path[:-1], path[1:], cont)) > lim * (1 + 1e-9), axis=1)
     idx = np.nonzero(jumps)[0]
     return idx if q0 is not None else idx + 1
@@ -106,13 +104,6 @@ def _speed(qdot_max, n) -> np.ndarray:
     if v.shape != (n,) or not np.all(v > 0) or not np.all(np.isfinite(v)):
         raise ValueError(f"qdot_max: expected a positive finite scalar or ({n},) array, got {qdot_max!r}")
     return v
-
-
-def _vector(v, n, name) -> np.ndarray:
-    a = real_array(v, name)
-    if a.shape != (n,) or not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: expected a finite ({n},) array, got shape {a.shape}")
-    return a
 
 
 def _closed_sets(chain: Chain, poses):
@@ -231,10 +222,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     """track_postures' arguments checked: the (K, 4, 4) poses, dt, the (n,) speed limits, the
     numerical IK's options (None for the closed form) and q0 (or None)."""
     n = chain.dof
-    P = real_array(poses, "poses")
-    if P.ndim != 3 or P.shape[1:] != (4, 4) or P.shape[0] < 1:
-        raise ValueError(f"poses: expected a (K, 4, 4) array, K >= 1, got shape {P.shape}")
-    finite(P, "poses")
+    P = rows(poses, "poses", (4, 4))
     step_dt = number(dt, "dt", positive=True)
     vmax = _speed(qdot_max, n)
     if not isinstance(method, str):
@@ -244,7 +232,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     options = None if method == "closed" else _ik_options(method, ik_options)
     whole(starts, "starts", 1, 10_000, "IK starts per waypoint")
     check_seed(seed)
-    start = None if q0 is None else _vector(q0, n, "q0")
+    start = None if q0 is None else finite(shaped(q0, "q0", (n,)), "q0")
     return P, step_dt, vmax, options, start
 
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core
-from ._checks import number, real_array
+from ._checks import number, rows
 from ._options import with_options
 
 __all__ = ["AreaCurve", "BestL2", "STUDY_BASE_RADIUS", "STUDY_LINK", "STUDY_PLATFORM_RADIUS", "area_vs_platform_radius",
@@ -47,11 +47,9 @@ class BestL2:
 
 
 def _values(values, name: str) -> np.ndarray:
-    v = real_array(values, name)  # complex would lose its imaginary part in a float cast
-    if v.ndim != 1 or v.size == 0:
-        raise ValueError(f"{name}: expected a non-empty 1-D array, got shape {v.shape}")
-    if not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise ValueError(f"{name}: lengths must be positive and finite")
+    v = rows(values, name)
+    if np.any(v <= 0):
+        raise ValueError(f"{name}: lengths must be positive")
     return v
 
 
