@@ -18,39 +18,26 @@ namespace {
 
 constexpr long kBlock = 256;
 
-// One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (a loop the
-// vectoriser takes over contiguous arrays; built for AVX2 too, 4 doubles per vector instead of
-// SSE2's 2, picked by detected_isa() (kernel/isa.hpp), no FMA in either build, so both give
-// RRR3::ik's bits), SLEEF's atan2, the unreachable rows NaN.
-ROBOKIN_KERNEL void leg_args_kernel(
-    long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
-    const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1, double l2,
-    double* __restrict Y, double* __restrict X, double* __restrict ok) {
-  for (long k = 0; k < nb; ++k) {
-    const bool reach = leg_alpha_args(x[k], y[k], c[k], s[k], ox, oy, bx, by, m, l1, l2, Y[k], X[k]);
-    ok[k] = reach ? ok[k] : 0.0;
+// The legs' atan2 arguments for one block of poses (a loop the vectoriser takes over contiguous
+// arrays; run by kernel::run_for_isa, no FMA in any build, so every build gives RRR3::ik's bits),
+// the unreachable rows' ok set to 0.
+struct LegArgs {
+  static ROBOKIN_KERNEL void run(long nb, const double* __restrict x, const double* __restrict y,
+                                 const double* __restrict c, const double* __restrict s, double ox, double oy,
+                                 double bx, double by, double m, double l1, double l2, double* __restrict Y,
+                                 double* __restrict X, double* __restrict ok) {
+    // Each k reads its inputs and writes its outputs only: no dependence between iterations (the
+    // pointers' __restrict is not kept through run_for_isa's builds, which take them by value).
+#pragma GCC ivdep
+    for (long k = 0; k < nb; ++k) {
+      const bool reach = leg_alpha_args(x[k], y[k], c[k], s[k], ox, oy, bx, by, m, l1, l2, Y[k], X[k]);
+      ok[k] = reach ? ok[k] : 0.0;
+    }
   }
-}
+};
 
-#ifdef ROBOKIN_DISPATCH
-ROBOKIN_TARGET_AVX2 void leg_args_avx2(long nb, const double* __restrict x, const double* __restrict y,
-                                       const double* __restrict c, const double* __restrict s, double ox, double oy,
-                                       double bx, double by, double m, double l1, double l2, double* __restrict Y,
-                                       double* __restrict X, double* __restrict ok) {
-  leg_args_kernel(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
-}
-#endif
-
-void leg_args_block(long nb, const double* __restrict x, const double* __restrict y, const double* __restrict c,
-                    const double* __restrict s, double ox, double oy, double bx, double by, double m, double l1,
-                    double l2, double* __restrict Y, double* __restrict X, double* __restrict ok) {
-#ifdef ROBOKIN_DISPATCH
-  if (kernel::detected_isa() != kernel::Isa::Baseline)
-    return leg_args_avx2(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
-#endif
-  leg_args_kernel(nb, x, y, c, s, ox, oy, bx, by, m, l1, l2, Y, X, ok);
-}
-
+// One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (LegArgs),
+// SLEEF's atan2, the unreachable rows NaN.
 void ik_block(const double* p, long nb, const double* o, const double* b, const double* m, double l1, double l2,
               double* dst) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -59,7 +46,8 @@ void ik_block(const double* p, long nb, const double* o, const double* b, const 
   for (long k = 0; k < nb; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], phi[k] = p[3 * k + 2], ok[k] = 1.0;
   vmath::sincos(phi, s, c, nb);
   for (int i = 0; i < 3; ++i)
-    leg_args_block(nb, x, y, c, s, o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2, Y[i], X[i], ok);
+    kernel::run_for_isa<LegArgs>(nb, x, y, c, s, o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2, Y[i],
+                                 X[i], ok);
   for (int i = 0; i < 3; ++i) vmath::atan2(Y[i], X[i], a[i], nb);
   for (long k = 0; k < nb; ++k) {
     dst[3 * k] = ok[k] != 0.0 ? a[0][k] : nan;

@@ -217,58 +217,36 @@ void search(const TrigPoly& p, double curvature, double jerk, double lo, double 
   }
 }
 // F on the scan, f[kScan] = f[0] (the wrap): the same sums as term by term at each phi, term k
-// over every phi at once (a loop the vectoriser takes; built for AVX2 too, kernel/isa.hpp, no FMA:
-// the same bits).
-ROBOKIN_KERNEL void scan_kernel(const TrigPoly& p, const Tables& t, double* __restrict f) {
-  for (int j = 0; j < kScan; ++j) f[j] = p.a[0];
-  for (int k = 1; k <= kDegree; ++k) {
-    const double ak = p.a[k], bk = p.b[k];
-    const double* __restrict c = t.scan_cos[k];
-    const double* __restrict sn = t.scan_sin[k];
-    for (int j = 0; j < kScan; ++j) f[j] += ak * c[j] + bk * sn[j];
+// over every phi at once (a loop the vectoriser takes; run by kernel::run_for_isa: the same bits in
+// every build).
+struct Scan {
+  static ROBOKIN_KERNEL void run(const TrigPoly* p, const Tables* t, double* __restrict f) {
+    for (int j = 0; j < kScan; ++j) f[j] = p->a[0];
+    for (int k = 1; k <= kDegree; ++k) {
+      const double ak = p->a[k], bk = p->b[k];
+      const double* __restrict c = t->scan_cos[k];
+      const double* __restrict sn = t->scan_sin[k];
+      for (int j = 0; j < kScan; ++j) f[j] += ak * c[j] + bk * sn[j];
+    }
+    f[kScan] = f[0];
   }
-  f[kScan] = f[0];
-}
-
-#ifdef ROBOKIN_DISPATCH
-ROBOKIN_TARGET_AVX2 void scan_avx2(const TrigPoly& p, const Tables& t, double* __restrict f) { scan_kernel(p, t, f); }
-#endif
-
-void scan(const TrigPoly& p, const Tables& t, double* __restrict f) {
-#ifdef ROBOKIN_DISPATCH
-  if (kernel::detected_isa() != kernel::Isa::Baseline) return scan_avx2(p, t, f);
-#endif
-  scan_kernel(p, t, f);
-}
+};
 
 // quiet[j]: interval j has no zero at its ends, no sign change and min(|F(lo)|, |F(hi)|) >
 // max|F''| h^2 / 8, the test search() starts with (the same expression: the same decision), for
-// every interval in one branch-free loop (built for AVX2 too, as scan).
-ROBOKIN_KERNEL void quiet_intervals_kernel(const double* __restrict f, const double* __restrict h, double curvature,
-                                           unsigned char* __restrict quiet) {
-  for (int j = 0; j < kScan; ++j) {
-    const double lo = f[j], hi = f[j + 1];
-    const bool same = (lo < 0) == (hi < 0);
-    const bool nonzero = (lo != 0) & (hi != 0);
-    const bool certified = std::min(std::abs(lo), std::abs(hi)) > curvature * h[j] * h[j] / 8;
-    quiet[j] = same & nonzero & certified;
+// every interval in one branch-free loop (run as Scan).
+struct QuietIntervals {
+  static ROBOKIN_KERNEL void run(const double* __restrict f, const double* __restrict h, double curvature,
+                                 unsigned char* __restrict quiet) {
+    for (int j = 0; j < kScan; ++j) {
+      const double lo = f[j], hi = f[j + 1];
+      const bool same = (lo < 0) == (hi < 0);
+      const bool nonzero = (lo != 0) & (hi != 0);
+      const bool certified = std::min(std::abs(lo), std::abs(hi)) > curvature * h[j] * h[j] / 8;
+      quiet[j] = same & nonzero & certified;
+    }
   }
-}
-
-#ifdef ROBOKIN_DISPATCH
-ROBOKIN_TARGET_AVX2 void quiet_intervals_avx2(const double* __restrict f, const double* __restrict h, double curvature,
-                                              unsigned char* __restrict quiet) {
-  quiet_intervals_kernel(f, h, curvature, quiet);
-}
-#endif
-
-void quiet_intervals(const double* __restrict f, const double* __restrict h, double curvature,
-                     unsigned char* __restrict quiet) {
-#ifdef ROBOKIN_DISPATCH
-  if (kernel::detected_isa() != kernel::Isa::Baseline) return quiet_intervals_avx2(f, h, curvature, quiet);
-#endif
-  quiet_intervals_kernel(f, h, curvature, quiet);
-}
+};
 
 // F's exact coefficients from kFit samples, divided by the largest; false when F vanishes or
 // overflows (no assembly mode is found then).
@@ -291,7 +269,7 @@ bool fit_trig_poly(const Elimination& elim, const Tables& t, TrigPoly& p) {
 // Every root phi of F in [-pi, pi), two roots closer than a scan step included.
 std::vector<double> roots_of(const TrigPoly& p, const Tables& t) {
   double f[kScan + 1];
-  scan(p, t, f);
+  kernel::run_for_isa<Scan>(&p, &t, f);
 
   // Every interval of the scan either has a sign change (one root, refined), or is certified free
   // of roots by |F| >= min(|F(lo)|, |F(hi)|) - max|F''| h^2 / 8 (the error bound of linear
@@ -305,7 +283,7 @@ std::vector<double> roots_of(const TrigPoly& p, const Tables& t) {
     jerk += k * k * k * std::hypot(p.a[k], p.b[k]);
   }
   unsigned char quiet[kScan];
-  quiet_intervals(f, t.scan_h, curvature, quiet);
+  kernel::run_for_isa<QuietIntervals>(f, t.scan_h, curvature, quiet);
   std::vector<double> roots;
   roots.reserve(2 * kDegree);  // F has at most 2 * kDegree roots
   for (int j = 0; j < kScan; ++j) {

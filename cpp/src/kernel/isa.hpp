@@ -3,7 +3,7 @@
 // - isa.hpp: which vector ISA this CPU has, detected once per process (detected_isa()), and the
 //   one way a hot loop gets builds for several ISAs: an always-inlined body (ROBOKIN_KERNEL)
 //   wrapped in functions marked ROBOKIN_TARGET_AVX2 / ROBOKIN_TARGET_AVX512, one picked per call
-//   by detected_isa(). Every build runs the same operations in the same order without fused
+//   by detected_isa(). Model code outside this folder reaches it through run_for_isa() only. Every build runs the same operations in the same order without fused
 //   multiply-adds (ROBOKIN_NO_CONTRACT where the ISA has them), so all give the same bits, which
 //   the tests compare against single calls and KDL.
 // - fast_math*: SLEEF's vectorised sin, cos and atan2 (vmath::), whose AVX2 and AVX-512 loops sit
@@ -55,3 +55,28 @@ inline Isa detected_isa() {
 #else
 #define ROBOKIN_KERNEL inline
 #endif
+
+namespace robokin::kernel {
+
+#ifdef ROBOKIN_DISPATCH
+// Kernel::run built for AVX2 (without FMA: "avx2" alone, so the same bits as the baseline build).
+template <class Kernel, class... A>
+ROBOKIN_TARGET_AVX2 void run_avx2(A... args) {
+  Kernel::run(args...);
+}
+#endif
+
+// The door of a model file's hot loop: Kernel::run(args...) (a static ROBOKIN_KERNEL function, so
+// inlined into each build) run in its AVX2 build where this CPU has AVX2, else in the baseline
+// build. Both give the same bits; the AVX2 build takes 4 doubles per vector instead of 2. The
+// arguments go by value, pointers and numbers: a number read through a reference could alias the
+// loop's outputs, and the vectoriser would then leave the loop scalar.
+template <class Kernel, class... A>
+void run_for_isa(A... args) {
+#ifdef ROBOKIN_DISPATCH
+  if (detected_isa() != Isa::Baseline) return run_avx2<Kernel>(args...);
+#endif
+  Kernel::run(args...);
+}
+
+}  // namespace robokin::kernel
