@@ -66,13 +66,13 @@ ClosedFormSolutions anthropomorphic(ArrayLike target, double a2, double a3, doub
 }
 
 ClosedFormSolutions spherical_wrist_6r(ArrayLike target, double a2, double a3, double d3, double d4, double d1,
-                                    double d6, LimitsLike limits) {
+                                       double d6, LimitsLike limits) {
   const Rigid T = Rigid::from_matrix(as_transform(target, "target"));
   return ik_spherical_wrist_6r(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
 }
 
 py::tuple spherical_wrist_6r_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
-                               double d6, ArrayLike q0_obj, LimitsLike limits) {
+                                  double d6, ArrayLike q0_obj, LimitsLike limits) {
   const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
   const long count = static_cast<long>(targets.size());
   const Vector q0 = as_vector(q0_obj, "q0", 6);

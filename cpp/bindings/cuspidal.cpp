@@ -6,6 +6,8 @@
 #include "progress.hpp"
 #include "results.hpp"
 
+#include <pybind11/typing.h>
+
 #include "robokin/cuspidal.hpp"
 
 namespace robokin::bind {
@@ -13,7 +15,7 @@ namespace {
 
 // point and path: None where no posture change was found, else the array.
 template <class M>
-py::object none_or_array(const M& a) {
+py::typing::Optional<py::array_t<double>> none_or_array(const M& a) {
   if (a.size() == 0) return py::none();
   if constexpr (M::ColsAtCompileTime == 1) return array_of(a.data(), {a.rows()});
   else return array_of(a.data(), {a.rows(), a.cols()});
@@ -33,8 +35,8 @@ void restore_none_or_array(M& a, py::handle v, const char* field) {
 
 void bind_cuspidal(py::module_& m) {
   OptionsClass<CuspidalOptions>(m, "CuspidalOptions", "The options of robokin.cuspidal.").fields();
-  ResultClass<Cuspidality>(m, "Cuspidality", "Result of robokin.cuspidal: whether a 3R arm is cuspidal, with the evidence.",
-                           false)
+  const char* doc = "Result of robokin.cuspidal: whether a 3R arm is cuspidal, with the evidence.";
+  ResultClass<Cuspidality>(m, "Cuspidality", doc, false)
       .fields()
       .value_as("point", [](const Cuspidality& c) { return none_or_array(c.point); },
                 [](Cuspidality& c, py::handle v) { restore_none_or_array(c.point, v, "point"); },
@@ -42,7 +44,7 @@ void bind_cuspidal(py::module_& m) {
       .value_as("path", [](const Cuspidality& c) { return none_or_array(c.path); },
                 [](Cuspidality& c, py::handle v) { restore_none_or_array(c.path, v, "path"); },
                 "For a cuspidal arm, (m, 3) joint configurations from one of those solutions to the other, det J "
-                "of one sign all along (checked at 8 points per step), else None.")
+                "of one sign all along (checked at 9 points of each step, its ends included), else None.")
       .done_with([](py::class_<Cuspidality>& cls) {
         cls.def_property_readonly("evidence", [](py::handle self) { return printed("cuspidality_evidence", self); },
                                   "One sentence saying why.");

@@ -57,7 +57,7 @@ void bind_postures(py::module_& m) {
         const PlanArgs a = plan_args(sets, qdot_max, dt, continuous, q0);
         const PosturePlan plan = released([&] {
           return track_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
-                               a.has_q0 ? a.q0.data() : nullptr);
+                                a.has_q0 ? a.q0.data() : nullptr);
         });
         const py::array_t<long> pick = array_of(plan.pick.data(), {static_cast<py::ssize_t>(plan.pick.size())});
         const py::array_t<long> reconfigured =

@@ -60,12 +60,13 @@ Pose as_pose(py::handle obj, const char* name = "pose") {
 
 using Elbows = Eigen::Matrix<double, 3, 2>;
 
-py::array ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj, OutArray out_obj) {
+py::array_t<double> ik_batch(const RRR3& r, ArrayLike poses_obj, ModeLike mode_obj, OutArray out_obj) {
   const Mode mode = as_mode(mode_obj);
   const Array poses = rows_arg(poses_obj, "poses", {3}, "N");
   const long n = static_cast<long>(poses.shape(0));
   const py::ssize_t shape[2] = {n, 3};
-  py::array out = output_array(out_obj, 2, shape, poses.data(), poses.size(), "poses");
+  const py::array given = output_array(out_obj, 2, shape, poses.data(), poses.size(), "poses");
+  const auto out = py::reinterpret_borrow<py::array_t<double>>(given);  // float64, as output_array checked
   double* dst = float64_data(out);
   const double* src = poses.data();
   released("RRR3.ik_batch", [&](Progress* progress) { r.ik_batch(src, n, mode, dst, progress); });

@@ -18,8 +18,6 @@ namespace {
 
 using namespace arm_3r_model;
 
-constexpr double kPi = M_PI;
-
 // The image of the singular curve's tangent, D tau, at (t2, t3).
 Eigen::Vector2d image_tangent(const Arm3R& a, double t2, double t3) {
   const double h = 1e-6;
@@ -32,6 +30,8 @@ Eigen::Vector2d image_tangent(const Arm3R& a, double t2, double t3) {
       L.du2.z(), L.du3.z();
   return D * Eigen::Vector2d(-g3, g2);
 }
+
+int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 // The torus grid of cuspidal: angle(i) = -pi + (i + 0.37) 2 pi / N, i taken modulo N.
 struct TorusGrid {
@@ -51,7 +51,7 @@ std::vector<double> sample_det(const Arm3R& arm, const TorusGrid& G, Cuspidality
     for (int j = 0; j < N; ++j) {
       const double q2 = G.angle(i), q3 = G.angle(j);
       const double d = det_3r(arm, q2, q3);
-      res.sign(i, j) = d > 0 ? 1 : (d < 0 ? -1 : 0);
+      res.sign(i, j) = static_cast<std::int8_t>(sign_of(d));
       dd[i * N + j] = det_t(arm, arm.scale[1] * q2, arm.scale[2] * q3);
     }
   return dd;
@@ -69,7 +69,7 @@ bool step_keeps_sign(const Arm3R& arm, const TorusGrid& G, int i, int j, int di,
   double v[9];
   for (int m = 0; m <= 8 && kept; ++m) {
     v[m] = det_at_u(m / 8.0);
-    kept = (v[m] > 0 ? 1 : (v[m] < 0 ? -1 : 0)) == sign;
+    kept = sign_of(v[m]) == sign;
   }
   for (int m = 1; m < 8 && kept; ++m) {
     if (!(std::abs(v[m]) <= std::abs(v[m - 1]) && std::abs(v[m]) <= std::abs(v[m + 1]) &&
@@ -82,7 +82,7 @@ bool step_keeps_sign(const Arm3R& arm, const TorusGrid& G, int i, int j, int di,
       else lo = a;
     }
     const double dmin = det_at_u(0.5 * (lo + hi));
-    kept = (dmin > 0 ? 1 : (dmin < 0 ? -1 : 0)) == sign &&
+    kept = sign_of(dmin) == sign &&
            std::abs(dmin) > 1e-6 * std::min(std::abs(v[0]), std::abs(v[8]));
   }
   return kept;
@@ -100,7 +100,8 @@ std::array<int, 4> neighbours(int N, int c) {
 void label_aspects(const Arm3R& arm, const TorusGrid& G, Cuspidality& res) {
   const int N = G.N;
   const std::int8_t* sign = res.sign.data();  // row-major: cell (i, j) at i N + j
-  std::vector<int> label(static_cast<size_t>(N) * N, -1);
+  res.label = Cuspidality::Labels::Constant(N, N, -1);
+  std::int32_t* label = res.label.data();
   for (int s = 0; s < N * N; ++s) {
     if (label[s] >= 0 || sign[s] == 0) continue;
     std::vector<int> stack = {s};
@@ -118,7 +119,6 @@ void label_aspects(const Arm3R& arm, const TorusGrid& G, Cuspidality& res) {
     }
     ++res.aspects;
   }
-  res.label = Eigen::Map<const Cuspidality::Labels>(label.data(), N, N);
 }
 
 // det D (as det J at t = s q) and its gradient by central differences, at x = (t2, t3).
@@ -237,10 +237,10 @@ int nearest_cell(const TorusGrid& G, double q2, double q3) {
 }
 
 // The shortest 4-connected path of cells from a to b within a's aspect (on the torus), a and b
-// included; empty when there is none.
-std::vector<int> cells_between(const Cuspidality& res, int N, int a, int b) {
+// included; empty when there is none. prev: N x N cells of scratch, reused from call to call.
+std::vector<int> cells_between(const Cuspidality& res, int N, int a, int b, std::vector<int>& prev) {
   const std::int32_t* label = res.label.data();
-  std::vector<int> prev(static_cast<size_t>(N) * N, -2);  // -2: not reached; -1: the start
+  prev.assign(static_cast<size_t>(N) * N, -2);  // -2: not reached; -1: the start
   std::deque<int> todo = {a};
   prev[a] = -1;
   while (!todo.empty()) {
@@ -257,8 +257,6 @@ std::vector<int> cells_between(const Cuspidality& res, int N, int a, int b) {
   }
   return {};
 }
-
-int sign_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 // The joints from qa through the cells' grid angles to qb, each step of q2 and q3 the short way
 // round and q1 turned evenly the short way; empty unless det J keeps qa's sign all along (at 9
@@ -287,7 +285,7 @@ Cuspidality::Path joint_path(const Arm3R& arm, const TorusGrid& G, const double*
 // Two of the solutions s of p in one aspect (their cells' label, and det J of their cells' sign)
 // joined by a joint path that keeps det J's sign: into res.point and res.path.
 bool two_in_one_aspect(const Arm3R& arm, const TorusGrid& G, const ClosedFormSolutions& s, const Eigen::Vector3d& p,
-                       Cuspidality& res) {
+                       std::vector<int>& scratch, Cuspidality& res) {
   const int N = G.N;
   for (int x = 0; x < s.count(); ++x)
     for (int y = x + 1; y < s.count(); ++y) {
@@ -298,7 +296,7 @@ bool two_in_one_aspect(const Arm3R& arm, const TorusGrid& G, const ClosedFormSol
       if (sign_of(det_3r(arm, qa[1], qa[2])) != res.sign.data()[a] ||
           sign_of(det_3r(arm, qb[1], qb[2])) != res.sign.data()[b])
         continue;
-      const std::vector<int> cells = cells_between(res, N, a, b);
+      const std::vector<int> cells = cells_between(res, N, a, b, scratch);
       if (cells.empty()) continue;
       Cuspidality::Path path = joint_path(arm, G, qa, qb, cells);
       if (path.rows() == 0) continue;
@@ -309,24 +307,30 @@ bool two_in_one_aspect(const Arm3R& arm, const TorusGrid& G, const ClosedFormSol
   return false;
 }
 
-// The posture change of a cuspidal arm: tool points around each cusp (at 1e-3 to 1e-1 x the arm's
-// size, toward the 12 vertices of an icosahedron: where three solutions coincide, two stay close
-// and in one aspect) until two_in_one_aspect finds one. res.point and res.path stay empty otherwise.
+// Direction i of kDirections spread evenly over the unit sphere (a Fibonacci lattice: heights
+// evenly spaced, longitudes turning by the golden angle); every kRadii-th of them is spread too.
+constexpr int kRadii = 5, kDirections = 24 * kRadii;
+Eigen::Vector3d direction(int i) {
+  const double z = 1 - (2 * i + 1) / static_cast<double>(kDirections), r = std::sqrt(1 - z * z);
+  const double longitude = i * kPi * (3 - std::sqrt(5.0));
+  return {r * std::cos(longitude), r * std::sin(longitude), z};
+}
+
+// The posture change of a cuspidal arm: tool points around each cusp (where three solutions
+// coincide, two stay close and in one aspect), at 1e-3 to 1e-1 x the arm's size and 24 directions
+// of their own at each distance, until two_in_one_aspect finds one. res.point and res.path stay
+// empty otherwise.
 void posture_change(const Arm3R& arm, const Chain& chain, const TorusGrid& G, Cuspidality& res) {
-  const double g = 0.5 * (1 + std::sqrt(5.0));
-  std::vector<Eigen::Vector3d> directions;
-  for (const double a : {-1.0, 1.0})
-    for (const double b : {-g, g})
-      for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, a, b), Eigen::Vector3d(a, b, 0), Eigen::Vector3d(b, 0, a)})
-        directions.push_back(d.normalized());
+  const double radii[kRadii] = {1e-3, 3e-3, 1e-2, 3e-2, 1e-1};
   const JointLimits none;
+  std::vector<int> scratch;
   for (Eigen::Index k = 0; k < res.cusps.rows(); ++k) {
     const double t[3] = {0.0, arm.scale[1] * res.cusps(k, 0), arm.scale[2] * res.cusps(k, 1)};
     const Eigen::Vector3d cusp = position(arm, t);
-    for (const double radius : {1e-3, 3e-3, 1e-2, 3e-2, 1e-1})
-      for (const Eigen::Vector3d& d : directions) {
-        const Eigen::Vector3d p = cusp + radius * arm.size * d;
-        if (two_in_one_aspect(arm, G, ik_general_3r(arm, chain, p, none), p, res)) return;
+    for (int r = 0; r < kRadii; ++r)
+      for (int i = r; i < kDirections; i += kRadii) {
+        const Eigen::Vector3d p = cusp + radii[r] * arm.size * direction(i);
+        if (two_in_one_aspect(arm, G, ik_general_3r(arm, chain, p, none), p, scratch, res)) return;
       }
   }
 }

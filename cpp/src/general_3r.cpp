@@ -19,8 +19,6 @@ namespace {
 
 using namespace arm_3r_model;
 
-constexpr double kPi = M_PI;
-
 Rigid frame_of(const KDL::Frame& f) {
   Rigid r;
   for (int i = 0; i < 3; ++i) {

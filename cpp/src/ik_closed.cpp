@@ -16,7 +16,6 @@
 namespace robokin {
 namespace {
 
-constexpr double kPi = M_PI;
 constexpr double kCosEps = kClosedCosEps;
 constexpr double kTolP = kClosedTolP, kTolR = kClosedTolR;
 
@@ -444,7 +443,7 @@ void spherical_candidates(const ArmGeometry& arm, double d6, const Rigid& T, Wri
 }  // namespace
 
 ClosedFormSolutions ik_spherical_wrist_6r(const ArmGeometry& arm, double d6, const Rigid& T,
-                                       const JointLimits& limits) {
+                                          const JointLimits& limits) {
   arm.validate();
   check_length(d6, "d6", false);
   ClosedFormSolutions out;
@@ -501,8 +500,8 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
 }
 
 void ik_spherical_wrist_6r_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
-                             const double* q0, const JointLimits& limits, double* q_out, bool* ok,
-                             bool* reachable, Progress* progress) {
+                                const double* q0, const JointLimits& limits, double* q_out, bool* ok,
+                                bool* reachable, Progress* progress) {
   arm.validate();
   check_length(d6, "d6", false);
   // Angles are shifted at most to |v| <= 2^20 rad (~167,000 turns): there a double holds them to

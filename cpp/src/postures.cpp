@@ -104,7 +104,7 @@ double posture_step(double a, double b, bool continuous) {
 }
 
 PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
-                          const std::vector<bool>& continuous, const double* q0) {
+                           const std::vector<bool>& continuous, const double* q0) {
   PosturePlan plan;
   const long K = static_cast<long>(layers.size());
   plan.pick.assign(K, -1);

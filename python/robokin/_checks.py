@@ -138,11 +138,6 @@ def rows(value, name: str, row: tuple = (), most: Optional[int] = None) -> np.nd
     return finite(a, name)
 
 
-def planar_points(value, name: str) -> np.ndarray:
-    """``value`` as a finite (K, 2) float array, K >= 1."""
-    return rows(value, name, (2,))
-
-
 def frame_like(value):
     """A 4x4 frame (or a batch of them) as given, or the matrix an object holds in ``.A`` (the
     spatialmath ``SE3`` convention: one (4, 4) array, or a list of them for several poses); numpy

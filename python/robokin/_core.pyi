@@ -539,7 +539,7 @@ class RRR3:
         (8, 3) actuated angles for pose (x, y, phi): row k for mode k of RRR3.modes, NaN where
         unreachable.
         """
-    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.ndarray:
+    def ik_batch(self, poses: numpy.typing.ArrayLike, mode: tuple[int, int, int] = (1, 1, 1), *, out: numpy.typing.NDArray[numpy.float64] | None = None) -> numpy.typing.NDArray[numpy.float64]:
         """
         (N, 3) actuated angles for (N, 3) poses in working mode mode, NaN rows where a leg cannot
         reach (GIL released). out: an (N, 3) array to write them into (returned), for repeated calls.
@@ -1702,7 +1702,7 @@ class Cuspidality:
     @property
     def cusps(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (k, 4) cusp points q2, q3, rho, z: the joints on the singular curve and the workspace point (distance from axis 1, height along it, in the base frame).
+        (k, 4) one row per cusp point, q2 and q3 on the singular curve, then rho and z of its workspace point (distance from axis 1 and height along it, in the base frame).
         """
     @property
     def evidence(self) -> str:
@@ -1720,12 +1720,12 @@ class Cuspidality:
         (N, N) the aspect of each grid cell (int32), -1 on a singularity.
         """
     @property
-    def path(self) -> typing.Any:
+    def path(self) -> numpy.typing.NDArray[numpy.float64] | None:
         """
-        For a cuspidal arm, (m, 3) joint configurations from one of those solutions to the other, det J of one sign all along (checked at 8 points per step), else None.
+        For a cuspidal arm, (m, 3) joint configurations from one of those solutions to the other, det J of one sign all along (checked at 9 points of each step, its ends included), else None.
         """
     @property
-    def point(self) -> typing.Any:
+    def point(self) -> numpy.typing.NDArray[numpy.float64] | None:
         """
         For a cuspidal arm, a tool point (3,) with two solutions in one aspect (else None).
         """

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import robots
 from ._checks import chain as check_chain
-from ._checks import planar_points, real_array, whole
+from ._checks import real_array, rows, whole
 from ._core import Chain, TrackResult, joint_limit_cost
 from ._figures import new_figure
 
@@ -37,7 +37,7 @@ def _count(n, name: str) -> int:
 
 def _line_figure_arguments(points, tracks):
     """The path as a finite (K, 2) array and the tracks as a non-empty dict of K-row TrackResults."""
-    p = planar_points(points, "points")
+    p = rows(points, "points", (2,))
     if not isinstance(tracks, dict) or not tracks:
         raise TypeError("tracks: expected a non-empty dict label -> TrackResult")
     for label, tr in tracks.items():

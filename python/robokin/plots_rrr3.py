@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core, rrr3_design
-from ._checks import planar_points
+from ._checks import rows
 from ._figures import new_figure
 from ._options import with_options
 
@@ -28,7 +28,7 @@ def _axes(ax):
 
 def _path(path):
     """None, or the path as a finite (K, 2) array."""
-    return None if path is None else planar_points(path, "path")
+    return None if path is None else rows(path, "path", (2,))
 
 
 def plot_robot(robot, pose, mode=None, ax=None, path=None):

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import finite, number, real_array, rows, shaped, whole
+from ._checks import finite, joints, number, real_array, rows, shaped, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -232,7 +232,7 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     options = None if method == "closed" else _ik_options(method, ik_options)
     whole(starts, "starts", 1, 10_000, "IK starts per waypoint")
     check_seed(seed)
-    start = None if q0 is None else finite(shaped(q0, "q0", (n,)), "q0")
+    start = None if q0 is None else joints(chain, q0, "q0")
     return P, step_dt, vmax, options, start
 
 

@@ -9,6 +9,8 @@
 
 namespace robokin {
 
+inline constexpr double kPi = M_PI;
+
 // a wrapped to [-pi, pi] (exact: std::remainder by 2 pi, which leaves |a| <= pi as it is: the
 // quotient rounds to 0, half to even at +-pi; skipping the call there is the same result, faster).
 // For pi < |a| < 3 pi the quotient is +-1 and a -+ 2 pi is exact (Sterbenz: a within [pi, 4 pi]):

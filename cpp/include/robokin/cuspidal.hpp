@@ -43,8 +43,8 @@ struct Cuspidality {
   static void fields(F&& f) {
     f("cuspidal", &Cuspidality::cuspidal, "The arm can change posture without meeting a singularity.");
     f("cusps", &Cuspidality::cusps,
-      "(k, 4) cusp points q2, q3, rho, z: the joints on the singular curve and the workspace point (distance "
-      "from axis 1, height along it, in the base frame).");
+      "(k, 4) one row per cusp point, q2 and q3 on the singular curve, then rho and z of its workspace point "
+      "(distance from axis 1 and height along it, in the base frame).");
     f("aspects", &Cuspidality::aspects, "Number of aspects (connected regions of one sign of det J on the (q2, q3) torus).");
     f("grid", &Cuspidality::grid, "(N,) the joint angles of the grid's rows (q2) and columns (q3).");
     f("sign", &Cuspidality::sign, "(N, N) sign of det J on the grid (int8), row = q2.");
@@ -57,8 +57,8 @@ struct Cuspidality {
 // the singular curve in the workspace, where three solutions coincide); each is refined by
 // bisection along the curve. The aspects are the grid's 4-connected regions of one sign of det J.
 // For a cuspidal arm, points near each cusp are tried until two of a point's solutions lie in one
-// aspect and a path of grid cells joins them whose det J keeps its sign (checked at 8 points per
-// step): the posture change. Throws std::invalid_argument when the chain is not a 3R arm or the
+// aspect and a path of grid cells joins them whose det J keeps its sign (checked at 9 points of
+// each step, its ends included): the posture change. Throws std::invalid_argument when the chain is not a 3R arm or the
 // options are not valid.
 Cuspidality cuspidal(const Chain& chain, const CuspidalOptions& options = {});
 

@@ -104,7 +104,7 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
 // For the target tool frame T: up to 8 solutions, shoulder right / left x elbow up / down x wrist
 // flip / no flip. When s5 = 0 (wrist singular) q4 + q6 is fixed: q4 is set to 0 (or pi).
 ClosedFormSolutions ik_spherical_wrist_6r(const ArmGeometry& arm, double d6, const Rigid& T,
-                                       const JointLimits& limits);
+                                          const JointLimits& limits);
 
 // The ortho-parallel spherical-wrist layout read from a chain's geometry, as URArm is for the UR
 // layout: the chain's joint i turns the DH angle scale * q + theta, base and tool are the fixed
@@ -140,8 +140,8 @@ void ik_spherical_batch(const SphericalArm& arm, const Chain& chain, const Rigid
 // branch jumps. ok[k] false (row k = previous joints) where the frame has no solution within the
 // limits; reachable[k] true where it has one, within the limits or not (ok implies reachable).
 void ik_spherical_wrist_6r_path(const ArmGeometry& arm, double d6, const Rigid* targets, long count,
-                             const double* q0, const JointLimits& limits, double* q_out, bool* ok,
-                             bool* reachable, Progress* progress = nullptr);
+                                const double* q0, const JointLimits& limits, double* q_out, bool* ok,
+                                bool* reachable, Progress* progress = nullptr);
 
 // Row of `solutions` nearest to q among those within the limits (Euclidean distance between joint
 // vectors); -1 when none is.

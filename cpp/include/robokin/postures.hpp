@@ -34,6 +34,6 @@ struct PosturePlan {
 // the lowest row, both for each row's predecessor and for the last waypoint's row. Allocates the
 // back pointers only (one per solution).
 PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
-                          const std::vector<bool>& continuous, const double* q0);
+                           const std::vector<bool>& continuous, const double* q0);
 
 }  // namespace robokin

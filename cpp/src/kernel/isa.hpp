@@ -3,9 +3,10 @@
 // - isa.hpp: which vector ISA this CPU has, detected once per process (detected_isa()), and the
 //   one way a hot loop gets builds for several ISAs: an always-inlined body (ROBOKIN_KERNEL)
 //   wrapped in functions marked ROBOKIN_TARGET_AVX2 / ROBOKIN_TARGET_AVX512, one picked per call
-//   by detected_isa(). Model code outside this folder reaches it through run_for_isa() only. Every build runs the same operations in the same order without fused
-//   multiply-adds (ROBOKIN_NO_CONTRACT where the ISA has them), so all give the same bits, which
-//   the tests compare against single calls and KDL.
+//   by detected_isa(); model code outside this folder reaches it through run_for_isa() only.
+//   Every build runs the same operations in the same order without fused multiply-adds
+//   (ROBOKIN_NO_CONTRACT where the ISA has them), so all give the same bits, which the tests
+//   compare against single calls and KDL.
 // - fast_math*: SLEEF's vectorised sin, cos and atan2 (vmath::), whose AVX2 and AVX-512 loops sit
 //   in files of their own, compiled with -mavx2 -mfma / -mavx512f (sleef.h declares those routines
 //   only then; CMakeLists.txt sets the flags). Those files include nothing but sleef.h and the
@@ -70,7 +71,9 @@ ROBOKIN_TARGET_AVX2 void run_avx2(A... args) {
 // inlined into each build) run in its AVX2 build where this CPU has AVX2, else in the baseline
 // build. Both give the same bits; the AVX2 build takes 4 doubles per vector instead of 2. The
 // arguments go by value, pointers and numbers: a number read through a reference could alias the
-// loop's outputs, and the vectoriser would then leave the loop scalar.
+// loop's outputs, and the vectoriser would then leave the loop scalar. A Kernel is file-local (an
+// unnamed namespace): its builds then cannot be merged with another file's compiled under other
+// flags.
 template <class Kernel, class... A>
 void run_for_isa(A... args) {
 #ifdef ROBOKIN_DISPATCH
