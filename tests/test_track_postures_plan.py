@@ -18,6 +18,12 @@ import pytest
 from robokin import _core
 
 
+def plan(*args):
+    """The core's plan as (pick, reconfigured, motion)."""
+    p = _core.track_postures(*args)
+    return p.pick, p.reconfigured, p.motion
+
+
 def reference(sets, vmax, dt, cont, q0=None):
     """(pick, reconfigured waypoints, motion) by the rules above, with numpy."""
     n = len(vmax)
@@ -89,7 +95,7 @@ def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
     ties = jumps = 0
     for trial in range(300):
         sets, vmax, dt, cont, q0 = random_layers(rng, whole_numbers)
-        pick, r, m = _core.track_postures(sets, vmax, dt, cont, q0)
+        pick, r, m = plan(sets, vmax, dt, cont, q0)
         ref_pick, ref_r, ref_m = reference(sets, vmax, dt, cont, q0)
         np.testing.assert_array_equal(pick, ref_pick, err_msg=str(trial))
         assert (list(r), m) == (ref_r, ref_m), trial
@@ -99,40 +105,81 @@ def test_the_core_agrees_with_the_reference_programme(whole_numbers, rng):
     assert jumps > 50  # plans with reconfigurations, their waypoints compared
 
 
+def reference_joint_path(sets, pick, q0, cont, lower, upper):
+    """The plan's joint path by its rules (postures.hpp), with numpy: the picked rows, continuous
+    joints shifted by whole turns towards the joints before them within the limits, gaps filled."""
+    K, n = len(sets), len(cont)
+    q = np.zeros((K, n))
+    last = None if q0 is None else np.asarray(q0, float)
+    for k in range(K):
+        if pick[k] >= 0:
+            v = sets[k][pick[k]].copy()
+            if last is not None:
+                shifted = v + 2 * math.pi * np.round((last - v) / (2 * math.pi))
+                v = np.where(cont & (shifted >= lower) & (shifted <= upper), shifted, v)
+            q[k] = last = v
+        elif last is not None:
+            q[k] = last
+    reached = np.flatnonzero(pick >= 0)
+    first = reached[0] if len(reached) else K
+    q[:first] = (q[first] if first < K else 0.0) if q0 is None else q0
+    return q
+
+
+@pytest.mark.parametrize("limited", [False, True])
+def test_the_joint_path_follows_its_rules(limited, rng):
+    """Rows shifted by whole turns (far-off q0 and rows, so that turns are taken), some kept by the
+    limits, gaps before, between and after the solutions, no solution at all: as the reference."""
+    shifted = kept = 0
+    for trial in range(300):
+        sets, vmax, dt, cont, q0 = random_layers(rng, False)
+        n = len(cont)
+        sets = [s + 2 * math.pi * rng.integers(-3, 4, s.shape) for s in sets]
+        lower, upper = (-rng.uniform(4, 25, n), rng.uniform(4, 25, n)) if limited else (np.full(n, -np.inf), np.full(n, np.inf))
+        p = _core.track_postures(sets, vmax, dt, cont, q0, (lower, upper) if limited else None)
+        expected = reference_joint_path(sets, p.pick, q0, cont, lower, upper)
+        np.testing.assert_array_equal(p.q, expected, err_msg=str(trial))
+        picked = np.array([sets[k][r] for k, r in enumerate(p.pick) if r >= 0]).reshape(-1, n)
+        moved = np.array([p.q[k] for k, r in enumerate(p.pick) if r >= 0]).reshape(-1, n) != picked
+        shifted += moved.sum()
+        kept += limited and (cont & ~moved.any(axis=0)).any()
+    assert shifted > 100 and (not limited or kept > 20)
+
+
 def test_ties_go_to_the_lowest_row():
     # Two identical rows everywhere: every choice ties; the lowest rows are taken.
     same = np.array([[0.0, 1.0], [0.0, 1.0]])
-    pick, r, m = _core.track_postures([same, same, same], [1.0, 1.0], 0.1, [False, False])
+    pick, r, m = plan([same, same, same], [1.0, 1.0], 0.1, [False, False])
     assert list(pick) == [0, 0, 0] and (list(r), m) == ([], 0.0)
     # Equal motion both ways (1 to the left, 1 to the right): the lower row.
-    pick, _, m = _core.track_postures([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
+    pick, _, m = plan([np.array([[0.0]]), np.array([[1.0], [-1.0]])], [5.0], 1.0, [False])
     assert list(pick) == [0, 0] and m == 1.0
     # Fewer reconfigurations beat less motion.
     sets = [np.array([[0.0]]), np.array([[0.3], [0.2]]), np.array([[0.6], [10.0]])]
-    pick, r, _ = _core.track_postures(sets, [0.35], 1.0, [False])
+    pick, r, _ = plan(sets, [0.35], 1.0, [False])
     assert list(pick) == [0, 0, 0] and len(r) == 0
 
 
 def test_gaps_q0_and_continuous_joints():
     # An empty waypoint: the step over the gap has two intervals' allowance.
     sets = [np.array([[0.0]]), np.zeros((0, 1)), np.array([[1.5], [-0.1]])]
-    pick, r, _ = _core.track_postures(sets, [1.0], 1.0, [False])
+    pick, r, _ = plan(sets, [1.0], 1.0, [False])
     assert list(pick) == [0, -1, 1] and len(r) == 0
     # q0 is waypoint -1: the first step counts.
-    pick, r, _ = _core.track_postures([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
+    pick, r, _ = plan([np.array([[3.0], [0.5]])], [1.0], 1.0, [False], np.array([0.0]))
     assert list(pick) == [1] and len(r) == 0
     # A jump over a gap is marked at the waypoint it enters.
-    pick, r, _ = _core.track_postures([np.array([[0.0]]), np.zeros((0, 1)), np.array([[2.5]])], [1.0], 1.0, [False])
+    pick, r, _ = plan([np.array([[0.0]]), np.zeros((0, 1)), np.array([[2.5]])], [1.0], 1.0, [False])
     assert list(pick) == [0, -1, 0] and list(r) == [2]
     # A continuous joint goes the short way round: 3 to -3 is a step of 2 pi - 6.
-    pick, r, m = _core.track_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
+    pick, r, m = plan([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [True])
     assert len(r) == 0 and m == pytest.approx(2 * math.pi - 6)
-    pick, r, _ = _core.track_postures([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
+    pick, r, _ = plan([np.array([[3.0]]), np.array([[-3.0]])], [0.5], 1.0, [False])
     assert list(r) == [1]
     # No solution anywhere, and no waypoint at all.
-    pick, r, m = _core.track_postures([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
+    pick, r, m = plan([np.zeros((0, 2))] * 3, [1.0, 1.0], 0.1, [False, False])
     assert list(pick) == [-1, -1, -1] and (len(r), m) == (0, 0.0)
-    assert len(_core.track_postures([], [1.0], 0.1, [False])[0]) == 0
+    assert len(plan([], [1.0], 0.1, [False])[0]) == 0
 
 
 @pytest.mark.parametrize("args, error, name", [

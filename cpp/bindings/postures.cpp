@@ -2,7 +2,9 @@
 // solution sets and builds the result).
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "chain_args.hpp"
 #include "progress.hpp"
+#include "results.hpp"
 
 #include "robokin/postures.hpp"
 
@@ -19,11 +21,13 @@ struct PlanArgs {
   std::vector<PostureLayer> layers;
   Eigen::VectorXd qdot_max, q0;
   std::vector<bool> continuous;
+  JointLimits limits;
   bool has_q0 = false;
   double dt = 0;
 };
 
-PlanArgs plan_args(py::handle sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::handle q0) {
+PlanArgs plan_args(py::handle sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::handle q0,
+                   py::handle limits) {
   PlanArgs a;
   a.qdot_max = as_vector(qdot_max, "qdot_max");
   const long n = a.qdot_max.size();
@@ -34,6 +38,7 @@ PlanArgs plan_args(py::handle sets, ArrayLike qdot_max, double dt, ArrayLike con
   if (!cont || cont.ndim() != 1 || cont.shape(0) != n) fail("continuous: expected a (" + std::to_string(n) + ",) array of booleans");
   a.continuous.assign(cont.data(), cont.data() + n);
   if (!q0.is_none()) a.q0 = as_vector(q0, "q0", n), a.has_q0 = true;
+  a.limits = limits_arg(limits, static_cast<int>(n));
   if (!py::isinstance<py::sequence>(sets) || py::isinstance<py::str>(sets))
     throw py::type_error("sets: expected a sequence of (m, n) arrays");
   for (py::handle s : py::reinterpret_borrow<py::sequence>(sets)) {
@@ -51,25 +56,26 @@ PlanArgs plan_args(py::handle sets, ArrayLike qdot_max, double dt, ArrayLike con
 }  // namespace
 
 void bind_postures(py::module_& m) {
+  ResultClass<PosturePlan>(m, "PosturePlan", "track_postures' plan (robokin.track_postures builds its result from it).",
+                           false)
+      .fields()
+      .done();
   m.def(
       "track_postures",
-      [](py::object sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::object q0) {
-        const PlanArgs a = plan_args(sets, qdot_max, dt, continuous, q0);
-        const PosturePlan plan = released([&] {
+      [](py::object sets, ArrayLike qdot_max, double dt, ArrayLike continuous, py::object q0, LimitsLike limits) {
+        const PlanArgs a = plan_args(sets, qdot_max, dt, continuous, q0, limits);
+        return released([&] {
           return track_postures(a.layers, static_cast<long>(a.qdot_max.size()), a.qdot_max.data(), a.dt, a.continuous,
-                                a.has_q0 ? a.q0.data() : nullptr);
+                                a.has_q0 ? a.q0.data() : nullptr, a.limits);
         });
-        const py::array_t<long> pick = array_of(plan.pick.data(), {static_cast<py::ssize_t>(plan.pick.size())});
-        const py::array_t<long> reconfigured =
-            array_of(plan.reconfigured.data(), {static_cast<py::ssize_t>(plan.reconfigured.size())});
-        return py::make_tuple(pick, reconfigured, plan.motion);
       },
       py::arg("sets"), py::arg("qdot_max"), py::arg("dt"), py::arg("continuous"), py::arg("q0") = py::none(),
-      "track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]\n"
-      "chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than\n"
-      "qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the\n"
-      "lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is\n"
-      "the joints before the path. The GIL is released while it runs.");
+      py::arg("limits") = py::none(),
+      "track_postures' dynamic programme -> PosturePlan: pick[k] the row of sets[k] chosen (-1 where it\n"
+      "is empty) minimising the reconfigurations (a joint moving more than qdot_max * dt per waypoint\n"
+      "interval), then the motion (the sum of the steps' norms); ties to the lowest row. q0 (n,) or\n"
+      "None: the joints before the path; limits (lower, upper) or None: where continuous joints may be\n"
+      "shifted by whole turns along the path. The GIL is released while it runs.");
 }
 
 }  // namespace robokin::bind

@@ -2,6 +2,7 @@
 // solutions, each row's best predecessor kept, then back from the best last row.
 #include "robokin/postures.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace robokin {
@@ -77,14 +78,45 @@ long best_row(const Costs& cost) {
 void mark_reconfigurations(const std::vector<PostureLayer>& layers, const std::vector<long>& reached, long n,
                            const double* qdot_max, double dt, const std::vector<bool>& continuous, const double* q0,
                            PosturePlan& plan) {
+  std::vector<std::int64_t> marked;
   const double* previous = q0;
   long previous_k = -1;
   for (const long k : reached) {
     const double* row = layers[k].q + plan.pick[k] * n;
-    if (previous && step_cost(previous, row, n, qdot_max, dt, k - previous_k, continuous).jump)
-      plan.reconfigured.push_back(k);
+    if (previous && step_cost(previous, row, n, qdot_max, dt, k - previous_k, continuous).jump) marked.push_back(k);
     previous = row, previous_k = k;
   }
+  plan.reconfigured = Eigen::Map<const PosturePlan::Indices>(marked.data(), static_cast<Eigen::Index>(marked.size()));
+}
+
+// The joint path of the picked rows (postures.hpp): continuous joints shifted by whole turns towards
+// the joints before them where the limits allow, gaps filled with the joints before them.
+void joint_path(const std::vector<PostureLayer>& layers, long n, const std::vector<bool>& continuous,
+                const double* q0, const JointLimits& limits, PosturePlan& plan) {
+  const long K = static_cast<long>(layers.size());
+  const bool limited = limits.lower.size() == n;
+  plan.q.resize(K, n);
+  long first = -1;  // the first waypoint with a solution
+  const double* last = q0;
+  for (long k = 0; k < K; ++k) {
+    double* row = plan.q.row(k).data();
+    if (plan.pick[k] < 0) {
+      if (last) std::copy(last, last + n, row);
+      continue;
+    }
+    const double* v = layers[k].q + plan.pick[k] * n;
+    for (long i = 0; i < n; ++i) {
+      row[i] = v[i];
+      if (!last || !continuous[i]) continue;
+      // nearbyint: numpy's round, half to even (the default rounding mode)
+      const double shifted = v[i] + 2 * M_PI * std::nearbyint((last[i] - v[i]) / (2 * M_PI));
+      if (!limited || (shifted >= limits.lower[i] && shifted <= limits.upper[i])) row[i] = shifted;
+    }
+    if (first < 0) first = k;
+    last = row;
+  }
+  const double* lead = q0 ? q0 : plan.q.row(first).data();
+  for (long k = 0; k < first; ++k) std::copy(lead, lead + n, plan.q.row(k).data());
 }
 
 }  // namespace
@@ -104,14 +136,19 @@ double posture_step(double a, double b, bool continuous) {
 }
 
 PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
-                           const std::vector<bool>& continuous, const double* q0) {
+                           const std::vector<bool>& continuous, const double* q0, const JointLimits& limits) {
   PosturePlan plan;
   const long K = static_cast<long>(layers.size());
-  plan.pick.assign(K, -1);
+  plan.pick = PosturePlan::Indices::Constant(K, -1);
   std::vector<long> reached;  // the waypoints with solutions, in order
   for (long k = 0; k < K; ++k)
     if (layers[k].count > 0) reached.push_back(k);
-  if (reached.empty()) return plan;
+  if (reached.empty()) {
+    plan.q = PosturePlan::Joints::Zero(K, n);
+    if (q0)
+      for (long k = 0; k < K; ++k) std::copy(q0, q0 + n, plan.q.row(k).data());
+    return plan;
+  }
   Costs cost = first_costs(layers[reached[0]], reached[0], n, qdot_max, dt, continuous, q0);
   std::vector<std::vector<long>> back(reached.size());
   for (size_t l = 1; l < reached.size(); ++l) {
@@ -125,6 +162,7 @@ PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, cons
     if (l > 0) row = back[l][row];
   }
   mark_reconfigurations(layers, reached, n, qdot_max, dt, continuous, q0, plan);
+  joint_path(layers, n, continuous, q0, limits, plan);
   return plan;
 }
 

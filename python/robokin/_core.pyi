@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'PosturePlan', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1734,6 +1734,38 @@ class Cuspidality:
         """
         (N, N) sign of det J on the grid (int8), row = q2.
         """
+class PosturePlan:
+    """
+    track_postures' plan (robokin.track_postures builds its result from it).
+    """
+    def __getstate__(self) -> tuple:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def motion(self) -> float:
+        """
+        The sum over the steps of the norm of the joint change (rad).
+        """
+    @property
+    def pick(self) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        (K,) the row of each waypoint's solutions chosen, -1 where it has none.
+        """
+    @property
+    def q(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (K, n) the joint path of the picked rows.
+        """
+    @property
+    def reconfigured(self) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        The waypoints the plan enters by a reconfiguration, in order.
+        """
 def chain_from_dh(table: numpy.typing.ArrayLike, joints: str, modified: bool, tool: numpy.typing.ArrayLike | None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> Chain:
     """
     A chain from DH rows (table (n, 4), joints 'R' / 'P' each). Use Chain.from_dh.
@@ -1857,13 +1889,13 @@ def track(chain: Chain, points: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLi
     """
     Reach every point of a path in turn; options as keywords (ReachOptions). Use robokin.track, which also warns.
     """
-def track_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> tuple[numpy.typing.NDArray[numpy.int64], numpy.typing.NDArray[numpy.int64], float]:
+def track_postures(sets: typing.Any, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None = None) -> PosturePlan:
     """
-    track_postures' dynamic programme: (pick, reconfigured, motion), pick[k] the row of sets[k]
-    chosen (-1 where it is empty) minimising the reconfigurations (a joint moving more than
-    qdot_max * dt per waypoint interval), then the motion (the sum of the steps' norms); ties to the
-    lowest row. reconfigured: the waypoints the chosen rows enter by a reconfiguration. q0 (n,) is
-    the joints before the path. The GIL is released while it runs.
+    track_postures' dynamic programme -> PosturePlan: pick[k] the row of sets[k] chosen (-1 where it
+    is empty) minimising the reconfigurations (a joint moving more than qdot_max * dt per waypoint
+    interval), then the motion (the sum of the steps' norms); ties to the lowest row. q0 (n,) or
+    None: the joints before the path; limits (lower, upper) or None: where continuous joints may be
+    shifted by whole turns along the path. The GIL is released while it runs.
     """
 def traj_cartesian(T0: numpy.typing.ArrayLike, T1: numpy.typing.ArrayLike, law: str, t: numpy.typing.ArrayLike, vmax: numpy.typing.ArrayLike, amax: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex) -> tuple:
     """

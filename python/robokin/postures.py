@@ -205,17 +205,10 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
         sets, labels = got
     else:
         sets = _numerical_sets(chain, P, int(starts), int(seed), cont, options)
-    K = len(sets)
+    plan = _core.track_postures(sets, vmax, step_dt, cont, start, chain.limits)
     success = np.array([len(s) > 0 for s in sets])
-    if not np.any(success):
-        q = np.zeros((K, chain.dof))
-        q[:] = start if start is not None else 0.0
-        return TrackPosturesResult(q, success, np.zeros(0, dtype=np.intp), 0.0, sets,
-                                   [None] * K if labels is not None else None)
-    pick, recon, motion = _core.track_postures(sets, vmax, step_dt, cont, start)
-    q = _joint_path(chain, sets, pick, start, cont)
-    chosen = [labels[k][pick[k]] if pick[k] >= 0 else None for k in range(K)] if labels is not None else None
-    return TrackPosturesResult(q, success, recon, motion, sets, chosen)
+    chosen = None if labels is None else [labels[k][p] if p >= 0 else None for k, p in enumerate(plan.pick)]
+    return TrackPosturesResult(plan.q, success, plan.reconfigured, plan.motion, sets, chosen)
 
 
 def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed, ik_options):
@@ -234,30 +227,3 @@ def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed
     check_seed(seed)
     start = None if q0 is None else joints(chain, q0, "q0")
     return P, step_dt, vmax, options, start
-
-
-def _joint_path(chain: Chain, sets, pick, start, cont) -> np.ndarray:
-    """(K, n) joints of the picked rows, continuous joints unwrapped along the path by whole turns
-    within the limits; a waypoint without solution repeats the previous joints (the next
-    solution's, or q0, for leading ones)."""
-    K, n = len(sets), chain.dof
-    lo, hi = chain.limits
-    q = np.zeros((K, n))
-    last = start
-    for k in range(K):
-        if pick[k] >= 0:
-            v = sets[k][pick[k]].copy()
-            if last is not None:
-                turns = np.round((last - v) / (2 * math.pi))
-                shifted = v + 2 * math.pi * turns
-                ok = cont & (shifted >= lo) & (shifted <= hi)
-                v = np.where(ok, shifted, v)
-            q[k] = v
-            last = v
-        elif last is not None:
-            q[k] = last
-    first = int(np.argmax(pick >= 0))
-    q[:first] = q[first] if start is None else start
-    return q
-
-

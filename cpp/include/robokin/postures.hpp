@@ -2,6 +2,11 @@
 // over the layered graph of each waypoint's inverse solutions (IKLink's objective).
 #pragma once
 
+#include "robokin/limits.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
 #include <vector>
 
 namespace robokin {
@@ -16,13 +21,24 @@ struct PostureLayer {
 // (numpy's remainder(b - a + pi, 2 pi) - pi: the sign of the divisor).
 double posture_step(double a, double b, bool continuous);
 
-// The plan: pick[k] is the row chosen at waypoint k (-1 where it has no solution); the waypoints
-// the chosen rows enter by a reconfiguration, in order (their number is the optimum's), and its
-// motion as the programme summed it.
+// The plan: the row chosen at each waypoint, the waypoints its rows enter by a reconfiguration,
+// its motion, and the joint path.
 struct PosturePlan {
-  std::vector<long> pick;
-  std::vector<long> reconfigured;
-  double motion = 0;
+  using Indices = Eigen::Matrix<std::int64_t, Eigen::Dynamic, 1>;
+  using Joints = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+  Indices pick;          // (K,): the row of waypoint k's solutions, -1 where it has none
+  Indices reconfigured;  // the waypoints entered by a reconfiguration, in order (the optimum's count)
+  double motion = 0;     // as the programme summed it
+  Joints q;              // (K, n): the picked rows, continuous joints unwrapped (track_postures says how)
+
+  template <class F>
+  static void fields(F&& f) {
+    f("pick", &PosturePlan::pick, "(K,) the row of each waypoint's solutions chosen, -1 where it has none.");
+    f("reconfigured", &PosturePlan::reconfigured, "The waypoints the plan enters by a reconfiguration, in order.");
+    f("motion", &PosturePlan::motion, "The sum over the steps of the norm of the joint change (rad).");
+    f("q", &PosturePlan::q, "(K, n) the joint path of the picked rows.");
+  }
 };
 
 // One row per waypoint with solutions minimising first the number of reconfigurations, then the
@@ -31,9 +47,12 @@ struct PosturePlan {
 // (the gap's duration, a hair of slack for rounding); its motion is the Euclidean norm of the
 // change (squares summed over the joints in order). q0 (n joints, or null) is waypoint -1: the step
 // to the first waypoint with solutions counts too. Ties: among equal (reconfigurations, motion)
-// the lowest row, both for each row's predecessor and for the last waypoint's row. Allocates the
-// back pointers only (one per solution).
+// the lowest row, both for each row's predecessor and for the last waypoint's row.
+// The joint path q: the picked rows, each continuous joint shifted by the whole turns that bring it
+// nearest the joints before it (q0 for the first) where that stays within limits (lower, upper:
+// n values each); a waypoint without solution repeats the joints before it, leading ones the
+// first solution's (or q0).
 PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
-                           const std::vector<bool>& continuous, const double* q0);
+                           const std::vector<bool>& continuous, const double* q0, const JointLimits& limits);
 
 }  // namespace robokin
