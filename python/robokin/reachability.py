@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 from ._checks import chain as check_chain
-from ._checks import finite, joints, number, real_array, whole
+from ._checks import choice, finite, joints, number, real_array, whole
 from ._checks import seed as check_seed
 from ._core import IKOptions
 from ._options import keywords, with_options
@@ -206,12 +206,7 @@ def plan(chain: _core.Chain, bounds, resolution, orientations: Optional[int] = N
     the voxels ``first .. first + count - 1`` (C order) as (index, best manipulability),
     ``p.result(index, manip)`` the map."""
     check_chain(chain)
-    if task is None:
-        task = chain.natural_task
-    if not isinstance(task, str):
-        raise TypeError(f"task: expected None or one of {_TASKS}, got {task!r}")
-    if task not in _TASKS:
-        raise ValueError(f"task: expected None or one of {_TASKS}, got {task!r}")
+    task = chain.natural_task if task is None else choice(task, "task", _TASKS)
     axes = grid(bounds, resolution)
     if len(axes) != (2 if task in _PLANAR else 3):
         raise ValueError(f"bounds: task {task!r} takes {2 if task in _PLANAR else 3} (lo, hi) pairs, got {len(axes)}")
