@@ -136,6 +136,9 @@ def test_unreachable_waypoints_are_reported():
     res = rk.track_postures(chain, poses, dt=0.1)
     assert list(res.success) == [True, True, False, True, True]
     assert np.array_equal(res.q[2], res.q[1])
+    # The result's arrays are the caller's (the core's plan is read-only; the result holds copies).
+    assert res.q.flags.writeable and res.reconfigurations.flags.writeable
+    assert res.q.dtype == np.float64 and res.reconfigurations.dtype == np.int64
 
 
 def test_bad_arguments():

@@ -197,6 +197,10 @@ def test_gaps_q0_and_continuous_joints():
     (dict(continuous=[True]), ValueError, "continuous"),
     (dict(q0=[0.0]), ValueError, "q0"),
     (dict(q0=[0.0, np.nan]), ValueError, "q0"),
+    (dict(limits=([0.0] * 3, [1.0] * 3)), ValueError, "limits"),
+    (dict(limits=([np.nan, 0.0], [1.0, 1.0])), ValueError, "limits"),
+    (dict(limits=([0.0, 0.0],)), ValueError, "limits"),
+    (dict(limits=5), TypeError, "limits"),
 ])
 def test_bad_arguments_name_themselves(args, error, name):
     call = dict(sets=[np.zeros((1, 2))], qdot_max=[1.0, 1.0], dt=0.1, continuous=[False, False], q0=None)

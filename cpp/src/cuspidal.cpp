@@ -308,17 +308,18 @@ bool two_in_one_aspect(const Arm3R& arm, const TorusGrid& G, const ClosedFormSol
 }
 
 // Direction i of kDirections spread evenly over the unit sphere (a Fibonacci lattice: heights
-// evenly spaced, longitudes turning by the golden angle); every kRadii-th of them is spread too.
-constexpr int kRadii = 5, kDirections = 24 * kRadii;
-Eigen::Vector3d direction(int i) {
+// evenly spaced, longitudes turning by the golden angle), turned about z by `turn`.
+constexpr int kRadii = 5, kDirections = 24;
+Eigen::Vector3d direction(int i, double turn) {
   const double z = 1 - (2 * i + 1) / static_cast<double>(kDirections), r = std::sqrt(1 - z * z);
-  const double longitude = i * kPi * (3 - std::sqrt(5.0));
+  const double longitude = i * kPi * (3 - std::sqrt(5.0)) + turn;
   return {r * std::cos(longitude), r * std::sin(longitude), z};
 }
 
 // The posture change of a cuspidal arm: tool points around each cusp (where three solutions
-// coincide, two stay close and in one aspect), at 1e-3 to 1e-1 x the arm's size and 24 directions
-// of their own at each distance, until two_in_one_aspect finds one. res.point and res.path stay
+// coincide, two stay close and in one aspect), at 1e-3 to 1e-1 x the arm's size, 24 directions at
+// each (the lattice turned by a fifth of a turn from one distance to the next), until
+// two_in_one_aspect finds one. res.point and res.path stay
 // empty otherwise.
 void posture_change(const Arm3R& arm, const Chain& chain, const TorusGrid& G, Cuspidality& res) {
   const double radii[kRadii] = {1e-3, 3e-3, 1e-2, 3e-2, 1e-1};
@@ -328,8 +329,8 @@ void posture_change(const Arm3R& arm, const Chain& chain, const TorusGrid& G, Cu
     const double t[3] = {0.0, arm.scale[1] * res.cusps(k, 0), arm.scale[2] * res.cusps(k, 1)};
     const Eigen::Vector3d cusp = position(arm, t);
     for (int r = 0; r < kRadii; ++r)
-      for (int i = r; i < kDirections; i += kRadii) {
-        const Eigen::Vector3d p = cusp + radii[r] * arm.size * direction(i);
+      for (int i = 0; i < kDirections; ++i) {
+        const Eigen::Vector3d p = cusp + radii[r] * arm.size * direction(i, 2 * kPi * r / kRadii);
         if (two_in_one_aspect(arm, G, ik_general_3r(arm, chain, p, none), p, scratch, res)) return;
       }
   }

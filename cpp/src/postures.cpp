@@ -1,6 +1,7 @@
 // The dynamic programme of track_postures (see postures.hpp): forward over the waypoints with
 // solutions, each row's best predecessor kept, then back from the best last row.
 #include "robokin/postures.hpp"
+#include "robokin/angles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,12 +91,13 @@ void mark_reconfigurations(const std::vector<PostureLayer>& layers, const std::v
 }
 
 // The joint path of the picked rows (postures.hpp): continuous joints shifted by whole turns towards
-// the joints before them where the limits allow, gaps filled with the joints before them.
+// the joints before them where the limits allow, gaps filled with the joints before them, leading
+// ones with q0 or else the first solution (zeros when there is none).
 void joint_path(const std::vector<PostureLayer>& layers, long n, const std::vector<bool>& continuous,
                 const double* q0, const JointLimits& limits, PosturePlan& plan) {
   const long K = static_cast<long>(layers.size());
-  const bool limited = limits.lower.size() == n;
-  plan.q.resize(K, n);
+  const bool limited = limits.lower.size() > 0;
+  plan.q = PosturePlan::Joints::Zero(K, n);
   long first = -1;  // the first waypoint with a solution
   const double* last = q0;
   for (long k = 0; k < K; ++k) {
@@ -109,14 +111,14 @@ void joint_path(const std::vector<PostureLayer>& layers, long n, const std::vect
       row[i] = v[i];
       if (!last || !continuous[i]) continue;
       // nearbyint: numpy's round, half to even (the default rounding mode)
-      const double shifted = v[i] + 2 * M_PI * std::nearbyint((last[i] - v[i]) / (2 * M_PI));
+      const double shifted = v[i] + 2 * kPi * std::nearbyint((last[i] - v[i]) / (2 * kPi));
       if (!limited || (shifted >= limits.lower[i] && shifted <= limits.upper[i])) row[i] = shifted;
     }
     if (first < 0) first = k;
     last = row;
   }
-  const double* lead = q0 ? q0 : plan.q.row(first).data();
-  for (long k = 0; k < first; ++k) std::copy(lead, lead + n, plan.q.row(k).data());
+  if (q0 || first < 0) return;  // leading gaps hold q0 already; no solution: q0 or zeros throughout
+  for (long k = 0; k < first; ++k) plan.q.row(k) = plan.q.row(first);
 }
 
 }  // namespace
@@ -137,6 +139,7 @@ double posture_step(double a, double b, bool continuous) {
 
 PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, const double* qdot_max, double dt,
                            const std::vector<bool>& continuous, const double* q0, const JointLimits& limits) {
+  validate_limits(static_cast<int>(n), limits.lower, limits.upper);  // both empty: no limits
   PosturePlan plan;
   const long K = static_cast<long>(layers.size());
   plan.pick = PosturePlan::Indices::Constant(K, -1);
@@ -144,9 +147,7 @@ PosturePlan track_postures(const std::vector<PostureLayer>& layers, long n, cons
   for (long k = 0; k < K; ++k)
     if (layers[k].count > 0) reached.push_back(k);
   if (reached.empty()) {
-    plan.q = PosturePlan::Joints::Zero(K, n);
-    if (q0)
-      for (long k = 0; k < K; ++k) std::copy(q0, q0 + n, plan.q.row(k).data());
+    joint_path(layers, n, continuous, q0, limits, plan);
     return plan;
   }
   Costs cost = first_costs(layers[reached[0]], reached[0], n, qdot_max, dt, continuous, q0);

@@ -1759,7 +1759,7 @@ class PosturePlan:
     @property
     def q(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (K, n) the joint path of the picked rows.
+        (K, n) the joint path of the picked rows, continuous joints shifted by whole turns within the limits, gaps filled with the joints before them.
         """
     @property
     def reconfigured(self) -> numpy.typing.NDArray[numpy.int64]:

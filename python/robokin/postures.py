@@ -6,10 +6,12 @@ At every waypoint, the set of inverse solutions (the closed forms of :mod:`robok
 arm has one, otherwise numerical IK from many starts with duplicates merged); between consecutive
 waypoints, a step is *continuous* when no joint moves more than ``qdot_max * dt`` and a
 *reconfiguration* otherwise (the arm must leave the path to change posture). A dynamic programme
-over the layered graph of solutions (in the core: ``_core.track_postures``) picks one solution per
-waypoint minimising first the number of reconfigurations, then the joint motion (the sum over steps
-of the Euclidean norm of the joint change); among equal plans, the lowest-numbered solutions. Greedy tracking (the solution nearest the previous one, :func:`robokin.closed.puma560_path`)
-is one path of that graph: the plan never has more reconfigurations.
+over the layered graph of solutions (in the core, ``_core.track_postures``, which also writes the
+joint path) picks one solution per waypoint minimising first the number of reconfigurations, then
+the joint motion (the sum over steps of the Euclidean norm of the joint change); among equal plans,
+the lowest-numbered solutions. Greedy tracking (the solution nearest the previous one,
+:func:`robokin.closed.puma560_path`) is one path of that graph: the plan never has more
+reconfigurations.
 """
 
 from __future__ import annotations
@@ -36,8 +38,8 @@ class TrackPosturesResult:
     """Result of :func:`track_postures`.
 
     Attributes:
-        q: (K, n) joints; a waypoint without solution repeats the previous joints (the next
-            solution's for a leading one).
+        q: (K, n) joints; a waypoint without solution repeats the previous joints (leading ones
+            ``q0``, or else the first solution's; no solution at all: ``q0`` or zeros).
         success: (K,) booleans: the waypoint has an inverse solution (within the limits).
         reconfigurations: Indices ``k`` of the waypoints entered by a reconfiguration: the step from
             the previous waypoint with a solution (``q0`` before the first) to ``k`` exceeds
@@ -208,7 +210,8 @@ def track_postures(chain: Chain, poses, dt: float, qdot_max=math.pi, method: str
     plan = _core.track_postures(sets, vmax, step_dt, cont, start, chain.limits)
     success = np.array([len(s) > 0 for s in sets])
     chosen = None if labels is None else [labels[k][p] if p >= 0 else None for k, p in enumerate(plan.pick)]
-    return TrackPosturesResult(plan.q, success, plan.reconfigured, plan.motion, sets, chosen)
+    # Copies: the plan's arrays are read-only, the dataclass's fields the caller's to change.
+    return TrackPosturesResult(np.array(plan.q), success, np.array(plan.reconfigured), plan.motion, sets, chosen)
 
 
 def _track_arguments(chain: Chain, poses, dt, qdot_max, method, q0, starts, seed, ik_options):

@@ -58,8 +58,8 @@ struct Cuspidality {
 // bisection along the curve. The aspects are the grid's 4-connected regions of one sign of det J.
 // For a cuspidal arm, points near each cusp are tried until two of a point's solutions lie in one
 // aspect and a path of grid cells joins them whose det J keeps its sign (checked at 9 points of
-// each step, its ends included): the posture change. Throws std::invalid_argument when the chain is not a 3R arm or the
-// options are not valid.
+// each step, its ends included): the posture change. Throws std::invalid_argument when the chain
+// is not a 3R arm or the options are not valid.
 Cuspidality cuspidal(const Chain& chain, const CuspidalOptions& options = {});
 
 }  // namespace robokin

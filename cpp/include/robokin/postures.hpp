@@ -37,7 +37,9 @@ struct PosturePlan {
     f("pick", &PosturePlan::pick, "(K,) the row of each waypoint's solutions chosen, -1 where it has none.");
     f("reconfigured", &PosturePlan::reconfigured, "The waypoints the plan enters by a reconfiguration, in order.");
     f("motion", &PosturePlan::motion, "The sum over the steps of the norm of the joint change (rad).");
-    f("q", &PosturePlan::q, "(K, n) the joint path of the picked rows.");
+    f("q", &PosturePlan::q,
+      "(K, n) the joint path of the picked rows, continuous joints shifted by whole turns within the limits, "
+      "gaps filled with the joints before them.");
   }
 };
 
