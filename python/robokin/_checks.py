@@ -114,9 +114,14 @@ def shaped(value, name: str, shape: tuple) -> np.ndarray:
     return a
 
 
+def vector(value, name: str, n: int) -> np.ndarray:
+    """``(n,)`` finite real numbers."""
+    return finite(shaped(value, name, (n,)), name)
+
+
 def joints(chain_, value, name: str = "q") -> np.ndarray:
     """One configuration of ``chain_``: ``(dof,)`` finite real numbers."""
-    return finite(shaped(value, name, (chain_.dof,)), name)
+    return vector(value, name, chain_.dof)
 
 
 def flag(value, name: str) -> bool:

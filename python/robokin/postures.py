@@ -24,7 +24,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import finite, joints, number, real_array, rows, shaped, whole
+from ._checks import joints, number, real_array, rows, vector, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -93,7 +93,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
         raise ValueError(f"q: expected {chain.dof} columns for the chain, got {n}")
     path = q
     if q0 is not None:
-        path = np.vstack([finite(shaped(q0, "q0", (n,)), "q0"), q])
+        path = np.vstack([vector(q0, "q0", n), q])
     jumps = np.any(np.abs(_step(path[:-1], path[1:], cont)) > lim * (1 + 1e-9), axis=1)
     idx = np.nonzero(jumps)[0]
     return idx if q0 is not None else idx + 1
