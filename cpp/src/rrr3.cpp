@@ -5,6 +5,7 @@
 #include "robokin/parallel.hpp"
 
 #include "kernel/fast_math.hpp"
+#include "kernel/rrr3_ik_batch.hpp"
 #include "rrr3_leg.hpp"
 #include "rrr3_pose_eval.hpp"
 
@@ -85,6 +86,17 @@ int RRR3::ik(const Pose& pose, const Mode& mode, double* alpha) const {
     alpha[i] = a[i];
   }
   return -1;
+}
+
+void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out, Progress* progress) const {
+  kernel::RRR3Legs legs;
+  for (int i = 0; i < 3; ++i) {
+    legs.o[2 * i] = o_[i].x(), legs.o[2 * i + 1] = o_[i].y();
+    legs.b[2 * i] = b_[i].x(), legs.b[2 * i + 1] = b_[i].y();
+    legs.m[i] = mode[i];
+  }
+  legs.l1 = l1_, legs.l2 = l2_;
+  kernel::rrr3_ik_batch(legs, poses, count, out, progress);
 }
 
 Eigen::Vector3d RRR3::ik_or_throw(const Pose& pose, const Mode& mode) const {

@@ -15,6 +15,8 @@
 // - fk_path.hpp, fk_lanes.hpp, fk_batch.cpp: a chain's evaluation path and the lane kernel that runs
 //   it on N configurations at once (single calls N = 1, the closed forms' checks 8, batch blocks
 //   32), with the batch's per-ISA builds.
+// - rrr3_ik_batch.hpp/.cpp: the 3-RRR inverse model over a batch of poses (RRR3::ik_batch's loop),
+//   the one file besides SLEEF's built with flags of its own (no errno, no FP traps: CMakeLists.txt).
 // - paging.hpp: how a large batch output's pages are faulted in ahead of the stores.
 // Why it exists, and what each piece measured: benchmarks/README.md, "Where the time goes".
 #pragma once

@@ -1,18 +1,19 @@
-// 3-RRR inverse model over a batch of poses, written for the vectoriser: blocks of poses, one
+// The 3-RRR inverse model over a batch of poses, written for the vectoriser: blocks of poses, one
 // branch-free loop per stage (CMakeLists.txt compiles this file without errno and FP traps so the
 // loops vectorise). Same bits as RRR3::ik, which uses the same leg_alpha_args and vmath routines.
-#include "robokin/parallel.hpp"
-#include "robokin/rrr3.hpp"
+#include "rrr3_ik_batch.hpp"
 
-#include "kernel/fast_math.hpp"
-#include "kernel/isa.hpp"
-#include "rrr3_leg.hpp"
+#include "fast_math.hpp"
+#include "isa.hpp"
+#include "../rrr3_leg.hpp"
+
+#include "robokin/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace robokin {
+namespace robokin::kernel {
 
 namespace {
 
@@ -38,16 +39,15 @@ struct LegArgs {
 
 // One block of poses: SLEEF's sincos of the orientations, the legs' atan2 arguments (LegArgs),
 // SLEEF's atan2, the unreachable rows NaN.
-void ik_block(const double* p, long nb, const double* o, const double* b, const double* m, double l1, double l2,
-              double* dst) {
+void ik_block(const RRR3Legs& legs, const double* p, long nb, double* dst) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double x[kBlock], y[kBlock], phi[kBlock], c[kBlock], s[kBlock], Y[3][kBlock], X[3][kBlock], a[3][kBlock],
       ok[kBlock];
   for (long k = 0; k < nb; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], phi[k] = p[3 * k + 2], ok[k] = 1.0;
   vmath::sincos(phi, s, c, nb);
   for (int i = 0; i < 3; ++i)
-    kernel::run_for_isa<LegArgs>(nb, x, y, c, s, o[2 * i], o[2 * i + 1], b[2 * i], b[2 * i + 1], m[i], l1, l2, Y[i],
-                                 X[i], ok);
+    run_for_isa<LegArgs>(nb, x, y, c, s, legs.o[2 * i], legs.o[2 * i + 1], legs.b[2 * i], legs.b[2 * i + 1],
+                         legs.m[i], legs.l1, legs.l2, Y[i], X[i], ok);
   for (int i = 0; i < 3; ++i) vmath::atan2(Y[i], X[i], a[i], nb);
   for (long k = 0; k < nb; ++k) {
     dst[3 * k] = ok[k] != 0.0 ? a[0][k] : nan;
@@ -58,13 +58,11 @@ void ik_block(const double* p, long nb, const double* o, const double* b, const 
 
 }  // namespace
 
-void RRR3::ik_batch(const double* poses, long count, const Mode& mode, double* out, Progress* progress) const {
-  double o[6], b[6], m[3];
-  for (int i = 0; i < 3; ++i) o[2 * i] = o_[i].x(), o[2 * i + 1] = o_[i].y(), b[2 * i] = b_[i].x(), b[2 * i + 1] = b_[i].y(), m[i] = mode[i];
+void rrr3_ik_batch(const RRR3Legs& legs, const double* poses, long count, double* out, Progress* progress) {
   parallel_for(count, 8192, [&](long begin, long end) {
     for (long k0 = begin; k0 < end; k0 += kBlock)
-      ik_block(poses + 3 * k0, std::min(kBlock, end - k0), o, b, m, l1_, l2_, out + 3 * k0);
+      ik_block(legs, poses + 3 * k0, std::min(kBlock, end - k0), out + 3 * k0);
   }, progress);
 }
 
-}  // namespace robokin
+}  // namespace robokin::kernel
