@@ -169,3 +169,39 @@ def test_demo_writes_both_figures_atomically(tmp_path, capsys):
     assert "greedy (nearest solution): 19 reconfiguration(s)" in out and "cuspidal = True" in out
     with pytest.raises(SystemExit):
         demo_postures.main(["--out", str(tmp_path / "x.nope")])
+
+
+def test_numerical_sets_keep_one_row_per_posture(rng):
+    """The numerical method's de-duplication (every waypoint at once) against the plain rule, one
+    row at a time: keep a found row unless an earlier kept row is within 1e-6 on every joint, the
+    short way round on continuous joints. Near copies are planted, some across the +-pi seam."""
+    from robokin.postures import _distinct
+
+    K, S, n = 40, 12, 4
+    cont = np.array([True, False, True, False])
+    q = rng.uniform(-P, P, (K, S, n))
+    for k in range(K):
+        for i in rng.choice(np.arange(1, S), 6, replace=False):
+            j = rng.integers(0, i)
+            q[k, i] = q[k, j] + rng.uniform(-2e-6, 2e-6, n) * rng.integers(0, 2)
+            if rng.random() < 0.3:
+                q[k, i, 0] += 2 * P * rng.choice([-1, 1])  # the same angle a turn away: a copy
+    q[0, 1] = q[0, 0] + np.array([0, 2 * P, 0, 0])  # a turn away on a bounded joint: not a copy
+    found = rng.random((K, S)) < 0.8
+    found[0, :2] = True
+    got = _distinct(q, found, cont)
+    planted = 0
+    for k in range(K):
+        kept = []
+        for i in range(S):
+            if not found[k, i]:
+                continue
+            d = q[k, i] - np.array(kept).reshape(-1, n)
+            d = np.where(cont, np.remainder(d + P, 2 * P) - P, d)
+            if kept and np.min(np.max(np.abs(d), axis=1)) <= 1e-6:
+                planted += 1
+                continue
+            kept.append(q[k, i])
+        np.testing.assert_array_equal(got[k], np.array(kept).reshape(-1, n))
+    assert planted > K  # the rule dropped copies: the test sees both outcomes
+    assert len(got[0]) >= 2 and np.array_equal(got[0][1], q[0, 1])

@@ -135,16 +135,18 @@ def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont, ik_option
     K = len(poses)
     q0 = rng.uniform(lo_s, hi_s, (K * starts, n))
     res = ik_batch(chain, np.repeat(poses, starts, axis=0), q0, seed=seed, **ik_options)
-    sets = []
-    for k in range(K):
-        sl = slice(k * starts, (k + 1) * starts)
-        found = res.q[sl][res.success[sl]]
-        distinct: list = []
-        for q in found:
-            if not distinct or np.min(np.max(np.abs(_step(np.array(distinct), q, cont)), axis=1)) > 1e-6:
-                distinct.append(q)
-        sets.append(np.array(distinct).reshape(-1, n))
-    return sets
+    return _distinct(res.q.reshape(K, starts, n), res.success.reshape(K, starts), cont)
+
+
+def _distinct(q, found, cont, tol: float = 1e-6):
+    """Per waypoint k, the rows of q[k] (starts, n) where found[k] holds, less each that is within
+    tol on every joint (the short way round on continuous joints) of an earlier row kept: one
+    solution per posture the starts reached, in the order they were found."""
+    keep = found.copy()
+    for i in range(1, q.shape[1]):  # row i against the rows kept before it, every waypoint at once
+        near = np.max(np.abs(_step(q[:, :i], q[:, i:i + 1], cont)), axis=2) <= tol
+        keep[:, i] &= ~np.any(keep[:, :i] & near, axis=1)
+    return [q[k][keep[k]] for k in range(len(q))]
 
 
 def _ik_options(method: str, ik_options: dict) -> dict:
