@@ -33,7 +33,7 @@ def test_circle_and_clover_follow_their_formulas():
         (lambda: rk.paths.line([0, np.nan], [1, 1], 0.1), "p1: contains NaN or inf"),
         (lambda: rk.paths.circle(0), r"n: expected an int in \[1, 10000000\] \(points\), got 0"),
         (lambda: rk.paths.circle(10, radius=-1), "radius: must be a positive finite number"),
-        (lambda: rk.paths.clover(10, center=(0, 0, 0)), r"center: expected \(x, y\)"),
+        (lambda: rk.paths.clover(10, center=(0, 0, 0)), r"center: expected shape \(2,\), got \(3,\)"),
     ],
 )
 def test_bad_input(call, match):

@@ -167,10 +167,16 @@ def test_figure_slices_and_projection(tmp_path, planar_map):
     assert os.listdir(tmp_path) == ["map.png"]  # written atomically: no temporary file left
     fig2 = plot_reachability(planar_map, tmp_path / "planar.png")
     assert len(fig2.axes) == 2  # one panel and its colorbar
-    with pytest.raises(ValueError, match="axis"):
-        plot_reachability(planar_map, axis="x")
-    with pytest.raises(ValueError, match="slices"):
+    with pytest.raises(ValueError, match=r"^axis: expected one of \('z',\), got 'x'$"):
+        plot_reachability(planar_map, axis="x")  # a planar map has its z panel only
+    with pytest.raises(TypeError, match=r"^axis: expected one of \('x', 'y', 'z'\), got int$"):
+        plot_reachability(m3, axis=2)
+    with pytest.raises(ValueError, match="^slices: contains NaN or inf$"):
         plot_reachability(m3, slices=[np.nan])
+    with pytest.raises(ValueError, match=r"^slices: expected a \(K,\) array, 1 <= K <= 12, got shape \(13,\)$"):
+        plot_reachability(m3, slices=np.zeros(13))
+    with pytest.raises(TypeError, match="^slices: expected real numbers"):
+        plot_reachability(m3, slices=["a"])
 
 
 def test_an_arm_with_a_closed_form_is_mapped_by_it():

@@ -123,8 +123,7 @@ def _default_q(chain: Chain, default) -> list:
         return [math.nan] * chain.dof
     if type(default) is float and math.isfinite(default):
         return [default] * chain.dof
-    a = _checks.real_array(default, "default")
-    return _checks.joints(chain, np.full(chain.dof, a) if a.ndim == 0 else a, "default").tolist()
+    return _checks.per_joint(default, "default", chain.dof).tolist()
 
 
 def q_from(self: Chain, mapping: collections.abc.Mapping[str, float],

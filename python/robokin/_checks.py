@@ -8,6 +8,7 @@ from __future__ import annotations
 import collections.abc
 import math
 import numbers
+import os
 
 from typing import Optional
 
@@ -16,12 +17,13 @@ import numpy as np
 from ._core import Chain
 
 
-def number(value, name: str, *, minimum: float = -math.inf, positive: bool = False) -> float:
+def number(value, name: str, *, minimum: float = -math.inf, maximum: float = math.inf,
+           positive: bool = False) -> float:
     """A real scalar (a Python or numpy number, or a 0-d array of one; not a bool) as a float.
 
     Raises:
         TypeError: not a real number.
-        ValueError: not finite, not positive (``positive``) or below ``minimum``.
+        ValueError: not finite, not positive (``positive``), below ``minimum`` or above ``maximum``.
     """
     scalar = isinstance(value, numbers.Real) or (isinstance(value, np.ndarray) and value.ndim == 0
                                                  and value.dtype.kind in "iuf")
@@ -30,17 +32,28 @@ def number(value, name: str, *, minimum: float = -math.inf, positive: bool = Fal
     v = float(value)
     if positive and not (math.isfinite(v) and v > 0):
         raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
-    if not (math.isfinite(v) and v >= minimum):
-        raise ValueError(f"{name}: must be a finite number" + (f" >= {minimum:g}" if minimum > -math.inf else "")
-                         + f", got {value!r}")
+    if not (math.isfinite(v) and minimum <= v <= maximum):
+        bounds = (f" in [{minimum:g}, {maximum:g}]" if maximum < math.inf and minimum > -math.inf
+                  else f" >= {minimum:g}" if minimum > -math.inf else f" <= {maximum:g}" if maximum < math.inf else "")
+        raise ValueError(f"{name}: must be a finite number{bounds}, got {value!r}")
     return v
+
+
+def instance(value, name: str, kind, what: str, *, optional: bool = False):
+    """``value`` as given when it is a ``kind`` (or None, with ``optional``); ``what`` names the
+    kind in the message ("a robokin.Chain").
+
+    Raises:
+        TypeError: anything else.
+    """
+    if isinstance(value, kind) or (optional and value is None):
+        return value
+    raise TypeError(f"{name}: expected {what}{' or None' if optional else ''}, got {type(value).__name__}")
 
 
 def chain(value, name: str = "chain"):
     """A robokin.Chain, as given."""
-    if not isinstance(value, Chain):
-        raise TypeError(f"{name}: expected a robokin.Chain, got {type(value).__name__}")
-    return value
+    return instance(value, name, Chain, "a robokin.Chain")
 
 
 def finite_float(value, name: str) -> float:
@@ -106,6 +119,13 @@ def finite(a: np.ndarray, name: str) -> np.ndarray:
     return a
 
 
+def positive(a: np.ndarray, name: str) -> np.ndarray:
+    """``a`` (a finite float array) when every entry is positive."""
+    if not np.all(a > 0):
+        raise ValueError(f"{name}: must be positive, got {float(np.min(a))!r}")
+    return a
+
+
 def shaped(value, name: str, shape: tuple) -> np.ndarray:
     """``value`` as a float array of ``shape`` (its values not checked)."""
     a = real_array(value, name)
@@ -117,6 +137,12 @@ def shaped(value, name: str, shape: tuple) -> np.ndarray:
 def vector(value, name: str, n: int) -> np.ndarray:
     """``(n,)`` finite real numbers."""
     return finite(shaped(value, name, (n,)), name)
+
+
+def per_joint(value, name: str, n: int) -> np.ndarray:
+    """A value for each of ``n`` joints: a real scalar (repeated) or ``(n,)``, finite."""
+    a = real_array(value, name)
+    return vector(np.full(n, a) if a.ndim == 0 else a, name, n)
 
 
 def joints(chain_, value, name: str = "q") -> np.ndarray:
@@ -167,3 +193,31 @@ def choice(value, name: str, options):
     if value not in options:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {value!r}")
     return value
+
+
+def pixels(value, name: str, lo: int, hi: int) -> tuple:
+    """A picture's (width, height): two ints, each in ``[lo, hi]``.
+
+    Raises:
+        TypeError: a side is not an int.
+        ValueError: not a pair, or a side out of range.
+    """
+    if not is_sequence(value) or len(value) != 2:
+        raise ValueError(f"{name}: expected (width, height), got {value!r}")
+    return tuple(whole(v, name, lo, hi, "pixels") for v in value)
+
+
+def file_name(value, name: str, suffixes: tuple) -> str:
+    """The suffix (lower case, one of ``suffixes``: ".gif", ...) of a file name (a str or
+    os.PathLike).
+
+    Raises:
+        TypeError: not a file name.
+        ValueError: another suffix.
+    """
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"{name}: expected a file name (str or os.PathLike), got {type(value).__name__}")
+    kind = os.path.splitext(os.fspath(value))[1].lower()
+    if kind not in suffixes:
+        raise ValueError(f"{name}: must end in {' or '.join(suffixes)}, got {os.fspath(value)!r}")
+    return kind

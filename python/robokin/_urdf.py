@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import warnings
 
-from . import _core
+from . import _checks, _core
 from ._core import Chain, UrdfTree
 from ._signature import written
 from .errors import URDFWarning
@@ -42,9 +42,7 @@ def _document(path_or_string: str | bytes | os.PathLike) -> bytes:
 
 def _link(name, argument: str) -> str | None:
     """A link's name, or None."""
-    if name is not None and not isinstance(name, str):
-        raise TypeError(f"{argument}: expected a link name (str) or None, got {type(name).__name__}")
-    return name
+    return _checks.instance(name, argument, str, "a link name (str)", optional=True)
 
 
 def _warned(answer: tuple):

@@ -20,7 +20,6 @@ therefore returned only when the stretched arm really is that close).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Optional
 
@@ -29,6 +28,7 @@ import numpy as np
 from . import _core
 from . import robots as _robots
 from ._checks import chain as check_chain
+from ._checks import finite_float
 from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
 from ._options import with_options
 from ._ur_dh import ur_dh_rows
@@ -217,12 +217,7 @@ def _ur_chain(robot) -> Chain:
         raise TypeError(expected)
     if set(robot) != set(_UR_KEYS):
         raise ValueError(expected)
-    try:
-        key = tuple(float(robot[k]) for k in _UR_KEYS)
-    except (TypeError, ValueError):
-        raise TypeError(f"robot: the lengths must be real numbers, got {robot!r}") from None
-    if not all(math.isfinite(v) for v in key):
-        raise ValueError("robot: the lengths must be finite")
+    key = tuple(finite_float(robot[k], f"robot[{k!r}]") for k in _UR_KEYS)
     return Chain.from_dh(ur_dh_rows(*key))
 
 

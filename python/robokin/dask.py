@@ -185,10 +185,8 @@ def _rows(a, name: str, chunks):
         a = real_array(a, name)
         if a.ndim < 1:
             raise ValueError(f"{name}: expected a batch (N, ...), got a scalar")
-        if not (chunks == "auto" or (isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool))):
-            raise TypeError(f"chunks: expected 'auto' or a positive int (rows per chunk), got {chunks!r}")
-        if chunks != "auto" and chunks < 1:
-            raise ValueError(f"chunks: expected 'auto' or a positive int (rows per chunk), got {chunks!r}")
+        if not (isinstance(chunks, str) and chunks == "auto"):
+            chunks = whole(chunks, "chunks", 1, 2**63 - 1, "rows per chunk, or 'auto'")
         a = da.from_array(a, chunks=(chunks,) + (-1,) * (a.ndim - 1))
     elif a.dtype.kind not in "biuf":
         raise TypeError(f"{name}: expected real numbers, got a {a.dtype} dask array")

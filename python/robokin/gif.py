@@ -212,20 +212,11 @@ def _table_code(table: bytes) -> int:
 
 
 def _frame_size(size) -> tuple:
-    try:
-        pair = np.shape(size) == (2,)
-    except ValueError:  # a ragged sequence
-        pair = False
-    if not pair:
-        raise ValueError(f"size: expected (width, height), got {size!r}")
-    return tuple(_checks.whole(v, "size", 1, _MAX_SIDE, "pixels") for v in size)
+    return _checks.pixels(size, "size", 1, _MAX_SIDE)
 
 
 def _seconds(seconds) -> float:
-    value = _checks.number(seconds, "seconds", positive=True)
-    if value > _LONGEST:
-        raise ValueError(f"seconds: at most {_LONGEST:g} (GIF's longest delay), got {seconds!r}")
-    return value
+    return _checks.number(seconds, "seconds", positive=True, maximum=_LONGEST)  # GIF's longest delay
 
 
 def _colours(palette) -> np.ndarray:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._checks import finite, number, real_array, whole
+from ._checks import finite, number, real_array, vector, whole
 
 __all__ = ["MAX_POINTS", "line", "circle", "clover"]
 
@@ -53,10 +53,7 @@ def line(p1, p2, step: float) -> np.ndarray:
 
 
 def _center(center) -> np.ndarray:
-    c = _point(center, "center")
-    if c.shape[0] != 2:
-        raise ValueError(f"center: expected (x, y), got shape {c.shape}")
-    return c
+    return vector(center, "center", 2)
 
 
 def circle(n: int, radius: float = 0.1, center=(0.0, 0.0)) -> np.ndarray:

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import robots
 from ._checks import chain as check_chain
-from ._checks import real_array, rows, whole
+from ._checks import instance, real_array, rows, whole
 from ._core import Chain, TrackResult, joint_limit_cost
 from ._figures import new_figure
 
@@ -41,8 +41,7 @@ def _line_figure_arguments(points, tracks):
     if not isinstance(tracks, dict) or not tracks:
         raise TypeError("tracks: expected a non-empty dict label -> TrackResult")
     for label, tr in tracks.items():
-        if not isinstance(tr, TrackResult):
-            raise TypeError(f"tracks: {label!r} is a {type(tr).__name__}, not a TrackResult")
+        instance(tr, f"tracks[{label!r}]", TrackResult, "a TrackResult")
         if tr.q.shape != (len(p), 3):
             raise ValueError(f"tracks: {label!r} has joints of shape {tr.q.shape}, expected ({len(p)}, 3) for the points")
     return p, tracks
@@ -68,8 +67,7 @@ def rpr_line_figure(points: np.ndarray, tracks: Dict[str, TrackResult], surface_
     """
     points, tracks = _line_figure_arguments(points, tracks)
     surface_samples, snapshots = _count(surface_samples, "surface_samples"), _count(snapshots, "snapshots")
-    if title is not None and not isinstance(title, str):
-        raise TypeError(f"title: expected a string or None, got {type(title).__name__}")
+    instance(title, "title", str, "a string", optional=True)
     chain = robots.rpr()
     lower, upper = chain.limits
     colors = ["tab:green", "tab:blue", "tab:red", "tab:purple"]

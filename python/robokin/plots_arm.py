@@ -15,7 +15,7 @@ import os
 import numpy as np
 
 from ._checks import chain as check_chain
-from ._checks import flag, joints, rows
+from ._checks import file_name, flag, joints, number, pixels, rows
 from ._core import Chain
 from ._figures import new_figure
 from .plots import joint_axes
@@ -161,24 +161,12 @@ def _animate_arguments(chain, qs, path, fps, size):
     """The checked arguments of :func:`animate`: qs, the file's kind, fps, (width, height)."""
     check_chain(chain)
     qs = rows(qs, "qs", (chain.dof,), most=MAX_FRAMES)
-    if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"path: expected a file name, got {type(path).__name__}")
-    kind = os.path.splitext(os.fspath(path))[1].lower()
-    if kind not in (".gif", ".mp4"):
-        raise ValueError(f"path: must end in .gif or .mp4, got {os.fspath(path)!r}")
-    if isinstance(fps, bool) or not isinstance(fps, (int, float)):
-        raise TypeError(f"fps: expected a number in [0.1, 100], got {fps!r}")
-    if not 0.1 <= fps <= 100:
-        raise ValueError(f"fps: expected a number in [0.1, 100], got {fps!r}")
-    try:
-        width, height = (int(v) for v in size)
-    except (TypeError, ValueError):
-        raise ValueError(f"size: expected (width, height) in pixels, got {size!r}") from None
-    if not (64 <= width <= 2048 and 64 <= height <= 2048):
-        raise ValueError(f"size: each side must be 64 to 2048 pixels, got {size!r}")
+    kind = file_name(path, "path", (".gif", ".mp4"))
+    fps = number(fps, "fps", minimum=0.1, maximum=100)
+    width, height = pixels(size, "size", 64, 2048)
     if kind == ".mp4":
         width, height = width - width % 2, height - height % 2
-    return qs, kind, float(fps), (width, height)
+    return qs, kind, fps, (width, height)
 
 
 def animate(chain: Chain, qs, path, fps: float = 30.0, size=(480, 480)) -> str:

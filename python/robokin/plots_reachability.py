@@ -7,6 +7,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
+from ._checks import choice, instance, real_array, rows
 from ._figures import new_figure
 from .files import AtomicPath
 from .reachability import ReachabilityMap
@@ -27,10 +28,8 @@ def plot_reachability(rmap: ReachabilityMap, path=None, axis: str = "z", slices:
     Returns:
         The matplotlib Figure.
     """
-    if not isinstance(rmap, ReachabilityMap):
-        raise TypeError(f"rmap: expected a ReachabilityMap, got {type(rmap).__name__}")
-    if not isinstance(axis, str) or axis not in _AXES or (rmap.index.ndim == 2 and axis != "z"):
-        raise ValueError(f"axis: expected one of {tuple(_AXES)} (a planar map: 'z'), got {axis!r}")
+    instance(rmap, "rmap", ReachabilityMap, "a ReachabilityMap")
+    choice(axis, "axis", ("z",) if rmap.index.ndim == 2 else tuple(_AXES))
     if rmap.index.ndim == 2:
         panels = [("", rmap.index, (0, 1))]
     else:
@@ -64,10 +63,5 @@ def _slices(coords: np.ndarray, slices) -> list:
     if slices is None:
         n = len(coords)
         return sorted({int(round(f * (n - 1))) for f in (0.25, 0.5, 0.75)})
-    try:
-        values = np.atleast_1d(np.asarray(slices, dtype=float))
-    except (TypeError, ValueError):
-        raise ValueError("slices: expected coordinates (m)") from None
-    if values.ndim != 1 or values.size == 0 or values.size > 12 or not np.all(np.isfinite(values)):
-        raise ValueError("slices: expected 1 to 12 finite coordinates (m)")
+    values = rows(np.atleast_1d(real_array(slices, "slices")), "slices", most=12)
     return [int(np.argmin(np.abs(coords - v))) for v in values]

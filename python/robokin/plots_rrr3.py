@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _core, rrr3_design
-from ._checks import rows
+from ._checks import instance, rows
 from ._figures import new_figure
 from ._options import with_options
 
@@ -113,10 +113,8 @@ def plot_design(curve: "rrr3_design.AreaCurve | None" = None, best: "rrr3_design
     Returns:
         (figure, (axes_area, axes_l2)).
     """
-    if curve is not None and not isinstance(curve, rrr3_design.AreaCurve):
-        raise TypeError(f"curve: expected an rrr3_design.AreaCurve or None, got {type(curve).__name__}")
-    if best is not None and not isinstance(best, rrr3_design.BestL2):
-        raise TypeError(f"best: expected an rrr3_design.BestL2 or None, got {type(best).__name__}")
+    instance(curve, "curve", rrr3_design.AreaCurve, "an rrr3_design.AreaCurve", optional=True)
+    instance(best, "best", rrr3_design.BestL2, "an rrr3_design.BestL2", optional=True)
     curve = curve or rrr3_design.area_vs_platform_radius()
     # 627 robots: a coarser grid than one map's keeps the figure quick.
     best = best or rrr3_design.best_l2(np.linspace(0.05, 0.15, 11), np.linspace(0.02, 0.30, 57), n=100)

@@ -24,7 +24,7 @@ import numpy as np
 
 from . import _core, closed
 from ._checks import chain as check_chain
-from ._checks import joints, number, real_array, rows, vector, whole
+from ._checks import joints, number, per_joint, positive, rows, vector, whole
 from ._checks import seed as check_seed
 from ._core import Chain
 from ._options import with_options
@@ -85,12 +85,12 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
         q0: Optional (n,) joints before the path.
         chain: Optional chain (for its continuous joints).
     """
-    q = rows(q, "q", (None,))
+    if chain is not None:
+        check_chain(chain)
+    q = rows(q, "q", (None if chain is None else chain.dof,))
     n = q.shape[1]
     lim = _speed(qdot_max, n) * number(dt, "dt", positive=True)
     cont = _continuous(chain) if chain is not None else np.zeros(n, bool)
-    if chain is not None and chain.dof != n:
-        raise ValueError(f"q: expected {chain.dof} columns for the chain, got {n}")
     path = q
     if q0 is not None:
         path = np.vstack([vector(q0, "q0", n), q])
@@ -100,12 +100,7 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
 
 
 def _speed(qdot_max, n) -> np.ndarray:
-    v = real_array(qdot_max, "qdot_max")
-    if v.ndim == 0:
-        v = np.full(n, float(v))
-    if v.shape != (n,) or not np.all(v > 0) or not np.all(np.isfinite(v)):
-        raise ValueError(f"qdot_max: expected a positive finite scalar or ({n},) array, got {qdot_max!r}")
-    return v
+    return positive(per_joint(qdot_max, "qdot_max", n), "qdot_max")
 
 
 def _closed_sets(chain: Chain, poses):

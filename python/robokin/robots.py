@@ -10,13 +10,11 @@ kinematic parameters and joint ranges, each named in its docstring; the tool fra
 from __future__ import annotations
 
 import math
-import numbers
-import operator
 
 import numpy as np
 
 from ._core import Chain
-from ._checks import number
+from ._checks import number, whole
 from ._ur_dh import ur_dh_rows
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
@@ -406,9 +404,5 @@ def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
     lower, upper = RPR_LIMITS
     if t1 is None:
         # num names itself in the error (numpy's messages do not), and cannot ask for absurd sizes.
-        if isinstance(num, bool) or not isinstance(num, numbers.Integral):
-            raise TypeError(f"num: expected an int, got {type(num).__name__}")
-        if not 0 <= num <= _MAX_SAMPLES:
-            raise ValueError(f"num: expected an int in [0, {_MAX_SAMPLES}], got {num}")
-        t1 = np.linspace(lower[0], upper[0], operator.index(num))
+        t1 = np.linspace(lower[0], upper[0], whole(num, "num", 0, _MAX_SAMPLES, "samples"))
     return _core.rpr_self_motion(point, t1, RPR_L1, RPR_L3, lower, upper)

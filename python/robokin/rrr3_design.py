@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core
-from ._checks import number, rows
+from ._checks import number, positive, rows
 from ._options import with_options
 
 __all__ = ["AreaCurve", "BestL2", "STUDY_BASE_RADIUS", "STUDY_LINK", "STUDY_PLATFORM_RADIUS", "area_vs_platform_radius",
@@ -47,10 +47,7 @@ class BestL2:
 
 
 def _values(values, name: str) -> np.ndarray:
-    v = rows(values, name)
-    if np.any(v <= 0):
-        raise ValueError(f"{name}: lengths must be positive")
-    return v
+    return positive(rows(values, name), name)
 
 
 # The geometry of the seed's design study (the 3-RRR project, section 3), not the simulator's

@@ -22,7 +22,7 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from ._checks import frame_like, real_array
+from ._checks import frame_like, instance, real_array
 
 __all__ = ["Trajectory", "CartesianTrajectory", "quintic", "trapezoidal", "via_points", "cartesian"]
 
@@ -123,8 +123,7 @@ def quintic(q0, q1, t, qd0=None, qd1=None, *, out=None) -> Trajectory:
     """
     if out is None:
         return Trajectory(*_core.traj_quintic(q0, q1, t, qd0, qd1))
-    if not isinstance(out, Trajectory):
-        raise TypeError(f"out: expected a robokin.traj.Trajectory or None, got {type(out).__name__}")
+    instance(out, "out", Trajectory, "a robokin.traj.Trajectory", optional=True)
     return Trajectory(*_core.traj_quintic(q0, q1, t, qd0, qd1, q_out=out.q, qd_out=out.qd, qdd_out=out.qdd))
 
 
