@@ -187,8 +187,12 @@ def test_numerical_sets_keep_one_row_per_posture(rng):
             if rng.random() < 0.3:
                 q[k, i, 0] += 2 * P * rng.choice([-1, 1])  # the same angle a turn away: a copy
     q[0, 1] = q[0, 0] + np.array([0, 2 * P, 0, 0])  # a turn away on a bounded joint: not a copy
+    q[1, 1] = q[1, 0] + 0.8e-6  # a copy of row 0; row 2 is near row 1 only, so it is kept
+    q[1, 2] = q[1, 0] + 1.6e-6
+    q[1, 3:] += 1.0  # nothing else near them
     found = rng.random((K, S)) < 0.8
     found[0, :2] = True
+    found[1, :3] = True
     got = _distinct(q, found, cont)
     planted = 0
     for k in range(K):
@@ -205,3 +209,4 @@ def test_numerical_sets_keep_one_row_per_posture(rng):
         np.testing.assert_array_equal(got[k], np.array(kept).reshape(-1, n))
     assert planted > K  # the rule dropped copies: the test sees both outcomes
     assert len(got[0]) >= 2 and np.array_equal(got[0][1], q[0, 1])
+    assert np.array_equal(got[1][:2], q[1, [0, 2]])
