@@ -83,3 +83,41 @@ def test_a_line_is_tracked_in_closed_form(rng):
 @pytest.mark.slow
 def test_2000_random_poses(rng):
     check_poses(random_q(KR16, rng, 2000, margin=0.02))
+
+
+def lines_meet(p, u, r, v):
+    """The point of line (p, u) nearest line (r, v): where two axes that meet meet."""
+    w, b = p - r, u @ v
+    return p + u * ((b * (v @ w) - (u @ w)) / (1 - b * b))
+
+
+def shoulder_and_wrist(chain, q):
+    """The labels' definitions (closed.solve), from the joint axes at q (rk.plots.joint_axes: read
+    from the Jacobian, whatever the chain was built from): shoulder left / right, the wrist point
+    (axes 4 and 5 meet) on the - / + side of x1 = axis 1 x axis 2 from axis 1; wrist no flip /
+    flip, (a4 x a6) . a5 >= 0 / < 0."""
+    axes = rk.plots.joint_axes(chain, q)
+    (p1, a1), (_, a2), (p4, a4), (p5, a5), (_, a6) = axes[0], axes[1], axes[3], axes[4], axes[5]
+    c = lines_meet(p4, a4, p5, a5)
+    side = (c - p1) @ np.cross(a1, a2)
+    shoulder = "shoulder left" if side < 0 else "shoulder right"
+    return shoulder, "wrist no flip" if np.cross(a4, a6) @ a5 >= 0 else "wrist flip", abs(side)
+
+
+@pytest.mark.parametrize("arm", ["KR16 urdf", "puma560"])
+def test_shoulder_and_wrist_labels_are_their_geometric_definitions(arm):
+    """Both spherical-wrist layouts' shoulder and wrist labels against their definitions, read from
+    the axes (not from the solver's DH angles); near the shoulder's singularity, where the side is
+    a rounding, the pose is skipped."""
+    chain = KR16 if arm == "KR16 urdf" else rk.robots.puma560()
+    rng = np.random.default_rng(8)
+    seen = set()
+    for q in rng.uniform(-3.0, 3.0, (60, 6)):
+        s = rk.closed.solve(chain.fk(q), chain, limits=None)
+        for qk, posture in zip(s.q, s.postures):
+            shoulder, wrist, side = shoulder_and_wrist(chain, qk)
+            if side < 1e-6 or "singular" in posture:
+                continue
+            assert posture.startswith(shoulder + ", ") and posture.endswith(", " + wrist), (posture, qk)
+            seen.add((shoulder, wrist))
+    assert len(seen) == 4

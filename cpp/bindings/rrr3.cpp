@@ -296,7 +296,7 @@ RRR3Workspace workspace_map(const RRR3& r, const py::kwargs& kwargs) {
   return released("RRR3.workspace", [&](Progress* progress) { return workspace(r, o, progress); });
 }
 
-py::array_t<double> study_areas(ArrayLike robots_obj, const py::kwargs& kwargs) {
+py::array_t<double> rrr3_region_areas(ArrayLike robots_obj, const py::kwargs& kwargs) {
   Array g = as_array(robots_obj, "robots");
   if (g.ndim() != 2 || g.shape(1) != 4)
     fail("robots: expected shape (K, 4) rows (base_radius, platform_radius, l1, l2), got " + shape_of(g));
@@ -383,7 +383,7 @@ void bind_design_study(py::module_& m) {
       "rrr3_region_areas(robots, *",
       "RRR3Workspace.area for each row (base_radius, platform_radius, l1, l2) of robots, on the maps of the\n"
       "options. Use robokin.rrr3_design.");
-  m.def("rrr3_region_areas", &study_areas, py::arg("robots"), doc.c_str());
+  m.def("rrr3_region_areas", &rrr3_region_areas, py::arg("robots"), doc.c_str());
 }
 
 // RRR3's workspace and planning (plan, connect, plan_loop).

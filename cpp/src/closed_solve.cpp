@@ -3,6 +3,7 @@
 #include "robokin/parallel.hpp"
 
 #include "closed_batch.hpp"
+#include "posture_label.hpp"
 #include "kernel/fast_math.hpp"
 #include "robokin/subproblems.hpp"
 
@@ -21,22 +22,6 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 using M3 = Eigen::Matrix3d;
-
-// The labels, built once: shoulder (left, right, singular) x elbow (up, down, straight, folded) x
-// wrist (no flip, flip, singular).
-const char* label(int shoulder, int elbow, int wrist) {
-  static const std::vector<std::string> labels = [] {
-    const char* s[] = {"shoulder left", "shoulder right", "shoulder singular"};
-    const char* e[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
-    const char* w[] = {"wrist no flip", "wrist flip", "wrist singular"};
-    std::vector<std::string> all;
-    for (const char* a : s)
-      for (const char* b : e)
-        for (const char* c : w) all.push_back(std::string(a) + ", " + b + ", " + c);
-    return all;
-  }();
-  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
-}
 
 // The candidates of one solve, checked together at the end: each joint's turn, its angle taken
 // with every other's in one pass of arc tangents (angles()).
@@ -457,7 +442,7 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
     }
     if (!reaches) continue;
     if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
-    out.add(q + k * n, label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
+    out.add(q + k * n, posture_label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include "robokin/parallel.hpp"
 
 #include "closed_batch.hpp"
+#include "posture_label.hpp"
 
 #include "kernel/fast_math.hpp"
 
@@ -37,22 +38,6 @@ void add_if_reaches(ClosedFormSolutions& out, double* q, const JointLimits& lim,
 bool planar_tip_near(double a1, double a2, double t1, double t2, double x, double y, double tol) {
   return std::hypot(a1 * std::cos(t1) + a2 * std::cos(t1 + t2) - x, a1 * std::sin(t1) + a2 * std::sin(t1 + t2) - y) <=
          tol;
-}
-
-// Posture labels of the arm (and wrist), built once: shoulder x elbow (x wrist).
-const char* const kShoulder[] = {"shoulder right", "shoulder left", "shoulder singular"};
-const char* const kElbow[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
-const char* const kWrist[] = {"", ", wrist no flip", ", wrist flip", ", wrist singular"};
-
-const char* arm_label(int shoulder, int elbow, int wrist) {
-  static const std::vector<std::string> labels = [] {
-    std::vector<std::string> all;
-    for (const char* s : kShoulder)
-      for (const char* e : kElbow)
-        for (const char* w : kWrist) all.push_back(std::string(s) + ", " + e + w);
-    return all;
-  }();
-  return labels[(shoulder * 4 + elbow) * 4 + wrist].c_str();
 }
 
 // The elbow of a 2R with links a1, a2 whose tip is w from the first joint: c = cos, s = |sin| of
@@ -137,7 +122,7 @@ Eigen::Matrix3d rot_x(double a) {
 
 struct ArmSolution {
   double q[3];
-  int shoulder, elbow;  // indices into kShoulder, kElbow
+  int shoulder, elbow;  // posture_label's indices
 };
 
 // The arm's solutions (q1, q2, q3) putting the wrist centre (origin of frame 4; the tip for the
@@ -187,7 +172,7 @@ int arm_solve(const ArmGeometry& g, const Eigen::Vector3d& p, bool& singular, Ar
       s.q[0] = q1;
       s.q[1] = th1;
       s.q[2] = th2 - psi;
-      s.shoulder = shoulder_singular ? 2 : side;
+      s.shoulder = shoulder_singular ? 2 : 1 - side;  // side 0: R > 0, shoulder right
       if (n[side] == 1) {
         s.elbow = th2 > 1.0 ? 3 : 2;  // folded (theta' = pi) or straight (0)
       } else {
@@ -370,14 +355,14 @@ ClosedFormSolutions ik_anthropomorphic(const ArmGeometry& arm, const Eigen::Vect
   };
   ArmSolution arms[4];
   const int n = arm_solve(arm, p, out.singular, arms);
-  for (int k = 0; k < n; ++k) add_if_reaches(out, arms[k].q, limits, arm_label(arms[k].shoulder, arms[k].elbow, 0), reaches);
+  for (int k = 0; k < n; ++k) add_if_reaches(out, arms[k].q, limits, posture_label(arms[k].shoulder, arms[k].elbow, -1), reaches);
   return out;
 }
 
 namespace {
 
 // The candidates of the spherical-wrist arm for the frame T of its DH model (tool offset d6): up to
-// 8 joint vectors of DH angles, each with arm_label's shoulder and elbow indices, its wrist's flip
+// 8 joint vectors of DH angles, each with posture_label's shoulder and elbow indices, its wrist's flip
 // (0 or 1) and whether the wrist is singular (then q4 = 0 or pi: q4 + q6 alone is fixed).
 struct WristCandidates {
   double q[8][6];
@@ -463,7 +448,7 @@ ClosedFormSolutions ik_spherical_wrist_6r(const ArmGeometry& arm, double d6, con
   for (int k = 0; k < c.n; ++k) {
     const Rigid F = wrist_arm_fk(arm, d6, cs + 6 * k, sn + 6 * k);
     if (closed_reaches(F, T, size))
-      out.add(c.q[k], arm_label(c.shoulder[k], c.elbow[k], 1 + c.flip[k]), within[k]);
+      out.add(c.q[k], posture_label(c.shoulder[k], c.elbow[k], c.flip[k]), within[k]);
   }
   return out;
 }
@@ -490,11 +475,11 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
   chain.fk_few(q[0], m, F);
   for (int j = 0; j < m; ++j) {
     if (!closed_reaches(F[j], T, sa.size)) continue;
-    const int k = keep[j], wrist = c.wrist_singular[k] ? 3 : 1 + c.flip[k];
-    // kURPostures' slot: shoulder left 0 / right 1 (arm_label's 1 / 0; singular in the first),
-    // elbow up 0 / down 1 (straight or folded in the first), wrist no flip 0 / flip 1.
-    if (slot) slot[out.count()] = (c.shoulder[k] == 0) * 4 + (c.elbow[k] == 1) * 2 + (wrist == 2);
-    out.add(q[j], arm_label(c.shoulder[k], c.elbow[k], wrist), within[j]);
+    const int k = keep[j], wrist = c.wrist_singular[k] ? 2 : c.flip[k];
+    // kURPostures' slot: shoulder left 0 / right 1 (singular in the first), elbow up 0 / down 1
+    // (straight or folded in the first), wrist no flip 0 / flip 1 (singular in the first).
+    if (slot) slot[out.count()] = (c.shoulder[k] == 1) * 4 + (c.elbow[k] == 1) * 2 + (wrist == 1);
+    out.add(q[j], posture_label(c.shoulder[k], c.elbow[k], wrist), within[j]);
   }
   return out;
 }
@@ -557,27 +542,11 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
 namespace robokin {
 namespace {
 
-// Labels of the UR postures: shoulder (left, right, singular) x elbow (up, down, straight,
-// folded) x wrist (no flip, flip, singular), built once.
-const char* ur_label(int shoulder, int elbow, int wrist) {
-  static const std::vector<std::string> labels = [] {
-    const char* const sh[] = {"shoulder left", "shoulder right", "shoulder singular"};
-    const char* const el[] = {"elbow up", "elbow down", "elbow straight", "elbow folded"};
-    const char* const wr[] = {"wrist no flip", "wrist flip", "wrist singular"};
-    std::vector<std::string> all;
-    for (const char* s : sh)
-      for (const char* e : el)
-        for (const char* w : wr) all.push_back(std::string(s) + ", " + e + ", " + w);
-    return all;
-  }();
-  return labels[(shoulder * 4 + elbow) * 3 + wrist].c_str();
-}
-
 }  // namespace
 
 const char* const kURPostures[8] = {
-    ur_label(0, 0, 0), ur_label(0, 0, 1), ur_label(0, 1, 0), ur_label(0, 1, 1),
-    ur_label(1, 0, 0), ur_label(1, 0, 1), ur_label(1, 1, 0), ur_label(1, 1, 1),
+    posture_label(0, 0, 0), posture_label(0, 0, 1), posture_label(0, 1, 0), posture_label(0, 1, 1),
+    posture_label(1, 0, 0), posture_label(1, 0, 1), posture_label(1, 1, 0), posture_label(1, 1, 1),
 };
 
 namespace {
@@ -773,7 +742,7 @@ inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URSta
       }
       const double dh[6] = {s.q1[side], q2, q3, s.q234[j] - q2 - q3, q5, q6};
       for (int i = 0; i < 6; ++i) s.cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-      s.posture[m] = ur_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
+      s.posture[m] = posture_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
       s.cand_slot[m++] = (s.shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (s.wrist_singular[side] ? 0 : flip);
     }
   }

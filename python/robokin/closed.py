@@ -195,14 +195,9 @@ def puma560_path(targets, q0, limits="default"):
     return _core.ik_spherical_wrist_6r_path(targets, *_PUMA560_LENGTHS, q0, _limits(limits))
 
 
-def rpr_self_motion(point, t1=None, num: int = 721) -> np.ndarray:
-    """The RPR study's arm's self-motion set at the tool point ``point`` (redundant: infinitely many
-    solutions), sampled at ``t1`` or at ``num`` angles; see :func:`robokin.robots.rpr_self_motion`,
-    which this is: a fixed-shape (2, K, 3) table whose NaN rows, by design, are the samples of t1
-    where a branch has no solution within the limits."""
-    from .robots import rpr_self_motion as _sm
-
-    return _sm(point, t1, num)
+# The RPR study's arm's self-motion set (redundant: a fixed-shape table of the solutions along t1),
+# one function under both names: robokin.robots' arm and the closed forms.
+rpr_self_motion = _robots.rpr_self_motion
 
 
 _UR_KEYS = ("d1", "a2", "a3", "d4", "d5", "d6")
