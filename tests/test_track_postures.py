@@ -51,6 +51,30 @@ def test_count_reconfigurations_takes_continuous_joints_the_short_way():
     assert list(rk.count_reconfigurations(q, 0.1, 1.0)) == [1, 2]  # without a chain no joint is continuous
 
 
+def test_count_reconfigurations_is_the_rule_step_by_step(rng):
+    """Against the rule written out with numpy: a step k - 1 -> k (q0 -> 0) is a reconfiguration
+    when some joint moves more than qdot_max * dt (1 + 1e-9), the short way round on the chain's
+    continuous joint (the PUMA 560's joint 6, the one whose limits span a turn). Steps are drawn
+    near the limit (just under and just over) and across the +-pi seam."""
+    chain = rk.robots.puma560()
+    cont = np.array([False] * 5 + [True])
+    assert np.array_equal(cont, np.diff(np.array(chain.limits), axis=0)[0] >= 2 * P)
+    vmax, dt = rng.uniform(0.5, 2.0, 6), 0.1
+    for _ in range(20):
+        steps = vmax * dt * rng.choice([0.5, 1.0 - 1e-12, 1.0 + 1e-6, 1.5], (30, 6), p=[0.7, 0.2, 0.05, 0.05]) * rng.choice([-1, 1], (30, 6))
+        steps += 2 * P * rng.integers(-1, 2, (30, 6)) * cont  # a whole turn on a continuous joint is no move
+        q0 = rng.uniform(-P, P, 6)
+        q = q0 + np.cumsum(steps, axis=0)
+        for start in (q0, None):
+            path = q if start is None else np.vstack([start, q])
+            d = np.diff(path, axis=0)
+            d = np.where(cont, np.remainder(d + P, 2 * P) - P, d)
+            want = np.nonzero(np.any(np.abs(d) > vmax * dt * (1 + 1e-9), axis=1))[0] + (start is None)
+            got = rk.count_reconfigurations(q, dt, vmax, q0=start, chain=chain)
+            assert got.dtype == np.int64 and np.array_equal(got, want)
+            assert 0 < len(got) < len(q)
+
+
 @pytest.mark.parametrize("robot", ["ur5", "puma560"])
 def test_dynamic_programme_matches_exhaustive_search(robot, rng):
     chain = getattr(rk.robots, robot)()
@@ -172,11 +196,9 @@ def test_demo_writes_both_figures_atomically(tmp_path, capsys):
 
 
 def test_numerical_sets_keep_one_row_per_posture(rng):
-    """The numerical method's de-duplication (every waypoint at once) against the plain rule, one
+    """The numerical method's de-duplication (the core's distinct_rows) against the plain rule, one
     row at a time: keep a found row unless an earlier kept row is within 1e-6 on every joint, the
     short way round on continuous joints. Near copies are planted, some across the +-pi seam."""
-    from robokin.postures import _distinct
-
     K, S, n = 40, 12, 4
     cont = np.array([True, False, True, False])
     q = rng.uniform(-P, P, (K, S, n))
@@ -193,7 +215,7 @@ def test_numerical_sets_keep_one_row_per_posture(rng):
     found = rng.random((K, S)) < 0.8
     found[0, :2] = True
     found[1, :3] = True
-    got = _distinct(q, found, cont)
+    got = rk._core.distinct_solutions(q, found, cont)
     planted = 0
     for k in range(K):
         kept = []

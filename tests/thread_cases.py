@@ -257,7 +257,6 @@ def _closed_cases():
         lambda: rk.closed.spherical_wrist_6r(puma.fk(_q(puma, 5)), g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"]),
         lambda: rk.closed.spherical_wrist_6r(puma.fk(_q(puma, 6)), g["a2"], g["a3"], g["d3"], g["d4"], g["d1"], g["d6"],
                                              limits=puma)]
-    c["closed.rpr_self_motion"] = [lambda: rk.closed.rpr_self_motion((0.5, 0.6), num=31)]
     sols = [rk.closed.ur(M["ur5"].fk(_q(M["ur5"], 1)), M["ur5"]), rk.closed.puma560(puma.fk(_q(puma, 2))),
             rk.closed.planar_3r((1.1, 0.6, 0.3), 1.0, 0.8, 0.5, limits=M["planar_3r"])]
     for attr in ("dof", "postures", "q", "singular", "within_limits"):

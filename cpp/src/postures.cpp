@@ -123,6 +123,28 @@ void joint_path(const std::vector<PostureLayer>& layers, long n, const std::vect
 
 }  // namespace
 
+std::vector<std::int64_t> count_reconfigurations(const double* q, long count, long n, const double* qdot_max, double dt,
+                                                 const std::vector<bool>& continuous, const double* q0) {
+  std::vector<std::int64_t> marked;
+  for (long k = 0; k < count; ++k) {
+    const double* previous = k ? q + (k - 1) * n : q0;
+    if (previous && step_cost(previous, q + k * n, n, qdot_max, dt, 1, continuous).jump) marked.push_back(k);
+  }
+  return marked;
+}
+
+void distinct_rows(const double* q, long count, long n, const std::vector<bool>& continuous, bool* keep) {
+  constexpr double kSame = 1e-6;
+  for (long r = 0; r < count; ++r) {
+    for (long s = 0; keep[r] && s < r; ++s) {
+      if (!keep[s]) continue;
+      bool same = true;
+      for (long i = 0; same && i < n; ++i) same = std::abs(posture_step(q[s * n + i], q[r * n + i], continuous[i])) <= kSame;
+      keep[r] = !same;
+    }
+  }
+}
+
 double posture_step(double a, double b, bool continuous) {
   const double d = b - a;
   if (!continuous) return d;

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'PosturePlan', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'cuspidal', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'PosturePlan', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'count_reconfigurations', 'cuspidal', 'distinct_solutions', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1788,8 +1788,18 @@ def closed_family(chain: Chain, locked: dict[int, float] | None = None, **kwargs
     Options (keyword-only, ClosedFamilyOptions):
         tol (float, default 1e-06): Two axes meet when they pass within tol x the arm's size (the sum of the chain's fixed translations at the zero configuration), are parallel when their directions differ by less than tol rad; in (0, 0.1].
     """
+def count_reconfigurations(q: numpy.typing.ArrayLike, qdot_max: numpy.typing.ArrayLike, dt: typing.SupportsFloat | typing.SupportsIndex, continuous: numpy.typing.ArrayLike, q0: typing.Any = None) -> numpy.typing.NDArray[numpy.int64]:
+    """
+    The waypoints of the (K, n) joint path q entered by a reconfiguration, track_postures' rule
+    (int64, in order). Use robokin.count_reconfigurations.
+    """
 def cuspidal(chain: Chain, **kwargs) -> Cuspidality:
     ...
+def distinct_solutions(q: numpy.typing.ArrayLike, found: numpy.typing.ArrayLike, continuous: numpy.typing.ArrayLike) -> list:
+    """
+    Each waypoint's solutions q (K, S, n) found (K, S) less their copies (within 1e-6 on every
+    joint of a row kept before): K (m, n) arrays. Use robokin.track_postures(method='numerical').
+    """
 def ik(chain: Chain, target: numpy.typing.ArrayLike, q0: numpy.typing.ArrayLike, seed: int | None = None, **kwargs) -> IKResult:
     """
     Numerical IK; options as keywords (IKOptions). Use robokin.ik.

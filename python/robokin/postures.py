@@ -67,12 +67,6 @@ def _continuous(chain: Chain) -> np.ndarray:
     return np.array([k == "R" and (hi[i] - lo[i]) >= 2 * math.pi for i, k in enumerate(kinds)])
 
 
-def _step(a, b, cont):
-    """Joint change from a to b (broadcast), the short way round on continuous joints."""
-    d = b - a
-    return np.where(cont, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d)
-
-
 def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chain] = None) -> np.ndarray:
     """Indices ``k`` where the joint path ``q`` (K, n) steps more than ``qdot_max * dt`` on some joint
     from ``k - 1`` (from ``q0`` for ``k = 0`` when given). With ``chain``, joints whose limits span a
@@ -89,14 +83,10 @@ def count_reconfigurations(q, dt: float, qdot_max, q0=None, chain: Optional[Chai
         check_chain(chain)
     q = rows(q, "q", (None if chain is None else chain.dof,))
     n = q.shape[1]
-    lim = _speed(qdot_max, n) * number(dt, "dt", positive=True)
+    speed, step = _speed(qdot_max, n), number(dt, "dt", positive=True)
     cont = _continuous(chain) if chain is not None else np.zeros(n, bool)
-    path = q
-    if q0 is not None:
-        path = np.vstack([vector(q0, "q0", n), q])
-    jumps = np.any(np.abs(_step(path[:-1], path[1:], cont)) > lim * (1 + 1e-9), axis=1)
-    idx = np.nonzero(jumps)[0]
-    return idx if q0 is not None else idx + 1
+    start = None if q0 is None else vector(q0, "q0", n)
+    return _core.count_reconfigurations(q, speed, step, cont, start)
 
 
 def _speed(qdot_max, n) -> np.ndarray:
@@ -130,18 +120,8 @@ def _numerical_sets(chain: Chain, poses, starts: int, seed: int, cont, ik_option
     K = len(poses)
     q0 = rng.uniform(lo_s, hi_s, (K * starts, n))
     res = ik_batch(chain, np.repeat(poses, starts, axis=0), q0, seed=seed, **ik_options)
-    return _distinct(res.q.reshape(K, starts, n), res.success.reshape(K, starts), cont)
-
-
-def _distinct(q, found, cont, tol: float = 1e-6):
-    """Per waypoint k, the rows of q[k] (starts, n) where found[k] holds, less each that is within
-    tol on every joint (the short way round on continuous joints) of an earlier row kept: one
-    solution per posture the starts reached, in the order they were found."""
-    keep = found.copy()
-    for i in range(1, q.shape[1]):  # row i against the rows kept before it, every waypoint at once
-        near = np.max(np.abs(_step(q[:, :i], q[:, i:i + 1], cont)), axis=2) <= tol
-        keep[:, i] &= ~np.any(keep[:, :i] & near, axis=1)
-    return [q[k][keep[k]] for k in range(len(q))]
+    # One row per posture each waypoint's starts reached (copies within 1e-6 dropped).
+    return _core.distinct_solutions(res.q.reshape(K, starts, n), res.success.reshape(K, starts), cont)
 
 
 def _ik_options(method: str, ik_options: dict) -> dict:

@@ -21,6 +21,19 @@ struct PostureLayer {
 // (numpy's remainder(b - a + pi, 2 pi) - pi: the sign of the divisor).
 double posture_step(double a, double b, bool continuous);
 
+// The waypoints k of the joint path q (count rows of n joints, row-major) entered by a
+// reconfiguration: some joint i changes from row k - 1 (from q0 for k = 0, when q0 is not null) by
+// more than qdot_max[i] * dt (1 + 1e-9), posture_step's change; in order. track_postures counts
+// its steps by the same rule.
+std::vector<std::int64_t> count_reconfigurations(const double* q, long count, long n, const double* qdot_max, double dt,
+                                                 const std::vector<bool>& continuous, const double* q0);
+
+// One waypoint's solutions (count rows of n joints) less their copies: keep (count flags) holds on
+// entry the rows found, on return those kept: a row found is dropped when every joint of it is
+// within 1e-6 (posture_step's change) of a row kept before it. One solution per posture the IK's
+// starts reached, in the order they were found.
+void distinct_rows(const double* q, long count, long n, const std::vector<bool>& continuous, bool* keep);
+
 // The plan: the row chosen at each waypoint, the waypoints its rows enter by a reconfiguration,
 // its motion, and the joint path.
 struct PosturePlan {
