@@ -84,7 +84,7 @@ def test_ur_any_geometry_and_limits(g, q, limits):
         assert_ur_solutions_reach(g, s, UR5.fk(q))
     b = check_call(lambda: rk.closed.ur_batch(UR5.fk(q)[None], UR5, limits=limits), "limits", "targets")
     if b is not None:
-        assert b[0].shape == (1, 8, 6)
+        assert b.q.shape == (1, 8, 6)
 
 
 @settings(max_examples=100)

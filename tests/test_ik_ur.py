@@ -8,6 +8,7 @@ kinematics and dynamics of UR robots", universal-robots.com support article).
 """
 
 import math
+import pickle
 import re
 
 import numpy as np
@@ -389,3 +390,23 @@ def test_not_the_ur_layout_says_what_differs(rows, why):
         chain = rk.Chain.from_dh([r if r is not None else table[i] for i, r in enumerate(rows)] + table[len(rows):])
     with pytest.raises(ValueError, match=re.escape(f"robot: not an arm of the UR layout ({why}")):
         rk._core.ik_ur(np.eye(4), chain, None)
+
+
+def test_batch_and_path_results_are_named_and_read_as_their_tuples():
+    """ur_batch's ClosedBatch and puma560_path's ClosedPath: fields by name, the same arrays when
+    unpacked or indexed (the tuples they replaced), pickled whole."""
+    ur5 = rk.robots.ur5()
+    T = ur5.fk(np.array([[0.3, -1.0, 1.2, 0.4, 0.5, 0.6]] * 4))
+    b = rk.closed.ur_batch(T, ur5)
+    q, singular, within = b
+    assert q is b.q and singular is b.singular and within is b.within_limits and len(b) == 3
+    assert b[0] is b.q and b[-1] is b.within_limits
+    assert b.q.shape == (4, 8, 6) and b.singular.shape == (4,) and b.within_limits.shape == (4, 8)
+    again = pickle.loads(pickle.dumps(b))
+    assert np.array_equal(again.q, b.q, equal_nan=True) and np.array_equal(again.within_limits, b.within_limits)
+    puma = rk.robots.puma560()
+    p = rk.closed.puma560_path(puma.fk(np.linspace(0.1, 0.3, 5)[:, None] * np.ones(6)), np.zeros(6))
+    q, ok, reachable = p
+    assert (q, ok, reachable) == (p.q, p.ok, p.reachable) and p[1] is p.ok and p.ok.all() and p.reachable.all()
+    assert np.abs(puma.fk(p.q) - puma.fk(np.linspace(0.1, 0.3, 5)[:, None] * np.ones(6))).max() < 1e-9
+    assert type(pickle.loads(pickle.dumps(p))) is rk.closed.ClosedPath

@@ -71,7 +71,18 @@ ClosedFormSolutions spherical_wrist_6r(ArrayLike target, double a2, double a3, d
   return ik_spherical_wrist_6r(arm_arg(d1, a2, a3, d3, d4), d6, T, limits_arg(limits, 6));
 }
 
-py::tuple spherical_wrist_6r_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
+// The answers of the batch closed forms, arrays as they were written; each unpacks as a tuple of
+// them, in order.
+struct ClosedBatch {
+  py::array q, singular, within_limits;
+  py::tuple values() const { return py::make_tuple(q, singular, within_limits); }
+};
+struct ClosedPath {
+  py::array q, ok, reachable;
+  py::tuple values() const { return py::make_tuple(q, ok, reachable); }
+};
+
+ClosedPath spherical_wrist_6r_path(ArrayLike targets_obj, double a2, double a3, double d3, double d4, double d1,
                                   double d6, ArrayLike q0_obj, LimitsLike limits) {
   const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
   const long count = static_cast<long>(targets.size());
@@ -86,7 +97,7 @@ py::tuple spherical_wrist_6r_path(ArrayLike targets_obj, double a2, double a3, d
   released("spherical wrist path", [&](Progress* progress) {
     ik_spherical_wrist_6r_path(g, d6, targets.data(), count, q0.data(), lim, qd, okd, reachd, progress);
   });
-  return py::make_tuple(q, ok, reachable);
+  return ClosedPath{q, ok, reachable};
 }
 
 // The UR family (robokin.closed.ur); limits: "default" (the chain's), None, or a pair.
@@ -136,6 +147,34 @@ ClosedFormSolutions solutions_from_state(const py::tuple& t) {
   for (size_t k = 0; k < postures.size(); ++k)
     s.add(q.data() + k * s.dof, labels.insert(postures[k].cast<std::string>()).first->c_str(), within[k].cast<bool>());
   return s;
+}
+
+// ClosedBatch and ClosedPath: results that read as the tuples they were (unpacked, indexed, len 3).
+template <class T>
+void unpacks(py::class_<T>& cls) {
+  cls.def("__iter__", [](const T& r) { return py::iter(r.values()); })
+      .def("__getitem__", [](const T& r, py::object i) -> py::object { return r.values()[i]; })
+      .def("__len__", [](const T& r) { return r.values().size(); });
+}
+
+void bind_batches(py::module_& m) {
+  ResultClass<ClosedBatch>(m, "ClosedBatch",
+                           "Answer of robokin.closed.ur_batch and ClosedSolver.solve_batch; unpacks as (q, singular,\n"
+                           "within_limits).",
+                           false)
+      .value("q", &ClosedBatch::q,
+             "(N, 8, dof) solution k of pose i in q[i, k], the slot of posture UR_POSTURES[k]; a NaN row where the\n"
+             "slot holds none.")
+      .value("singular", &ClosedBatch::singular, "(N,) booleans: pose i is at a singularity.")
+      .value("within_limits", &ClosedBatch::within_limits,
+             "(N, 8) booleans: the slot holds a solution within the limits.")
+      .done_with(unpacks<ClosedBatch>);
+  ResultClass<ClosedPath>(m, "ClosedPath", "Answer of robokin.closed.puma560_path; unpacks as (q, ok, reachable).",
+                          false)
+      .value("q", &ClosedPath::q, "(K, 6) the joints at each frame (the previous ones where ok is False).")
+      .value("ok", &ClosedPath::ok, "(K,) booleans: the frame has a solution within the limits.")
+      .value("reachable", &ClosedPath::reachable, "(K,) booleans: the frame has a solution, within the limits or not.")
+      .done_with(unpacks<ClosedPath>);
 }
 
 // robokin.closed's IKSolutions.
@@ -219,8 +258,8 @@ struct BoundSolver {
   ClosedFormSolutions solve(ArrayLike target) const {
     return solver.solve(Rigid::from_matrix(as_transform(target, "target")));
   }
-  // (q (N, 8, dof), singular (N,), within_limits (N, 8)); dof is 7 with a held joint, else 6.
-  py::tuple solve_batch(ArrayLike targets_obj) const {
+  // q (N, 8, dof), singular (N,), within_limits (N, 8); dof is 7 with a held joint, else 6.
+  ClosedBatch solve_batch(ArrayLike targets_obj) const {
     const std::vector<Rigid> targets = rigid_frames(targets_obj, "targets");
     const long count = static_cast<long>(targets.size());
     py::array_t<double> q = new_array({count, 8, chain().dof()});
@@ -229,7 +268,7 @@ struct BoundSolver {
     bool* wd = within.mutable_data();
     bool* sd = singular.mutable_data();
     released("closed form", [&](Progress* progress) { solver.solve_batch(targets.data(), count, qd, wd, sd, progress); });
-    return py::make_tuple(q, singular, within);
+    return ClosedBatch{q, singular, within};
   }
 };
 
@@ -295,9 +334,9 @@ void bind_solver_class(py::module_& m) {
       .def("solve", &BoundSolver::solve, py::arg("target"),
            "Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.solve.")
       .def("solve_batch", &BoundSolver::solve_batch, py::arg("targets"),
-           "solve for targets, (N, 4, 4) frames, on every core, the GIL released -> (q (N, 8, dof), singular (N,),\n"
-           "within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES); dof is 7 with a\n"
-           "held joint (its value in its place), else 6.")
+           "solve for targets, (N, 4, 4) frames, on every core, the GIL released -> ClosedBatch (q (N, 8, dof),\n"
+           "singular (N,), within_limits (N, 8); it unpacks as that tuple), slots as robokin.closed.ur_batch's\n"
+           "(UR_POSTURES); dof is 7 with a held joint (its value in its place), else 6.")
       .def_property_readonly("chain", [](const BoundSolver& s) { return s.owner; }, "The chain solved for.")
       .def_property_readonly("limits", &BoundSolver::limits,
                              "None or (lower, upper): the limits within_limits is measured against.")
@@ -316,6 +355,7 @@ void bind_solver_class(py::module_& m) {
 
 void bind_closed(py::module_& m) {
   bind_solutions(m);
+  bind_batches(m);
   // No defaults here: robokin.closed's functions hold them and pass every argument.
   m.def("ik_planar_rp", &planar_rp, py::arg("target"), py::arg("limits"));
   m.def("ik_planar_2r", &planar_2r, py::arg("target"), py::arg("a1"), py::arg("a2"), py::arg("limits"));

@@ -9,7 +9,7 @@ import numpy.typing
 import os
 import types
 import typing
-__all__: list[str] = ['Chain', 'ClosedFamilyOptions', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'PosturePlan', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'count_reconfigurations', 'cuspidal', 'distinct_solutions', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
+__all__: list[str] = ['Chain', 'ClosedBatch', 'ClosedFamilyOptions', 'ClosedPath', 'ClosedSolver', 'CuspidalOptions', 'Cuspidality', 'IKBatchResult', 'IKOptions', 'IKResult', 'IKSolutions', 'IKSolver', 'IK_DEFAULTS', 'PosturePlan', 'RRR3', 'RRR3ConnectOptions', 'RRR3Fk', 'RRR3Loop', 'RRR3LoopOptions', 'RRR3Newton', 'RRR3NewtonOptions', 'RRR3Plan', 'RRR3PlanOptions', 'RRR3Singularity', 'RRR3Workspace', 'RRR3WorkspaceOptions', 'RRR3_DEFAULTS', 'RateOptions', 'ReachOptions', 'ReachResult', 'ServoOptions', 'ServoResult', 'TrackResult', 'UR_POSTURES', 'UrdfJoint', 'UrdfTree', 'chain_from_dh', 'chain_from_segments', 'chain_from_urdf', 'closed_family', 'count_reconfigurations', 'cuspidal', 'distinct_solutions', 'ik', 'ik_anthropomorphic', 'ik_batch', 'ik_general_3r', 'ik_planar_2r', 'ik_planar_3r', 'ik_planar_rp', 'ik_spherical_wrist_6r', 'ik_spherical_wrist_6r_path', 'ik_ur', 'joint_limit_cost', 'pose_error', 'pose_exp', 'pose_from_quaternion', 'pose_from_rotation_vector', 'pose_from_rpy', 'pose_log', 'pose_quaternion', 'pose_rotation_vector', 'pose_rpy', 'reach', 'resolved_rate', 'rpr_self_motion', 'rrr3_region_areas', 'servo', 'track', 'track_postures', 'traj_cartesian', 'traj_quintic', 'traj_trapezoidal', 'traj_via_points', 'urdf_tree']
 class Chain:
     """
     A serial kinematic chain (an Orocos KDL chain with joint limits).
@@ -1109,6 +1109,74 @@ class IKSolutions:
         (k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);
         False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).
         """
+class ClosedBatch:
+    """
+    Answer of robokin.closed.ur_batch and ClosedSolver.solve_batch; unpacks as (q, singular,
+    within_limits).
+    """
+    def __getitem__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> tuple:
+        ...
+    def __iter__(self) -> collections.abc.Iterator:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def q(self) -> numpy.ndarray:
+        """
+        (N, 8, dof) solution k of pose i in q[i, k], the slot of posture UR_POSTURES[k]; a NaN row where the
+        slot holds none.
+        """
+    @property
+    def singular(self) -> numpy.ndarray:
+        """
+        (N,) booleans: pose i is at a singularity.
+        """
+    @property
+    def within_limits(self) -> numpy.ndarray:
+        """
+        (N, 8) booleans: the slot holds a solution within the limits.
+        """
+class ClosedPath:
+    """
+    Answer of robokin.closed.puma560_path; unpacks as (q, ok, reachable).
+    """
+    def __getitem__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> tuple:
+        ...
+    def __iter__(self) -> collections.abc.Iterator:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def ok(self) -> numpy.ndarray:
+        """
+        (K,) booleans: the frame has a solution within the limits.
+        """
+    @property
+    def q(self) -> numpy.ndarray:
+        """
+        (K, 6) the joints at each frame (the previous ones where ok is False).
+        """
+    @property
+    def reachable(self) -> numpy.ndarray:
+        """
+        (K,) booleans: the frame has a solution, within the limits or not.
+        """
 class ClosedFamilyOptions:
     """
     The options of robokin.closed.family, solve and ClosedSolver (keywords).
@@ -1191,11 +1259,11 @@ class ClosedSolver:
         """
         Every solution of the tool frame target (4, 4) -> IKSolutions, as robokin.closed.solve.
         """
-    def solve_batch(self, targets: numpy.typing.ArrayLike) -> tuple:
+    def solve_batch(self, targets: numpy.typing.ArrayLike) -> ClosedBatch:
         """
-        solve for targets, (N, 4, 4) frames, on every core, the GIL released -> (q (N, 8, dof), singular (N,),
-        within_limits (N, 8)), slots as robokin.closed.ur_batch's (UR_POSTURES); dof is 7 with a
-        held joint (its value in its place), else 6.
+        solve for targets, (N, 4, 4) frames, on every core, the GIL released -> ClosedBatch (q (N, 8, dof),
+        singular (N,), within_limits (N, 8); it unpacks as that tuple), slots as robokin.closed.ur_batch's
+        (UR_POSTURES); dof is 7 with a held joint (its value in its place), else 6.
         """
     @property
     def chain(self) -> typing.Any:
@@ -1820,7 +1888,7 @@ def ik_planar_rp(target: numpy.typing.ArrayLike, limits: tuple[numpy.typing.Arra
     ...
 def ik_spherical_wrist_6r(target: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...
-def ik_spherical_wrist_6r_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> tuple:
+def ik_spherical_wrist_6r_path(targets: numpy.typing.ArrayLike, a2: typing.SupportsFloat | typing.SupportsIndex, a3: typing.SupportsFloat | typing.SupportsIndex, d3: typing.SupportsFloat | typing.SupportsIndex, d4: typing.SupportsFloat | typing.SupportsIndex, d1: typing.SupportsFloat | typing.SupportsIndex, d6: typing.SupportsFloat | typing.SupportsIndex, q0: numpy.typing.ArrayLike, limits: tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> ClosedPath:
     ...
 def ik_ur(target: numpy.typing.ArrayLike, chain: Chain, limits: typing.Literal['default'] | tuple[numpy.typing.ArrayLike, numpy.typing.ArrayLike] | None) -> IKSolutions:
     ...

@@ -29,12 +29,14 @@ from . import _core
 from . import robots as _robots
 from ._checks import chain as check_chain
 from ._checks import finite_float
-from ._core import UR_POSTURES, Chain, ClosedFamilyOptions, ClosedSolver, IKSolutions
+from ._core import UR_POSTURES, Chain, ClosedBatch, ClosedFamilyOptions, ClosedPath, ClosedSolver, IKSolutions
 from ._options import with_options
 from ._ur_dh import ur_dh_rows
 
 __all__ = [
+    "ClosedBatch",
     "ClosedFamilyOptions",
+    "ClosedPath",
     "ClosedSolver",
     "Family",
     "family",
@@ -185,10 +187,10 @@ def puma560_path(targets, q0, limits="default"):
         limits: As :func:`puma560`.
 
     Returns:
-        ``(q, ok, reachable)``: (K, 6) joints and two (K,) boolean arrays. Where a frame has no
-        solution within the limits, ``ok`` is False and the row repeats the previous joints;
-        ``reachable`` is True where the frame has a solution, within the limits or not (so
-        ``reachable & ~ok`` marks the frames the limits alone exclude).
+        A :class:`ClosedPath`, which unpacks as ``(q, ok, reachable)``: (K, 6) joints and two (K,)
+        boolean arrays. Where a frame has no solution within the limits, ``ok`` is False and the
+        row repeats the previous joints; ``reachable`` is True where the frame has a solution,
+        within the limits or not (so ``reachable & ~ok`` marks the frames the limits alone exclude).
     """
     if isinstance(limits, str) and limits == "default":
         limits = _robots.PUMA560_LIMITS
@@ -269,9 +271,10 @@ def ur_batch(targets, robot, limits="default"):
         robot, limits: As :func:`ur`.
 
     Returns:
-        ``(q, singular, within_limits)``: ``q`` (N, 8, 6), solution ``k`` in row ``k`` of ``q[i]``
-        for posture ``UR_POSTURES[k]``; ``singular`` (N,) booleans; ``within_limits`` (N, 8)
-        booleans, True where the slot holds a solution within the limits. A fixed-shape table:
+        A :class:`ClosedBatch`, which unpacks as ``(q, singular, within_limits)``: ``q`` (N, 8, 6),
+        solution ``k`` in row ``k`` of ``q[i]`` for posture ``UR_POSTURES[k]``; ``singular`` (N,)
+        booleans; ``within_limits`` (N, 8) booleans, True where the slot holds a solution within
+        the limits. A fixed-shape table:
         a slot without a solution is a NaN row (``within_limits`` False), by design: the pose is
         out of reach, or, at a singularity, its posture coincides with another (the one solution
         is kept in the first slot of the postures that coincide). No row is NaN for its limits.
