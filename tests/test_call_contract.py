@@ -3,7 +3,9 @@ arguments, and the fields of one bound options class as keyword-only options, wh
 written once, in C++. The test walks the public API (every module's ``__all__``, every public
 method of every class in it, Python wrappers and core calls alike) and fails when a keyword is
 neither a data argument, a call argument below nor a field of the call's options class; when a
-``**kwargs`` is not an options class's; or when Python re-states an option's default."""
+``**kwargs`` is not an options class's; when Python re-states an option's default; or when a data
+argument has a default (other than None) that the table of data defaults below does not explain,
+so that no option hides among the positional arguments."""
 
 import importlib
 import inspect
@@ -32,6 +34,30 @@ CALL_ARGUMENTS = {
 # Parameters named like an option of some class whose default is a data default of their own.
 DATA_DEFAULTS = {
     ("robokin.traj", "dt"): "a trajectory's sampling period, not the Reach loop's time step",
+}
+
+# Data arguments with a default (other than None), and why each is data, not an option: what is
+# computed, or about what, not how the computation runs.
+POSITIONAL_DEFAULTS = {
+    **dict.fromkeys(("a1", "a2", "a3", "d1", "d6", "stroke", "base_radius", "platform_radius", "l1", "l2"),
+                    "an arm's dimensions: the robot computed for (the textbook's by default)"),
+    **dict.fromkeys(("part", "task", "measure", "in_frame", "mode"),
+                    "which quantity is computed (the frame or its point, the task's rows, the measure, the "
+                    "frame a point is expressed in, the 3-RRR's working mode)"),
+    "limits": "the joint limits solutions are marked against ('default': the chain's)",
+    "modified": "the DH table's convention: how the data reads",
+    "qdot_max": "the robot's joint speed limits: what counts as a reconfiguration",
+    "method": "which closed form or IK gives the solutions (track_postures, closed.planar_3r): both give the "
+              "same answers by their definitions",
+    "starts": "track_postures' numerical sets: how many IK starts sample each waypoint's postures",
+    "tol": "RRR3.singularity: the normalised determinant below which a pose is called singular (the answer's "
+           "definition; RRR3_DEFAULTS['singular_tol'] by default)",
+    **dict.fromkeys(("num", "dt", "radius", "center", "k", "law"),
+                    "the path or trajectory sampled: its sizes, its sampling, its time law"),
+    "lengths": "robokin.symbolic: the lengths as symbols or as the chain's values (what the formula shows)",
+    "simplify": "robokin.symbolic: whether the formula is simplified (what it shows)",
+    **dict.fromkeys(("color", "alpha", "lw", "axis", "fps", "size", "surface_samples", "snapshots"),
+                    "a figure's or an animation's content and look"),
 }
 
 # Core calls that take **kwargs: the options classes that they fill (and their docstrings list).
@@ -125,6 +151,27 @@ def core_parameters(f):
     return out
 
 
+def core_defaults(f):
+    """{name: default text} of a core call's positional parameters with a default."""
+    line = (f.__doc__ or "").splitlines()[0]
+    m = re.match(r"\w+\((.*)\)( -> .*)?$", line)
+    out = {}
+    for part in split_top(m.group(1)):
+        if part == "*" or part.startswith("**"):
+            break
+        if "=" in part and not part.startswith("self"):
+            out[part.split(":")[0].split("=")[0].strip()] = part.split("=", 1)[1].strip()
+    return out
+
+
+def loose_default(qualname, name, default):
+    """The problem of a data argument's default that no table explains, or None."""
+    if default in ("None", None) or name in POSITIONAL_DEFAULTS or name in CALL_ARGUMENTS:
+        return None
+    return (f"{qualname}: {name}={default} is a data argument's default no table explains (an option? a "
+            "field of the call's options class; data? POSITIONAL_DEFAULTS, with the reason)")
+
+
 def problems_of(module_name, qualname, f, defaults):
     """What breaks the call contract in one call's signature."""
     try:
@@ -146,6 +193,7 @@ def problems_of(module_name, qualname, f, defaults):
                         problems.append(f"{qualname}: its docstring does not list the option {field}")
             elif kind == "keyword" and name not in CALL_ARGUMENTS:
                 problems.append(f"{qualname}: keyword {name!r} is neither an option nor a call argument")
+        problems += [p for name, d in core_defaults(f).items() if (p := loose_default(qualname, name, d))]
         return problems
     fields = set(getattr(f, "option_names", ()))
     problems = []
@@ -157,6 +205,8 @@ def problems_of(module_name, qualname, f, defaults):
         elif (p.name not in fields and p.default not in (p.empty, None) and repr(p.default) in defaults.get(p.name, ())
               and (module_name, p.name) not in DATA_DEFAULTS):
             problems.append(f"{qualname}: {p.name}={p.default!r} re-states the option {p.name} (defaults live in C++)")
+        elif p.kind is p.POSITIONAL_OR_KEYWORD and p.default is not p.empty:
+            problems += [m for m in [loose_default(qualname, p.name, None if p.default is None else repr(p.default))] if m]
     return problems
 
 
@@ -201,6 +251,9 @@ def test_the_checker_finds_a_stray_keyword_a_loose_kwargs_and_a_restated_default
     def restated(robot, n=200):
         """restated(robot)"""
 
+    def hidden(chain, q, iterations=50):
+        """hidden(chain, q)"""
+
     @with_options(_core.RRR3WorkspaceOptions)
     def fine(robot, *, ax=None, **options):
         """fine(robot)"""
@@ -211,6 +264,9 @@ def test_the_checker_finds_a_stray_keyword_a_loose_kwargs_and_a_restated_default
     assert problems_of("m", "restated", restated, defaults) == [
         "restated: n=200 re-states the option n (defaults live in C++)"]
     assert problems_of("m", "fine", fine, defaults) == []
+    assert problems_of("m", "hidden", hidden, defaults) == [
+        "hidden: iterations=50 is a data argument's default no table explains (an option? a field of the call's "
+        "options class; data? POSITIONAL_DEFAULTS, with the reason)"]
 
 
 def test_the_checker_reads_core_signatures():
@@ -221,3 +277,4 @@ def test_the_checker_reads_core_signatures():
     assert problems_of("robokin", "RRR3.nothing", _core.RRR3.workspace, field_defaults()) == [
         "RRR3.nothing: **kwargs is no options class's (add it to CORE_KWARGS)"]
     assert split_top("a: tuple[int, int] = (1, 2), b: str = 'x,y'") == ["a: tuple[int, int] = (1, 2)", "b: str = 'x,y'"]
+    assert core_defaults(_core.RRR3.singularity) == {"mode": "(1, 1, 1)", "tol": "0.001"}
