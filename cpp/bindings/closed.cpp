@@ -165,15 +165,15 @@ void bind_batches(py::module_& m) {
       .value("q", &ClosedBatch::q,
              "(N, 8, dof) solution k of pose i in q[i, k], the slot of posture UR_POSTURES[k]; a NaN row where the\n"
              "slot holds none.")
-      .value("singular", &ClosedBatch::singular, "(N,) booleans: pose i is at a singularity.")
+      .value("singular", &ClosedBatch::singular, "(N,) booleans, True where pose i is at a singularity.")
       .value("within_limits", &ClosedBatch::within_limits,
-             "(N, 8) booleans: the slot holds a solution within the limits.")
+             "(N, 8) booleans, True where the slot holds a solution within the limits.")
       .done_with(unpacks<ClosedBatch>);
   ResultClass<ClosedPath>(m, "ClosedPath", "Answer of robokin.closed.puma560_path; unpacks as (q, ok, reachable).",
                           false)
       .value("q", &ClosedPath::q, "(K, 6) the joints at each frame (the previous ones where ok is False).")
-      .value("ok", &ClosedPath::ok, "(K,) booleans: the frame has a solution within the limits.")
-      .value("reachable", &ClosedPath::reachable, "(K,) booleans: the frame has a solution, within the limits or not.")
+      .value("ok", &ClosedPath::ok, "(K,) booleans, True where the frame has a solution within the limits.")
+      .value("reachable", &ClosedPath::reachable, "(K,) booleans, True where the frame has a solution, within the limits or not.")
       .done_with(unpacks<ClosedPath>);
 }
 
@@ -187,7 +187,7 @@ void bind_solutions(py::module_& m) {
   def_kept(
       cls, "within_limits",
       [](const ClosedFormSolutions& s) { return array_of(s.within_limits.data(), {s.count()}); },
-      "(k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
+      "(k,) booleans, True where row k is within the joint limits (shifted by 2 pi into them where that fits);\n"
       "False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).");
   cls.def("only_within_limits", &only_within_limits,
           "The solutions within the joint limits only (an IKSolutions, rows in order).")

@@ -1106,7 +1106,7 @@ class IKSolutions:
     @property
     def within_limits(self) -> numpy.typing.NDArray[numpy.bool]:
         """
-        (k,) booleans: row k is within the joint limits (shifted by 2 pi into them where that fits);
+        (k,) booleans, True where row k is within the joint limits (shifted by 2 pi into them where that fits);
         False: some joint is outside its limits however it is shifted (revolute angles then in [-pi, pi]).
         """
 class ClosedBatch:
@@ -1137,12 +1137,12 @@ class ClosedBatch:
     @property
     def singular(self) -> numpy.ndarray:
         """
-        (N,) booleans: pose i is at a singularity.
+        (N,) booleans, True where pose i is at a singularity.
         """
     @property
     def within_limits(self) -> numpy.ndarray:
         """
-        (N, 8) booleans: the slot holds a solution within the limits.
+        (N, 8) booleans, True where the slot holds a solution within the limits.
         """
 class ClosedPath:
     """
@@ -1165,7 +1165,7 @@ class ClosedPath:
     @property
     def ok(self) -> numpy.ndarray:
         """
-        (K,) booleans: the frame has a solution within the limits.
+        (K,) booleans, True where the frame has a solution within the limits.
         """
     @property
     def q(self) -> numpy.ndarray:
@@ -1175,7 +1175,7 @@ class ClosedPath:
     @property
     def reachable(self) -> numpy.ndarray:
         """
-        (K,) booleans: the frame has a solution, within the limits or not.
+        (K,) booleans, True where the frame has a solution, within the limits or not.
         """
 class ClosedFamilyOptions:
     """
@@ -1417,7 +1417,7 @@ class IKResult:
     @property
     def q(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        (dof,) joints: the solution, or the best point found (within the limits).
+        (dof,) joints, the solution or the best point found (within the limits).
         """
     @property
     def success(self) -> bool:

@@ -130,7 +130,7 @@ struct IkResult {
     field("attempts", &IkResult::attempts, "1 + the random restarts used.");
     field("error_p", &IkResult::error_p, "Position error at q (m).");
     field("error_r", &IkResult::error_r, "Orientation error at q (rad); 0 for tasks without one.");
-    field("q", &IkResult::q, "(dof,) joints: the solution, or the best point found (within the limits).");
+    field("q", &IkResult::q, "(dof,) joints, the solution or the best point found (within the limits).");
   }
 };
 
