@@ -166,7 +166,7 @@ def core_defaults(f):
 
 def loose_default(qualname, name, default):
     """The problem of a data argument's default that no table explains, or None."""
-    if default in ("None", None) or name in POSITIONAL_DEFAULTS or name in CALL_ARGUMENTS:
+    if default == "None" or name in POSITIONAL_DEFAULTS or name in CALL_ARGUMENTS:
         return None
     return (f"{qualname}: {name}={default} is a data argument's default no table explains (an option? a "
             "field of the call's options class; data? POSITIONAL_DEFAULTS, with the reason)")
@@ -206,7 +206,8 @@ def problems_of(module_name, qualname, f, defaults):
               and (module_name, p.name) not in DATA_DEFAULTS):
             problems.append(f"{qualname}: {p.name}={p.default!r} re-states the option {p.name} (defaults live in C++)")
         elif p.kind is p.POSITIONAL_OR_KEYWORD and p.default is not p.empty:
-            problems += [m for m in [loose_default(qualname, p.name, None if p.default is None else repr(p.default))] if m]
+            if problem := loose_default(qualname, p.name, repr(p.default)):
+                problems.append(problem)
     return problems
 
 

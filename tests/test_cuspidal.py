@@ -1,10 +1,9 @@
 """rk.cuspidal: the aspects, cusps and posture changes of 3R arms.
 
-Truth: the forward model (KDL's, chain._fk_kdl), numerical IK from many random starts (every
-distinct solution it finds must be in the closed-form set), KDL's Jacobian for the singular curve,
-and the definitions themselves: at a cusp the image of the singular curve turns back (the
-workspace point moves as the square of the distance along the curve, not linearly), and a
-cuspidal arm has points with two solutions in one aspect (a non-cuspidal one never has).
+Truth: the forward model (KDL's, chain._fk_kdl), the chain's Jacobian for the singular curve and
+det J's sign, and the definitions themselves: at a cusp the image of the singular curve turns
+back (the workspace point moves as the square of the distance along the curve, not linearly),
+and a cuspidal arm has points with two solutions in one aspect (a non-cuspidal one never has).
 
 Literature:
 - Seed 003 (after P. Wenger and D. Chablat, "Robots cuspidaux : theorie et applications",
@@ -153,7 +152,8 @@ def test_a_state_whose_evidence_has_the_wrong_shape_is_refused():
 def test_the_posture_change_is_found_for_random_cuspidal_arms_and_each_one_holds():
     """Beyond Wenger's arm: over random 3R arms, the search around the cusps finds a posture change
     for nearly every cuspidal one (it may miss one: no claim of completeness), and every path it
-    returns joins two solutions of its point with det J of one sign, checked densely (KDL)."""
+    returns joins two solutions of its point (KDL's forward model) with det J of one sign, checked
+    densely."""
     cuspidal = found = 0
     for seed in range(60):
         chain = random_arm(np.random.default_rng(seed))

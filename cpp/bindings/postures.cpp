@@ -31,10 +31,9 @@ std::vector<bool> flags_arg(ArrayLike continuous, long n) {
 struct RuleArgs {
   Eigen::VectorXd qdot_max, q0;
   std::vector<bool> continuous;
-  bool has_q0 = false;
   double dt = 0;
   long n() const { return static_cast<long>(qdot_max.size()); }
-  const double* start() const { return has_q0 ? q0.data() : nullptr; }
+  const double* start() const { return q0.size() ? q0.data() : nullptr; }  // q0 given: n values
 };
 
 RuleArgs rule_args(ArrayLike qdot_max, double dt, ArrayLike continuous, py::handle q0) {
@@ -45,7 +44,7 @@ RuleArgs rule_args(ArrayLike qdot_max, double dt, ArrayLike continuous, py::hand
   if (!(dt > 0 && std::isfinite(dt))) fail("dt: expected a positive finite number");
   a.dt = dt;
   a.continuous = flags_arg(continuous, n);
-  if (!q0.is_none()) a.q0 = as_vector(q0, "q0", n), a.has_q0 = true;
+  if (!q0.is_none()) a.q0 = as_vector(q0, "q0", n);
   return a;
 }
 

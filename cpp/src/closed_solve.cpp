@@ -441,7 +441,7 @@ ClosedFormSolutions closed_solve(const ClosedArm& arm, const Chain& chain, const
       reaches = closed_reaches(F[k], T, size);
     }
     if (!reaches) continue;
-    if (slot) slot[out.count()] = (c.shoulder[k] % 2) * 4 + (c.elbow[k] > 1 ? 0 : c.elbow[k]) * 2 + c.wrist[k] % 2;
+    if (slot) slot[out.count()] = posture_slot(c.shoulder[k], c.elbow[k], c.wrist[k]);
     out.add(q + k * n, posture_label(c.shoulder[k], c.elbow[k], c.wrist[k]), fits[k]);
   }
   return out;

@@ -19,15 +19,6 @@ namespace {
 
 using namespace arm_3r_model;
 
-Rigid frame_of(const KDL::Frame& f) {
-  Rigid r;
-  for (int i = 0; i < 3; ++i) {
-    r.p(i) = f.p(i);
-    for (int j = 0; j < 3; ++j) r.R(i, j) = f.M(i, j);
-  }
-  return r;
-}
-
 [[noreturn]] void not_3r(const std::string& why) { throw std::invalid_argument("chain: not a 3R arm (" + why + ")"); }
 
 // Real roots in [-pi, pi) of a trigonometric polynomial of degree <= 2 known by samples f(k 2pi/8):
@@ -83,12 +74,12 @@ Arm3R arm_3r(const Chain& chain) {
   for (const KDL::Segment& seg : chain.kdl().segments) {
     const KDL::Joint& joint = seg.getJoint();
     if (joint.getType() == KDL::Joint::Fixed) {
-      since = since * frame_of(seg.pose(0.0));
+      since = since * Rigid::from_kdl(seg.pose(0.0));
       continue;
     }
     ++j;
     if (joint.getType() >= KDL::Joint::TransAxis) not_3r("joint " + std::to_string(j + 1) + " is prismatic");
-    const Rigid P0 = frame_of(joint.pose(0.0)), P1 = frame_of(joint.pose(0.5));
+    const Rigid P0 = Rigid::from_kdl(joint.pose(0.0)), P1 = Rigid::from_kdl(joint.pose(0.5));
     const bool plus = (P1.R - rz(0.5)).cwiseAbs().maxCoeff() < 1e-12;
     const bool minus = (P1.R - rz(-0.5)).cwiseAbs().maxCoeff() < 1e-12;
     if ((P0.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-12 || P0.p.norm() > 0 || P1.p.norm() > 0 ||
@@ -97,7 +88,7 @@ Arm3R arm_3r(const Chain& chain) {
     arm.scale[j] = plus ? 1.0 : -1.0;
     if (j == 0) arm.base = since;
     else after[j - 1] = since;
-    since = frame_of(seg.pose(0.0));
+    since = Rigid::from_kdl(seg.pose(0.0));
   }
   after[2] = since;
   arm.F1 = after[0], arm.F2 = after[1], arm.tip = after[2].p;

@@ -476,9 +476,7 @@ ClosedFormSolutions ik_spherical(const SphericalArm& sa, const Chain& chain, con
   for (int j = 0; j < m; ++j) {
     if (!closed_reaches(F[j], T, sa.size)) continue;
     const int k = keep[j], wrist = c.wrist_singular[k] ? 2 : c.flip[k];
-    // kURPostures' slot: shoulder left 0 / right 1 (singular in the first), elbow up 0 / down 1
-    // (straight or folded in the first), wrist no flip 0 / flip 1 (singular in the first).
-    if (slot) slot[out.count()] = (c.shoulder[k] == 1) * 4 + (c.elbow[k] == 1) * 2 + (wrist == 1);
+    if (slot) slot[out.count()] = posture_slot(c.shoulder[k], c.elbow[k], wrist);
     out.add(q[j], posture_label(c.shoulder[k], c.elbow[k], wrist), within[j]);
   }
   return out;
@@ -540,10 +538,8 @@ int nearest_solution(const ClosedFormSolutions& s, const double* q) {
 // ---------------------------------------------------------------------------------------------
 // The Universal Robots family: three parallel axes (2, 3, 4).
 namespace robokin {
-namespace {
 
-}  // namespace
-
+// Slot k is posture_slot's k: shoulder (k / 4), elbow (k / 2 % 2), wrist (k % 2).
 const char* const kURPostures[8] = {
     posture_label(0, 0, 0), posture_label(0, 0, 1), posture_label(0, 1, 0), posture_label(0, 1, 1),
     posture_label(1, 0, 0), posture_label(1, 0, 1), posture_label(1, 1, 0), posture_label(1, 1, 1),
@@ -742,8 +738,9 @@ inline __attribute__((always_inline)) void ur_candidates(const URArm& arm, URSta
       }
       const double dh[6] = {s.q1[side], q2, q3, s.q234[j] - q2 - q3, q5, q6};
       for (int i = 0; i < 6; ++i) s.cand[m][i] = (dh[i] - arm.theta[i]) * arm.scale[i];
-      s.posture[m] = posture_label(s.shoulder_singular ? 2 : side, elbow, s.wrist_singular[side] ? 2 : flip);
-      s.cand_slot[m++] = (s.shoulder_singular ? 0 : side) * 4 + (elbow > 1 ? 0 : elbow) * 2 + (s.wrist_singular[side] ? 0 : flip);
+      const int shoulder = s.shoulder_singular ? 2 : side, wrist = s.wrist_singular[side] ? 2 : flip;
+      s.posture[m] = posture_label(shoulder, elbow, wrist);
+      s.cand_slot[m++] = posture_slot(shoulder, elbow, wrist);
     }
   }
   s.m = m;

@@ -23,4 +23,11 @@ inline const char* posture_label(int shoulder, int elbow, int wrist) {
   return labels[(shoulder * 4 + elbow) * 4 + wrist + 1].c_str();
 }
 
+// The slot of kURPostures (and of a batch's 8 rows) of posture_label's indices: shoulder left 0 /
+// right 4, elbow up 0 / down 2, wrist no flip 0 / flip 1; a singular part (or an elbow straight or
+// folded) takes the first of the slots it joins.
+inline int posture_slot(int shoulder, int elbow, int wrist) {
+  return (shoulder == 1) * 4 + (elbow == 1) * 2 + (wrist == 1);
+}
+
 }  // namespace robokin

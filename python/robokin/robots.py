@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ._core import Chain
-from ._checks import number, whole
+from ._checks import instance, number, whole
 from ._ur_dh import ur_dh_rows
 
 __all__ = ["RPR_L1", "RPR_STROKE", "RPR_L3", "RPR_LIMITS", "RPR_LINE_Q1", "RPR_LINE_P2", "rpr", "prr",
@@ -309,8 +309,7 @@ def get(name: str) -> Chain:
         ValueError: ``name`` is not in the catalogue (the message lists the valid names).
         TypeError: ``name`` is not a string.
     """
-    if not isinstance(name, str):
-        raise TypeError(f"name: expected a str, got {type(name).__name__}")
+    instance(name, "name", str, "a str")
     builder = _CATALOGUE.get(name)
     if builder is None:
         raise ValueError(f"name: no robot named {name!r} in the catalogue; valid names: {', '.join(names())}")

@@ -24,7 +24,7 @@ double posture_step(double a, double b, bool continuous);
 // The waypoints k of the joint path q (count rows of n joints, row-major) entered by a
 // reconfiguration: some joint i changes from row k - 1 (from q0 for k = 0, when q0 is not null) by
 // more than qdot_max[i] * dt (1 + 1e-9), posture_step's change; in order. track_postures counts
-// its steps by the same rule.
+// its steps by the same rule, over the waypoint intervals between rows that have solutions.
 std::vector<std::int64_t> count_reconfigurations(const double* q, long count, long n, const double* qdot_max, double dt,
                                                  const std::vector<bool>& continuous, const double* q0);
 

@@ -73,7 +73,9 @@ ROBOKIN_TARGET_AVX2 void run_avx2(A... args) {
 // inlined into each build) run in its AVX2 build where this CPU has AVX2, else in the baseline
 // build. Both give the same bits; the AVX2 build takes 4 doubles per vector instead of 2. The
 // arguments go by value, pointers and numbers: a number read through a reference could alias the
-// loop's outputs, and the vectoriser would then leave the loop scalar. A Kernel is file-local (an
+// loop's outputs, and the vectoriser would then leave the loop scalar. A pointer's __restrict does
+// not survive being passed through: a loop whose stores could alias its loads needs `#pragma GCC
+// ivdep` (rrr3_ik_batch.cpp's LegArgs), or it stays scalar. A Kernel is file-local (an
 // unnamed namespace): its builds then cannot be merged with another file's compiled under other
 // flags.
 template <class Kernel, class... A>

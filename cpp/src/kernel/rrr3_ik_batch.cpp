@@ -10,7 +10,6 @@
 #include "robokin/parallel.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace robokin::kernel {
